@@ -1,0 +1,133 @@
+#include "quadtree_forest.h"
+
+#include "errors.h"
+
+#include <unordered_map>
+
+namespace mrcloth {
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// Midpoint of each split edge, recovered from the parents layer (the forest
+// plus that layer are the whole truth; nothing else needs to be saved).
+std::unordered_map<std::uint64_t, int> midpoints_from_parents(const QuadMesh& mesh, const Layers& l) {
+  std::unordered_map<std::uint64_t, int> map;
+  map.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    const OpenMesh::Vec2i p = mesh.property(l.parents, v);
+    if (p[0] >= 0) map.emplace(edge_key(p[0], p[1]), v.idx());
+  }
+  return map;
+}
+
+// Appends the vertices strictly inside edge (a, b), in order from a to b.
+void append_edge_interior(const std::unordered_map<std::uint64_t, int>& mids, int a, int b,
+                          std::vector<int>& out) {
+  const auto it = mids.find(edge_key(a, b));
+  if (it == mids.end()) return;
+  const int m = it->second;
+  append_edge_interior(mids, a, m, out);
+  out.push_back(m);
+  append_edge_interior(mids, m, b, out);
+}
+
+std::vector<int> polygon_of(const std::unordered_map<std::uint64_t, int>& mids, const QuadRecord& q) {
+  std::vector<int> loop;
+  loop.reserve(8);
+  for (int k = 0; k < 4; ++k) {
+    loop.push_back(q.corners[k]);
+    append_edge_interior(mids, q.corners[k], q.corners[(k + 1) % 4], loop);
+  }
+  return loop;
+}
+
+void mark_edge_interior(const QuadMesh& mesh, const std::unordered_map<std::uint64_t, int>& mids,
+                        int a, int b, std::vector<char>& hanging) {
+  const auto it = mids.find(edge_key(a, b));
+  if (it == mids.end()) return;
+  const int m = it->second;
+  hanging[m] = 1;
+  mark_edge_interior(mesh, mids, a, m, hanging);
+  mark_edge_interior(mesh, mids, m, b, hanging);
+}
+
+}  // namespace
+
+void init_forest(QuadMesh& mesh) {
+  const Layers l = ensure_layers(mesh);
+  std::vector<QuadRecord> forest;
+  forest.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    if (mesh.valence(f) != 4)
+      throw ArgumentError("face " + std::to_string(f.idx()) + " has " +
+                          std::to_string(mesh.valence(f)) + " vertices; a refinable mesh needs quads only");
+    QuadRecord q;
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) q.corners[k++] = v.idx();
+    mesh.property(l.level, f) = 1;
+    mesh.property(l.quad, f) = static_cast<int>(forest.size());
+    forest.push_back(q);
+  }
+  for (auto v : mesh.vertices()) {
+    mesh.property(l.mode, v) = kDefaultMode;
+    mesh.property(l.r_value, v) = 0.0;
+    mesh.property(l.hanging, v) = false;
+    mesh.property(l.parents, v) = OpenMesh::Vec2i(-1, -1);
+  }
+  mesh.property(l.quadtree) = std::move(forest);
+}
+
+std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record) {
+  const Layers l = get_layers(mesh);
+  return polygon_of(midpoints_from_parents(mesh, l), record);
+}
+
+void rebuild_active_faces(QuadMesh& mesh) {
+  const Layers l = get_layers(mesh);
+  const auto mids = midpoints_from_parents(mesh, l);
+
+  for (auto f : mesh.faces()) mesh.delete_face(f, /*delete_isolated_vertices=*/false);
+  mesh.garbage_collection();  // no vertex was deleted, so vertex indices do not move
+
+  const auto& forest = mesh.property(l.quadtree);
+  std::vector<QuadMesh::VertexHandle> handles;
+  for (std::size_t i = 0; i < forest.size(); ++i) {
+    const QuadRecord& q = forest[i];
+    if (!q.active) continue;
+    handles.clear();
+    for (int v : polygon_of(mids, q)) handles.push_back(mesh.vertex_handle(v));
+    const auto f = mesh.add_face(handles);
+    if (!f.is_valid())
+      throw Error("internal: active quad record " + std::to_string(i) +
+                  " could not be added as a face (the forest is inconsistent)");
+    mesh.property(l.level, f) = q.level;
+    mesh.property(l.quad, f) = static_cast<int>(i);
+  }
+  update_hanging_nodes(mesh);
+}
+
+void update_hanging_nodes(QuadMesh& mesh) {
+  const Layers l = get_layers(mesh);
+  const auto mids = midpoints_from_parents(mesh, l);
+  std::vector<char> hanging(mesh.n_vertices(), 0);
+  for (const QuadRecord& q : mesh.property(l.quadtree)) {
+    if (!q.active) continue;
+    for (int k = 0; k < 4; ++k) mark_edge_interior(mesh, mids, q.corners[k], q.corners[(k + 1) % 4], hanging);
+  }
+  for (auto v : mesh.vertices()) mesh.property(l.hanging, v) = hanging[v.idx()] != 0;
+}
+
+std::vector<int> vertex_levels(const QuadMesh& mesh) {
+  std::vector<int> level(mesh.n_vertices(), 0);
+  for (const QuadRecord& q : quadtree(mesh))
+    for (int c : q.corners)
+      if (level[c] == 0 || q.level < level[c]) level[c] = q.level;
+  return level;
+}
+
+}  // namespace mrcloth

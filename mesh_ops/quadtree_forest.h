@@ -1,0 +1,30 @@
+#pragma once
+// Building the quadtree forest of a fresh all-quad mesh, and re-deriving the
+// mesh's faces and T-node flags from the forest after refinement.
+#include "quad_mesh.h"
+
+namespace mrcloth {
+
+/// Makes `mesh` refinable: one level-1 active root record per face (corners in
+/// face order), mode 1 and R 0 on every vertex. Every face must be a quad;
+/// throws ArgumentError naming the first face that is not. Replaces any forest.
+void init_forest(QuadMesh& mesh);
+
+/// Vertex loop of an active record as it appears in the mesh: its four corners
+/// with every vertex lying inside its edges (hanging nodes, recursively) inserted.
+std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record);
+
+/// Replaces all faces of `mesh` by the active records' polygons (in record
+/// order), sets the level and quad face layers, and recomputes hanging flags.
+/// Vertices and their indices are untouched.
+void rebuild_active_faces(QuadMesh& mesh);
+
+/// Recomputes the hanging flag of every vertex from the forest: a vertex is
+/// hanging iff it lies strictly inside a corner-to-corner edge of an active record.
+void update_hanging_nodes(QuadMesh& mesh);
+
+/// Level at which each vertex was created (coarse = 1): the lowest level of
+/// any record that has it as a corner. Element i belongs to vertex i.
+std::vector<int> vertex_levels(const QuadMesh& mesh);
+
+}  // namespace mrcloth

@@ -1,0 +1,1 @@
+# io tests (garment_io, units)

@@ -1,0 +1,110 @@
+#include "mesh_invariants.h"
+#include "test_meshes.h"
+
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/uniform_refine.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace mrcloth {
+namespace {
+
+TEST(UniformRefine, GridCountsAreExact) {
+  // 3x3 quads: (3*2^n + 1)^2 vertices and 9 * 4^n faces.
+  const std::size_t vertices[] = {16, 49, 169, 625};
+  const std::size_t faces[] = {9, 36, 144, 576};
+  for (int levels = 0; levels <= 3; ++levels) {
+    QuadMesh mesh = test::make_grid(3, 3);
+    uniform_refine(mesh, levels);
+    EXPECT_EQ(mesh.n_vertices(), vertices[levels]) << "levels " << levels;
+    EXPECT_EQ(mesh.n_faces(), faces[levels]) << "levels " << levels;
+    EXPECT_EQ(count_hanging(mesh), 0u);
+    EXPECT_TRUE(test::face_forest_violations(mesh).empty());
+    EXPECT_EQ(test::euler_characteristic(mesh), 1);
+  }
+}
+
+TEST(UniformRefine, RefiningInStepsEqualsRefiningAtOnce) {
+  QuadMesh once = test::make_grid(3, 2);
+  uniform_refine(once, 2);
+  QuadMesh twice = test::make_grid(3, 2);
+  uniform_refine(twice, 1);
+  uniform_refine(twice, 1);
+  ASSERT_EQ(once.n_vertices(), twice.n_vertices());
+  for (auto v : once.vertices()) EXPECT_EQ(once.point(v), twice.point(twice.vertex_handle(v.idx())));
+}
+
+TEST(UniformRefine, CoarseVerticesKeepTheirIndicesAndPositions) {
+  const QuadMesh coarse = test::make_tube(12, 6, 0.3, 0.5);
+  QuadMesh fine = copy_mesh(coarse);
+  uniform_refine(fine, 2);
+  for (auto v : coarse.vertices()) EXPECT_EQ(coarse.point(v), fine.point(fine.vertex_handle(v.idx())));
+  // Every level-1 record still names the same four coarse vertices.
+  const auto& a = quadtree(coarse);
+  const auto& b = quadtree(fine);
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].corners, b[i].corners);
+}
+
+TEST(UniformRefine, MidpointsAreSharedNotDuplicated) {
+  // A duplicated midpoint would leave two vertices at one position.
+  QuadMesh mesh = test::make_tube(10, 5, 0.4, 0.6);
+  uniform_refine(mesh, 2);
+  std::vector<OpenMesh::Vec3d> points;
+  for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
+  std::sort(points.begin(), points.end(), [](const auto& p, const auto& q) {
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  });
+  EXPECT_EQ(std::adjacent_find(points.begin(), points.end()), points.end());
+  // A closed tube stays a tube: Euler characteristic 0, two boundary loops.
+  EXPECT_EQ(test::euler_characteristic(mesh), 0);
+}
+
+TEST(UniformRefine, HierarchyRecordsAreConsistent) {
+  QuadMesh mesh = test::make_grid(2, 2);
+  uniform_refine(mesh, 2);
+  const auto& forest = quadtree(mesh);
+  ASSERT_EQ(forest.size(), 4u + 16u + 64u);
+  for (std::size_t i = 0; i < forest.size(); ++i) {
+    const QuadRecord& q = forest[i];
+    EXPECT_EQ(q.active != 0, q.level == 3) << "record " << i;
+    if (q.parent >= 0) {
+      EXPECT_EQ(forest[q.parent].level + 1, q.level);
+      const auto& siblings = forest[q.parent].children;
+      EXPECT_NE(std::find(siblings.begin(), siblings.end(), static_cast<int>(i)), siblings.end());
+    }
+    if (!q.active)
+      for (int k = 0; k < 4; ++k) {
+        // Child k keeps corner k at position k.
+        EXPECT_EQ(forest[q.children[k]].corners[k], q.corners[k]) << "record " << i << " child " << k;
+        EXPECT_EQ(forest[q.children[k]].parent, static_cast<int>(i));
+      }
+  }
+}
+
+TEST(UniformRefine, NegativeLevelsAreRefused) {
+  QuadMesh mesh = test::make_grid(1, 1);
+  EXPECT_THROW(uniform_refine(mesh, -1), ArgumentError);
+  EXPECT_EQ(mesh.n_vertices(), 4u);
+}
+
+TEST(UniformRefine, SharedSkirtCountsAreExact) {
+  const std::string path = test::shared_data("garments/makehuman/skirthelper.obj");
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found at " << path;
+  QuadMesh mesh = load_garment(path, {"dm"}).mesh;
+  ASSERT_EQ(mesh.n_vertices(), 720u);
+  ASSERT_EQ(mesh.n_faces(), 684u);
+  const QuadMesh coarse = copy_mesh(mesh);
+  uniform_refine(mesh, 1);
+  EXPECT_EQ(mesh.n_vertices(), 2808u);
+  EXPECT_EQ(mesh.n_faces(), 2736u);
+  uniform_refine(mesh, 1);
+  EXPECT_EQ(mesh.n_vertices(), 11088u);
+  EXPECT_EQ(mesh.n_faces(), 10944u);
+  for (auto v : coarse.vertices()) EXPECT_EQ(coarse.point(v), mesh.point(mesh.vertex_handle(v.idx())));
+}
+
+}  // namespace
+}  // namespace mrcloth

@@ -1,0 +1,47 @@
+#pragma once
+// Small meshes built in code for tests: exact, planar or curved on purpose.
+#include "mesh_ops/quad_mesh.h"
+#include "mesh_ops/quadtree_forest.h"
+
+#include <cmath>
+#include <string>
+
+namespace mrcloth::test {
+
+/// nx by ny quads on the plane z = 0 with the given spacing (metres), vertex
+/// (i, j) at index j * (nx + 1) + i, made refinable.
+inline QuadMesh make_grid(int nx, int ny, double spacing = 1.0) {
+  QuadMesh mesh;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) mesh.add_vertex(QuadMesh::Point(i * spacing, j * spacing, 0.0));
+  const auto vid = [&](int i, int j) { return mesh.vertex_handle(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) mesh.add_face(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1));
+  init_forest(mesh);
+  return mesh;
+}
+
+/// An open tube (around x around, ny rings-1 high) of the given radius: curved,
+/// so its quads are not parallelograms after refinement in general.
+inline QuadMesh make_tube(int around, int rings, double radius, double height) {
+  QuadMesh mesh;
+  for (int j = 0; j < rings; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * M_PI * i / around;
+      // A slight flare makes the side quads trapezoids, a harder mass case.
+      const double r = radius * (1.0 + 0.3 * j / rings);
+      mesh.add_vertex(QuadMesh::Point(r * std::cos(a), height * j / (rings - 1), r * std::sin(a)));
+    }
+  const auto vid = [&](int i, int j) { return mesh.vertex_handle(j * around + (i % around)); };
+  for (int j = 0; j + 1 < rings; ++j)
+    for (int i = 0; i < around; ++i) mesh.add_face(vid(i, j), vid(i, j + 1), vid(i + 1, j + 1), vid(i + 1, j));
+  init_forest(mesh);
+  return mesh;
+}
+
+/// Shared real data folder (may be absent: callers skip).
+inline std::string shared_data(const std::string& relative) {
+  return std::string(MRCLOTH_SHARED_DATA) + "/" + relative;
+}
+
+}  // namespace mrcloth::test
