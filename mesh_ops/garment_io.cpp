@@ -1,0 +1,850 @@
+#include "garment_io.h"
+
+#include "errors.h"
+#include "quadtree_forest.h"
+#include "units.h"
+
+// MeshIO.hh pulls in the reader and writer modules, which register
+// themselves with the IOManager.
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <system_error>
+
+namespace mrcloth {
+namespace {
+
+namespace fs = std::filesystem;
+using VertexHandle = OpenMesh::VertexHandle;
+
+enum class Format { obj, off, ply, om };
+
+std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+/// ".obj" for "A/B.OBJ", "" when there is none.
+std::string lower_extension(const std::string& path) { return lower(fs::path(path).extension().string()); }
+
+std::optional<Format> format_of(const std::string& extension) {
+  if (extension == ".obj") return Format::obj;
+  if (extension == ".off") return Format::off;
+  if (extension == ".ply") return Format::ply;
+  if (extension == ".om") return Format::om;
+  return std::nullopt;
+}
+
+const char* format_name(Format format) {
+  switch (format) {
+    case Format::obj: return "OBJ";
+    case Format::off: return "OFF";
+    case Format::ply: return "PLY";
+    case Format::om: return "OpenMesh OM";
+  }
+  return "?";
+}
+
+std::string shown_extension(const std::string& extension) {
+  return extension.empty() ? std::string("none") : "'" + extension + "'";
+}
+
+/// OpenMesh reports to omerr()/omlog() itself; while one of our reads or
+/// writes runs those reports are muted, because every problem the user must
+/// see comes back as one of our exceptions instead.
+class QuietOpenMesh {
+ public:
+  QuietOpenMesh() : err_was_on_(::omerr().is_enabled()), log_was_on_(::omlog().is_enabled()) {
+    ::omerr().flush();  // earlier, unrelated output still goes out
+    ::omlog().flush();
+    ::omerr().disable();
+    ::omlog().disable();
+  }
+  ~QuietOpenMesh() {
+    // A muted report without a final newline would otherwise sit in the
+    // buffer and surface with the next unrelated message.
+    ::omerr().flush();
+    ::omlog().flush();
+    if (err_was_on_) ::omerr().enable();
+    if (log_was_on_) ::omlog().enable();
+  }
+  QuietOpenMesh(const QuietOpenMesh&) = delete;
+  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
+
+ private:
+  bool err_was_on_;
+  bool log_was_on_;
+};
+
+// ---------------------------------------------------------------------------
+// Reading
+
+/// The first face the file gets wrong, in file order (0-based).
+struct FaceProblem {
+  long face = -1;
+  std::string text;  ///< starts with "face <n>"
+  bool found() const { return face >= 0; }
+};
+
+FaceProblem earlier(const FaceProblem& a, const FaceProblem& b) {
+  if (!a.found()) return b;
+  if (!b.found()) return a;
+  return b.face < a.face ? b : a;
+}
+
+std::string face_label(long face) { return "face " + std::to_string(face); }
+
+/// Checks every face as the reader hands it over. ImporterT would log and
+/// drop bad faces, and would silently duplicate the vertices of a face that
+/// does not fit the manifold built so far; we want the read to fail instead.
+/// Nothing is thrown from inside OpenMesh's reader: the first problem is
+/// remembered and load_garment throws once the reader has returned.
+class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
+ public:
+  explicit CheckingImporter(QuadMesh& mesh) : ImporterT(mesh), target_(mesh) {}
+
+  using ImporterT::add_face;
+
+  OpenMesh::FaceHandle add_face(const VHandles& corners) override {
+    const long face = next_face_++;
+    // Once the load is known to fail, later faces are skipped so the reader
+    // can still run to its end.
+    if (problem_.found()) return OpenMesh::FaceHandle();
+    if (std::string issue = corner_issue(corners); !issue.empty()) {
+      problem_ = {face, face_label(face) + issue};
+      return OpenMesh::FaceHandle();
+    }
+    const OpenMesh::FaceHandle added = target_.add_face(corners);
+    if (!added.is_valid()) {
+      problem_ = {face, face_label(face) +
+                            " is non-manifold (it would make an edge shared by more than two faces, an edge "
+                            "used twice in the same direction, or a non-manifold vertex); expected an "
+                            "oriented 2-manifold quad mesh"};
+    }
+    return added;
+  }
+
+  const FaceProblem& problem() const { return problem_; }
+
+ private:
+  std::string corner_issue(const VHandles& corners) const {
+    if (corners.size() < 3)
+      return " has only " + std::to_string(corners.size()) + " corners; expected at least 3";
+    const int n_vertices = static_cast<int>(target_.n_vertices());
+    for (const VertexHandle v : corners) {
+      if (v.idx() < 0 || v.idx() >= n_vertices)
+        return " refers to vertex " + std::to_string(v.idx()) + ", which does not exist (the file has " +
+               std::to_string(n_vertices) + " vertices)";
+    }
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      for (std::size_t j = i + 1; j < corners.size(); ++j) {
+        if (corners[i] == corners[j])
+          return " uses vertex " + std::to_string(corners[i].idx()) + " more than once; expected distinct corners";
+      }
+    }
+    return {};
+  }
+
+  QuadMesh& target_;
+  long next_face_ = 0;
+  FaceProblem problem_;
+};
+
+// OpenMesh 9's OBJ, OFF and PLY readers parse coordinates as float, which
+// would cost garments about seven significant digits. The text formats are
+// therefore scanned once more here, in double precision; the scan also sees
+// what the OBJ reader hides (it drops vertices it cannot parse and quietly
+// removes repeated corners), so those files fail with the real reason.
+
+/// What the double-precision scan learned about a text file.
+struct TextScan {
+  bool understood = false;              ///< false: keep OpenMesh's coordinates
+  bool binary = false;                  ///< binary OFF/PLY: OpenMesh's values are all there is
+  std::vector<OpenMesh::Vec3d> points;  ///< in file order, unscaled
+  FaceProblem face_problem;             ///< OBJ only
+  /// ASCII OFF without comments and blank lines, to be read instead of the
+  /// file: OpenMesh's OFF reader misreads a comment after the header as
+  /// element counts (garbage counts, then garbage or very slow reads).
+  std::string off_without_comments;
+};
+
+std::vector<std::string> split_words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> words;
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+std::string strip_comment(const std::string& line) { return line.substr(0, line.find('#')); }
+
+/// Parses one coordinate independently of the C locale (a Qt host sets it
+/// from the environment, and strtod would then expect a decimal comma).
+double parse_coordinate(const std::string& path, const std::string& token, std::size_t vertex,
+                        const std::string& where) {
+  const char* begin = token.data();
+  const char* end = token.data() + token.size();
+  if (begin != end && *begin == '+') ++begin;  // from_chars does not take a plus sign
+  double value = 0.0;
+  const auto [stop, error] = std::from_chars(begin, end, value);
+  const std::string vertex_text = "vertex " + std::to_string(vertex) + where;
+  if (stop != end || (error != std::errc() && error != std::errc::result_out_of_range))
+    throw InputError(with_path(path, vertex_text + " has a coordinate that is not a number ('" + token + "')"));
+  if (error == std::errc::result_out_of_range) {
+    // Underflow is harmless (the value is zero to double precision); overflow
+    // is a coordinate we cannot represent.
+    const bool negative_exponent = token.find("e-") != std::string::npos || token.find("E-") != std::string::npos;
+    if (!negative_exponent)
+      throw InputError(with_path(path, vertex_text + " has a non-finite coordinate (" + token +
+                                           "); expected finite numbers"));
+    value = 0.0;
+  }
+  if (!std::isfinite(value))
+    throw InputError(
+        with_path(path, vertex_text + " has a non-finite coordinate (" + token + "); expected finite numbers"));
+  return value;
+}
+
+OpenMesh::Vec3d parse_point(const std::string& path, const std::vector<std::string>& words, std::size_t first,
+                            std::size_t vertex, const std::string& where) {
+  if (words.size() < first + 3)
+    throw InputError(with_path(path, "vertex " + std::to_string(vertex) + where +
+                                         " has fewer than 3 coordinates; expected x y z"));
+  return {parse_coordinate(path, words[first], vertex, where), parse_coordinate(path, words[first + 1], vertex, where),
+          parse_coordinate(path, words[first + 2], vertex, where)};
+}
+
+std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
+
+/// One OBJ face line checked the way CheckingImporter checks faces, but with
+/// the file's own 1-based (or negative, relative) indices in the message.
+std::string obj_face_issue(const std::vector<std::string>& words, long n_defined) {
+  std::vector<long> corners;
+  for (std::size_t k = 1; k < words.size(); ++k) {
+    const std::string& word = words[k];
+    const std::string index_text = word.substr(0, word.find('/'));
+    long index = 0;
+    const char* end = index_text.data() + index_text.size();
+    const auto [stop, error] = std::from_chars(index_text.data(), end, index);
+    if (error != std::errc() || stop != end) return " has a corner that is not a vertex index ('" + word + "')";
+    const long resolved = index > 0 ? index - 1 : n_defined + index;
+    if (index == 0 || resolved < 0 || resolved >= n_defined)
+      return " refers to vertex " + index_text + ", which does not exist (" + std::to_string(n_defined) +
+             " vertices are defined before it; OBJ indices start at 1)";
+    corners.push_back(resolved);
+  }
+  if (corners.size() < 3) return " has only " + std::to_string(corners.size()) + " corners; expected at least 3";
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (std::size_t j = i + 1; j < corners.size(); ++j) {
+      if (corners[i] == corners[j])
+        return " uses vertex " + words[i + 1].substr(0, words[i + 1].find('/')) +
+               " more than once; expected distinct corners";
+    }
+  }
+  return {};
+}
+
+TextScan scan_obj(const std::string& path, std::istream& in) {
+  TextScan scan;
+  long n_faces = 0;
+  std::size_t line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    const std::vector<std::string> words = split_words(strip_comment(line));
+    if (words.empty()) continue;
+    if (words[0] == "v") {
+      scan.points.push_back(parse_point(path, words, 1, scan.points.size(), at_line(line_number)));
+    } else if (words[0] == "f") {
+      const long face = n_faces++;
+      if (scan.face_problem.found()) continue;
+      if (std::string issue = obj_face_issue(words, static_cast<long>(scan.points.size())); !issue.empty())
+        scan.face_problem = {face, face_label(face) + at_line(line_number) + issue};
+    }
+  }
+  scan.understood = true;
+  return scan;
+}
+
+/// Plain ASCII OFF, optionally with colours/normals/texture coordinates after
+/// x y z (COFF, NOFF, STOFF...). 4OFF, nOFF and binary OFF are left to OpenMesh.
+TextScan scan_off(const std::string& path, std::istream& in) {
+  TextScan scan;
+  std::size_t line_number = 0;
+  std::string cleaned;
+  auto next_words = [&]() {
+    for (std::string line; std::getline(in, line);) {
+      ++line_number;
+      line = strip_comment(line);
+      std::vector<std::string> words = split_words(line);
+      if (words.empty()) continue;
+      cleaned += line;
+      cleaned += '\n';
+      return words;
+    }
+    return std::vector<std::string>{};
+  };
+  std::vector<std::string> words = next_words();
+  if (words.empty()) return scan;
+  std::string header = words[0];
+  for (const char* prefix : {"ST", "C", "N"}) {
+    if (header.rfind(prefix, 0) == 0) header.erase(0, std::string(prefix).size());
+  }
+  scan.binary = words.size() > 1 && words[1] == "BINARY";
+  if (header != "OFF" || scan.binary) return scan;
+  words.erase(words.begin());
+  if (words.empty()) words = next_words();
+  if (words.empty()) return scan;
+  std::size_t n_vertices = 0;
+  {
+    const auto [stop, error] = std::from_chars(words[0].data(), words[0].data() + words[0].size(), n_vertices);
+    if (error != std::errc() || stop != words[0].data() + words[0].size()) return scan;
+  }
+  for (std::size_t v = 0; v < n_vertices; ++v) {
+    words = next_words();
+    if (words.empty()) return scan;  // truncated; OpenMesh decides what that means
+    scan.points.push_back(parse_point(path, words, 0, v, at_line(line_number)));
+  }
+  while (!next_words().empty()) {
+  }
+  scan.understood = true;
+  scan.off_without_comments = std::move(cleaned);
+  return scan;
+}
+
+/// ASCII PLY: the x, y, z properties of the "vertex" element.
+TextScan scan_ply(const std::string& path, std::istream& in) {
+  TextScan scan;
+  struct Property {
+    std::string name;
+    bool is_list = false;
+  };
+  struct Element {
+    std::string name;
+    std::size_t count = 0;
+    std::vector<Property> properties;
+  };
+  std::vector<Element> elements;
+  std::string line;
+  if (!std::getline(in, line) || split_words(line) != std::vector<std::string>{"ply"}) return scan;
+  bool ascii = false;
+  bool header_done = false;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> words = split_words(line);
+    if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
+    if (words[0] == "end_header") {
+      header_done = true;
+      break;
+    }
+    if (words[0] == "format") {
+      ascii = words.size() > 1 && words[1] == "ascii";
+    } else if (words[0] == "element" && words.size() == 3) {
+      Element element;
+      element.name = words[1];
+      const auto [stop, error] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.count);
+      if (error != std::errc() || stop != words[2].data() + words[2].size()) return scan;
+      elements.push_back(element);
+    } else if (words[0] == "property" && !elements.empty() && words.size() >= 3) {
+      elements.back().properties.push_back({words.back(), words[1] == "list"});
+    }
+  }
+  scan.binary = !ascii;
+  if (!ascii || !header_done) return scan;
+  auto next_token = [&](std::string& token) { return static_cast<bool>(in >> token); };
+  for (const Element& element : elements) {
+    const bool is_vertex = element.name == "vertex";
+    int axis_of[3] = {-1, -1, -1};
+    for (std::size_t p = 0; p < element.properties.size(); ++p) {
+      const std::string& name = element.properties[p].name;
+      if (name.size() == 1 && name[0] >= 'x' && name[0] <= 'z' && !element.properties[p].is_list)
+        axis_of[name[0] - 'x'] = static_cast<int>(p);
+    }
+    if (is_vertex && (axis_of[0] < 0 || axis_of[1] < 0 || axis_of[2] < 0)) return scan;
+    for (std::size_t item = 0; item < element.count; ++item) {
+      std::string coordinates[3];
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        std::string token;
+        if (!next_token(token)) return scan;
+        if (element.properties[p].is_list) {
+          std::size_t length = 0;
+          const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), length);
+          if (error != std::errc() || stop != token.data() + token.size()) return scan;
+          for (std::size_t k = 0; k < length; ++k) {
+            if (!next_token(token)) return scan;
+          }
+          continue;
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+          if (axis_of[axis] == static_cast<int>(p)) coordinates[axis] = token;
+        }
+      }
+      if (is_vertex) {
+        scan.points.push_back(
+            parse_point(path, {coordinates[0], coordinates[1], coordinates[2]}, 0, item, std::string()));
+      }
+    }
+    if (is_vertex) {
+      scan.understood = true;
+      return scan;
+    }
+  }
+  return scan;
+}
+
+TextScan scan_text(const std::string& path, Format format) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  switch (format) {
+    case Format::obj: return scan_obj(path, in);
+    case Format::off: return scan_off(path, in);
+    case Format::ply: return scan_ply(path, in);
+    case Format::om: break;
+  }
+  return {};
+}
+
+/// True when the scan read the same vertices OpenMesh did, up to float rounding.
+bool scan_matches(const TextScan& scan, const QuadMesh& mesh) {
+  if (!scan.understood || scan.points.size() != mesh.n_vertices()) return false;
+  for (const auto v : mesh.vertices()) {
+    const OpenMesh::Vec3d& precise = scan.points[static_cast<std::size_t>(v.idx())];
+    const OpenMesh::Vec3d& single = mesh.point(v);
+    for (int k = 0; k < 3; ++k) {
+      const double tolerance = 1e-6 * std::max(std::abs(precise[k]), std::abs(single[k])) + 1e-37;
+      if (!(std::abs(precise[k] - single[k]) <= tolerance)) return false;
+    }
+  }
+  return true;
+}
+
+void require_input_file(const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InputError(with_path(path, "cannot open file (it does not exist)"));
+  if (fs::is_directory(status)) throw InputError(with_path(path, "cannot open file (it is a folder)"));
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw InputError(with_path(path, "cannot open file (it is not readable)"));
+  if (probe.peek() == std::ifstream::traits_type::eof())
+    throw InputError(with_path(path, "the file is empty; expected a quad mesh"));
+}
+
+/// One midpoint split of every face: an n-gon becomes n quads around its
+/// vertex centroid. Splitting the quads too keeps the result conforming.
+/// Vertices: the input's (same indices), then one midpoint per edge in edge
+/// order, then one centre per face in face order.
+QuadMesh split_into_quads(const QuadMesh& in) {
+  QuadMesh out;
+  out.reserve(in.n_vertices() + in.n_edges() + in.n_faces(), 4 * in.n_edges(), 2 * in.n_edges());
+  for (const auto v : in.vertices()) out.add_vertex(in.point(v));
+  std::vector<VertexHandle> midpoint(in.n_edges());
+  for (const auto e : in.edges())
+    midpoint[static_cast<std::size_t>(e.idx())] = out.add_vertex(0.5 * (in.point(e.v0()) + in.point(e.v1())));
+  std::vector<VertexHandle> centre(in.n_faces());
+  for (const auto f : in.faces()) {
+    OpenMesh::Vec3d sum(0.0, 0.0, 0.0);
+    double n = 0.0;
+    for (const auto v : f.vertices()) {
+      sum += in.point(v);
+      n += 1.0;
+    }
+    centre[static_cast<std::size_t>(f.idx())] = out.add_vertex(sum / n);
+  }
+  for (const auto f : in.faces()) {
+    std::vector<OpenMesh::SmartHalfedgeHandle> sides(f.halfedges().begin(), f.halfedges().end());
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+      const auto& incoming = sides[(i + sides.size() - 1) % sides.size()];
+      const auto& outgoing = sides[i];
+      const VertexHandle corner = outgoing.from();
+      const OpenMesh::FaceHandle quad =
+          out.add_face(corner, midpoint[static_cast<std::size_t>(outgoing.edge().idx())],
+                       centre[static_cast<std::size_t>(f.idx())],
+                       midpoint[static_cast<std::size_t>(incoming.edge().idx())]);
+      if (!quad.is_valid()) throw Error("split_into_quads: a quad of face " + std::to_string(f.idx()) + " was refused");
+    }
+  }
+  return out;
+}
+
+std::string plural(std::size_t n, const std::string& word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+/// Makes an all-quad mesh of any mesh, with a warning when it had to split.
+void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::string>& warnings) {
+  std::size_t triangles = 0;
+  std::size_t ngons = 0;
+  for (const auto f : mesh.faces()) {
+    const auto valence = f.valence();
+    if (valence == 3) ++triangles;
+    if (valence > 4) ++ngons;
+  }
+  if (triangles == 0 && ngons == 0) return;
+  const std::size_t before = mesh.n_vertices();
+  mesh = split_into_quads(mesh);
+  warnings.push_back(with_path(
+      path, plural(triangles, "triangle") + " and " + plural(ngons, "n-gon") +
+                " (n > 4) found; every face was split into quads at its centre and edge midpoints, so the mesh "
+                "now has " +
+                std::to_string(mesh.n_vertices()) + " vertices instead of " + std::to_string(before) + " and " +
+                std::to_string(mesh.n_faces()) + " faces"));
+}
+
+}  // namespace
+
+LoadResult load_garment(const std::string& path, const LoadOptions& options) {
+  const double scale = metres_per_unit(options.units);
+  const std::string extension = lower_extension(path);
+  const std::optional<Format> format = format_of(extension);
+  if (!format)
+    throw InputError(with_path(path, "unknown mesh format (extension " + shown_extension(extension) +
+                                         "); expected one of .obj, .off, .ply, .om"));
+  require_input_file(path);
+
+  const TextScan scan = *format == Format::om ? TextScan{} : scan_text(path, *format);
+
+  LoadResult result;
+  QuadMesh& mesh = result.mesh;
+  // The OM reader fills a stored property only if the mesh already has one
+  // with that name (and a matching size), so the layers must exist first.
+  if (*format == Format::om) ensure_layers(mesh);
+
+  CheckingImporter importer(mesh);
+  OpenMesh::IO::Options io_options;
+  bool read = false;
+  {
+    QuietOpenMesh quiet;
+    if (scan.off_without_comments.empty()) {
+      read = OpenMesh::IO::IOManager().read(path, importer, io_options);
+    } else {
+      std::istringstream text(scan.off_without_comments);
+      read = OpenMesh::IO::IOManager().read(text, ".off", importer, io_options);
+    }
+  }
+  const FaceProblem problem = earlier(scan.face_problem, importer.problem());
+  if (problem.found()) throw InputError(with_path(path, problem.text));
+  if (!read)
+    throw InputError(with_path(path, std::string("cannot be read as ") + format_name(*format) +
+                                         " (OpenMesh rejected it); expected a valid " + extension + " mesh"));
+  if (mesh.n_vertices() == 0) throw InputError(with_path(path, "the file has no vertices; expected a quad mesh"));
+  if (mesh.n_faces() == 0) throw InputError(with_path(path, "the file has no faces; expected a quad mesh"));
+
+  if (scan_matches(scan, mesh)) {
+    for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);
+  } else if (*format != Format::om && !scan.binary) {
+    result.warnings.push_back(with_path(
+        path, "the coordinates could not be re-read in double precision; they keep OpenMesh's single precision"));
+  }
+  for (const auto v : mesh.vertices()) {
+    const OpenMesh::Vec3d& p = mesh.point(v);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) +
+                                           " has a non-finite coordinate; expected finite numbers"));
+    mesh.set_point(v, p * scale);
+  }
+
+  // A refined mesh saved by save_mesh: its forest and layers are the truth.
+  if (*format == Format::om && !quadtree(mesh).empty()) return result;
+
+  make_all_quad(mesh, path, result.warnings);
+  init_forest(mesh);
+  return result;
+}
+
+// ---------------------------------------------------------------------------
+// Writing
+
+namespace {
+
+/// Shortest text that reads back as exactly the same double.
+std::string exact(double value) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return error == std::errc() ? std::string(buffer, end) : std::string("nan");
+}
+
+/// A polygon soup of the active surface, ready for the text writers.
+struct Surface {
+  std::vector<OpenMesh::Vec3d> points;
+  std::vector<std::array<unsigned char, 3>> colors;  ///< one per point, or none
+  std::vector<std::vector<int>> polygons;
+};
+
+Surface active_surface(const QuadMesh& mesh) {
+  Surface surface;
+  // Every vertex, deleted or not, so that a vertex's index is its line.
+  surface.points.reserve(mesh.n_vertices());
+  for (const auto v : mesh.all_vertices()) surface.points.push_back(mesh.point(v));
+  surface.polygons.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces()) {  // skips faces deleted but not yet collected
+    std::vector<int> polygon;
+    for (const auto v : f.vertices()) polygon.push_back(v.idx());
+    surface.polygons.push_back(std::move(polygon));
+  }
+  return surface;
+}
+
+double triangle_area(const OpenMesh::Vec3d& a, const OpenMesh::Vec3d& b, const OpenMesh::Vec3d& c) {
+  return 0.5 * OpenMesh::cross(b - a, c - a).norm();
+}
+
+/// Fans every polygon into triangles. Hanging vertices lie on their edge, so
+/// a fan from a corner next to one gives a zero-area sliver; the fan starts
+/// at the corner whose smallest triangle is largest, and only when every
+/// corner makes a sliver is the polygon fanned around an added centre point
+/// (coloured like the polygon's first vertex).
+void triangulate(Surface& surface) {
+  std::vector<std::vector<int>> triangles;
+  for (const std::vector<int>& polygon : surface.polygons) {
+    const std::size_t n = polygon.size();
+    if (n == 3) {
+      triangles.push_back(polygon);
+      continue;
+    }
+    double longest = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      longest = std::max(longest, (surface.points[polygon[(i + 1) % n]] - surface.points[polygon[i]]).norm());
+    const double sliver = 1e-9 * longest * longest;
+    std::size_t best_apex = 0;
+    double best_smallest = -1.0;
+    for (std::size_t apex = 0; apex < n; ++apex) {
+      double smallest = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        smallest = std::min(smallest, triangle_area(surface.points[polygon[apex]],
+                                                    surface.points[polygon[(apex + k) % n]],
+                                                    surface.points[polygon[(apex + k + 1) % n]]));
+      }
+      if (smallest > best_smallest) {
+        best_smallest = smallest;
+        best_apex = apex;
+      }
+    }
+    if (best_smallest > sliver) {
+      for (std::size_t k = 1; k + 1 < n; ++k)
+        triangles.push_back({polygon[best_apex], polygon[(best_apex + k) % n], polygon[(best_apex + k + 1) % n]});
+      continue;
+    }
+    OpenMesh::Vec3d centre(0.0, 0.0, 0.0);
+    for (const int v : polygon) centre += surface.points[static_cast<std::size_t>(v)];
+    const int c = static_cast<int>(surface.points.size());
+    surface.points.push_back(centre / static_cast<double>(n));
+    if (!surface.colors.empty()) surface.colors.push_back(surface.colors[static_cast<std::size_t>(polygon[0])]);
+    for (std::size_t k = 0; k < n; ++k) triangles.push_back({polygon[k], polygon[(k + 1) % n], c});
+  }
+  surface.polygons = std::move(triangles);
+}
+
+void write_obj(std::ostream& out, const Surface& s) {
+  out << "# mrcloth: " << s.points.size() << " vertices, " << s.polygons.size() << " faces\n";
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const OpenMesh::Vec3d& p = s.points[i];
+    out << "v " << exact(p[0]) << ' ' << exact(p[1]) << ' ' << exact(p[2]);
+    if (!s.colors.empty()) {
+      // The common "v x y z r g b" extension, with channels in [0, 1].
+      for (const unsigned char channel : s.colors[i]) out << ' ' << exact(channel / 255.0);
+    }
+    out << '\n';
+  }
+  for (const std::vector<int>& polygon : s.polygons) {
+    out << 'f';
+    for (const int v : polygon) out << ' ' << v + 1;
+    out << '\n';
+  }
+}
+
+void write_off(std::ostream& out, const Surface& s) {
+  out << "OFF\n" << s.points.size() << ' ' << s.polygons.size() << " 0\n";
+  for (const OpenMesh::Vec3d& p : s.points) out << exact(p[0]) << ' ' << exact(p[1]) << ' ' << exact(p[2]) << '\n';
+  for (const std::vector<int>& polygon : s.polygons) {
+    out << polygon.size();
+    for (const int v : polygon) out << ' ' << v;
+    out << '\n';
+  }
+}
+
+void write_ply(std::ostream& out, const Surface& s) {
+  std::size_t widest = 0;
+  for (const std::vector<int>& polygon : s.polygons) widest = std::max(widest, polygon.size());
+  out << "ply\nformat ascii 1.0\ncomment written by mrcloth\nelement vertex " << s.points.size()
+      << "\nproperty double x\nproperty double y\nproperty double z\n";
+  if (!s.colors.empty()) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  out << "element face " << s.polygons.size() << "\nproperty list " << (widest > 255 ? "int" : "uchar")
+      << " int vertex_indices\nend_header\n";
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const OpenMesh::Vec3d& p = s.points[i];
+    out << exact(p[0]) << ' ' << exact(p[1]) << ' ' << exact(p[2]);
+    if (!s.colors.empty()) {
+      for (const unsigned char channel : s.colors[i]) out << ' ' << static_cast<int>(channel);
+    }
+    out << '\n';
+  }
+  for (const std::vector<int>& polygon : s.polygons) {
+    out << polygon.size();
+    for (const int v : polygon) out << ' ' << v;
+    out << '\n';
+  }
+}
+
+/// "dir/.name.tmp-<random>.om": beside the target so the final rename stays
+/// within one file system, hidden, and ending in the real extension because
+/// OpenMesh chooses its writer by extension.
+fs::path temporary_path(const fs::path& target, const std::string& extension) {
+  static std::atomic<unsigned> counter{0};
+  std::random_device entropy;
+  for (int attempt = 0;; ++attempt) {
+    std::ostringstream name;
+    name << '.' << target.filename().string() << ".tmp-" << std::hex << entropy() << '-' << counter++
+         << extension;
+    fs::path candidate = target.parent_path() / name.str();
+    std::error_code error;
+    if (!fs::exists(candidate, error) || attempt > 100) return candidate;
+  }
+}
+
+/// Runs `write` on a temporary file and renames it to `path` only when it
+/// succeeded; on any failure the temporary file is removed.
+void write_atomically(const std::string& path, const std::string& extension,
+                      const std::function<bool(const std::string&)>& write) {
+  const fs::path target(path);
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  if (!fs::is_directory(folder, error))
+    throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' does not exist)"));
+  if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
+  const fs::path temporary = temporary_path(target, extension);
+  bool written = false;
+  try {
+    written = write(temporary.string());
+  } catch (...) {
+    fs::remove(temporary, error);
+    throw;
+  }
+  if (!written) {
+    fs::remove(temporary, error);
+    throw OutputError(with_path(path, "cannot write file (writing '" + temporary.filename().string() + "' failed)"));
+  }
+  fs::rename(temporary, target, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(with_path(path, "cannot write file (" + error.message() + ")"));
+  }
+}
+
+bool write_text(const std::string& file, const Surface& surface, Format format) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) return false;
+  out.imbue(std::locale::classic());
+  switch (format) {
+    case Format::obj: write_obj(out, surface); break;
+    case Format::off: write_off(out, surface); break;
+    case Format::ply: write_ply(out, surface); break;
+    case Format::om: return false;
+  }
+  out.close();
+  return !out.fail();
+}
+
+bool has_deleted_elements(const QuadMesh& mesh) {
+  if (mesh.has_vertex_status()) {
+    for (const auto v : mesh.all_vertices())
+      if (mesh.status(v).deleted()) return true;
+  }
+  if (mesh.has_edge_status()) {
+    for (const auto e : mesh.all_edges())
+      if (mesh.status(e).deleted()) return true;
+  }
+  if (mesh.has_face_status()) {
+    for (const auto f : mesh.all_faces())
+      if (mesh.status(f).deleted()) return true;
+  }
+  return false;
+}
+
+bool write_om(const QuadMesh& mesh, const std::string& file) {
+  QuietOpenMesh quiet;
+  // The OM writer stores deleted-but-not-collected elements as live ones.
+  if (has_deleted_elements(mesh)) {
+    QuadMesh compact = copy_mesh(mesh);
+    compact.garbage_collection();
+    return OpenMesh::IO::write_mesh(compact, file, OpenMesh::IO::Options::Binary);
+  }
+  return OpenMesh::IO::write_mesh(mesh, file, OpenMesh::IO::Options::Binary);
+}
+
+Format output_format(const std::string& path, bool om_allowed) {
+  const std::string extension = lower_extension(path);
+  const std::optional<Format> format = format_of(extension);
+  const bool allowed = format && (*format == Format::obj || *format == Format::ply ||
+                                  (om_allowed && (*format == Format::off || *format == Format::om)));
+  if (!allowed) {
+    throw ArgumentError(with_path(path, "unknown output format (extension " + shown_extension(extension) +
+                                            "); expected one of " +
+                                            (om_allowed ? ".om, .obj, .off, .ply" : ".obj, .ply")));
+  }
+  return *format;
+}
+
+}  // namespace
+
+void save_mesh(const QuadMesh& mesh, const std::string& path) {
+  const Format format = output_format(path, true);
+  const std::string extension = lower_extension(path);
+  if (format == Format::om) {
+    write_atomically(path, extension, [&](const std::string& file) { return write_om(mesh, file); });
+    return;
+  }
+  const Surface surface = active_surface(mesh);
+  write_atomically(path, extension, [&](const std::string& file) { return write_text(file, surface, format); });
+}
+
+void export_surface(const QuadMesh& mesh, const std::string& path, const ExportOptions& options) {
+  const Format format = output_format(path, false);
+  Surface surface = active_surface(mesh);
+  if (options.color_by == ColorBy::level) {
+    const std::vector<int> levels = vertex_levels(mesh);
+    for (std::size_t v = 0; v < surface.points.size(); ++v)
+      surface.colors.push_back(palette_color(v < levels.size() ? levels[v] : 0));
+  } else if (options.color_by == ColorBy::mode) {
+    const auto mode = get_layers(mesh).mode;
+    for (const auto v : mesh.all_vertices()) surface.colors.push_back(palette_color(mesh.property(mode, v)));
+  }
+  if (options.triangulate) triangulate(surface);
+  write_atomically(path, lower_extension(path),
+                   [&](const std::string& file) { return write_text(file, surface, format); });
+}
+
+std::array<unsigned char, 3> palette_color(int value) {
+  // Tableau 10 (matplotlib "tab10") without its grey, which is kept for
+  // values <= 0 (unpainted / not a level). Qualitative and well separated;
+  // value 1 is blue, 2 orange, 3 green, 4 red, ...; values past 9 wrap around.
+  static constexpr std::array<std::array<unsigned char, 3>, 9> kPalette{{
+      {31, 119, 180},   // blue
+      {255, 127, 14},   // orange
+      {44, 160, 44},    // green
+      {214, 39, 40},    // red
+      {148, 103, 189},  // purple
+      {140, 86, 75},    // brown
+      {227, 119, 194},  // pink
+      {188, 189, 34},   // olive
+      {23, 190, 207},   // cyan
+  }};
+  if (value <= 0) return {127, 127, 127};
+  return kPalette[static_cast<std::size_t>(value - 1) % kPalette.size()];
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,687 @@
+// Loading, saving and exporting garments (garment_io) and the unit table (units).
+// Fixtures are tiny text meshes written by the tests into a scratch folder.
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/quadtree_forest.h"
+#include "mesh_ops/units.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using mrcloth::QuadMesh;
+
+namespace {
+
+/// A fresh folder per test, removed afterwards.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const char* root = std::getenv("MRCLOTH_TEST_TMP");
+    const fs::path base = root && *root ? fs::path(root) : fs::temp_directory_path() / "mrcloth-test";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = base / (std::string("garment_io-") + info->test_suite_name() + "-" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  return path;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// The message of the InputError that loading `path` must throw.
+std::string load_error(const std::string& path, const std::string& units = "m") {
+  try {
+    mrcloth::load_garment(path, {units});
+  } catch (const mrcloth::InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected InputError, got: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected InputError for " << path;
+  return {};
+}
+
+#define EXPECT_LOAD_ERROR(path, problem)                                          \
+  do {                                                                            \
+    const std::string path_ = (path); /* evaluated once: it may write a file */   \
+    const std::string message_ = load_error(path_);                               \
+    EXPECT_EQ(message_.rfind(path_ + ": ", 0), 0u) << message_;                   \
+    EXPECT_NE(message_.find(problem), std::string::npos) << message_;             \
+  } while (false)
+
+// A 4 x 3 vertex grid of 3 x 2 quads. Coordinates are decimals that a float
+// cannot hold, so a single-precision read would show.
+const char* const kX[4] = {"0.3", "1.7", "2.9", "-4.1"};
+const char* const kY[3] = {"-0.7", "0.45", "1.3"};
+const char* const kZ[3] = {"0.1", "0.0123456789", "7.77"};
+constexpr int kGridVertices = 12;
+constexpr int kGridFaces = 6;
+
+std::vector<std::string> grid_vertex_lines() {
+  std::vector<std::string> lines;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) lines.push_back(std::string(kX[i]) + " " + kY[j] + " " + kZ[j]);
+  return lines;
+}
+
+std::vector<std::array<int, 4>> grid_faces() {
+  std::vector<std::array<int, 4>> faces;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) faces.push_back({j * 4 + i, j * 4 + i + 1, (j + 1) * 4 + i + 1, (j + 1) * 4 + i});
+  return faces;
+}
+
+OpenMesh::Vec3d grid_point_in_file(int v) {
+  return {std::strtod(kX[v % 4], nullptr), std::strtod(kY[v / 4], nullptr), std::strtod(kZ[v / 4], nullptr)};
+}
+
+std::string grid_obj() {
+  std::string text = "# grid\no grid\n";
+  for (const auto& line : grid_vertex_lines()) text += "v " + line + "\n";
+  text += "vt 0 0\n";
+  for (const auto& f : grid_faces())
+    text += "f " + std::to_string(f[0] + 1) + "/1 " + std::to_string(f[1] + 1) + "/1 " + std::to_string(f[2] + 1) +
+            "/1 " + std::to_string(f[3] + 1) + "/1\n";
+  return text;
+}
+
+std::string grid_off() {
+  std::string text = "OFF\n# grid\n12 6 0\n";
+  for (const auto& line : grid_vertex_lines()) text += line + "\n";
+  for (const auto& f : grid_faces())
+    text += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " +
+            std::to_string(f[3]) + "\n";
+  return text;
+}
+
+std::string ply_header(int n_vertices, int n_faces) {
+  return "ply\nformat ascii 1.0\ncomment grid\nelement vertex " + std::to_string(n_vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(n_faces) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+std::string grid_ply() {
+  std::string text = ply_header(kGridVertices, kGridFaces);
+  for (const auto& line : grid_vertex_lines()) text += line + "\n";
+  for (const auto& f : grid_faces())
+    text += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " +
+            std::to_string(f[3]) + "\n";
+  return text;
+}
+
+/// Face vertex loop rotated to start at its smallest index, for comparisons
+/// that must not depend on where OpenMesh starts a face.
+std::vector<int> canonical_loop(const QuadMesh& mesh, OpenMesh::FaceHandle f) {
+  std::vector<int> loop;
+  for (const auto v : mesh.fv_range(f)) loop.push_back(v.idx());
+  std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+  return loop;
+}
+
+void expect_grid_as_read(const mrcloth::LoadResult& loaded, double scale) {
+  const QuadMesh& mesh = loaded.mesh;
+  ASSERT_EQ(mesh.n_vertices(), static_cast<std::size_t>(kGridVertices));
+  ASSERT_EQ(mesh.n_faces(), static_cast<std::size_t>(kGridFaces));
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  for (int v = 0; v < kGridVertices; ++v) {
+    const OpenMesh::Vec3d expected = grid_point_in_file(v);
+    const OpenMesh::Vec3d& actual = mesh.point(QuadMesh::VertexHandle(v));
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(actual[k], expected[k] * scale) << "vertex " << v << " axis " << k;
+  }
+  const auto faces = grid_faces();
+  for (int f = 0; f < kGridFaces; ++f) {
+    std::vector<int> expected(faces[f].begin(), faces[f].end());
+    std::rotate(expected.begin(), std::min_element(expected.begin(), expected.end()), expected.end());
+    EXPECT_EQ(canonical_loop(mesh, QuadMesh::FaceHandle(f)), expected) << "face " << f;
+  }
+  // Made refinable: one root record per face, every vertex at the default mode.
+  EXPECT_EQ(mrcloth::quadtree(mesh).size(), static_cast<std::size_t>(kGridFaces));
+  EXPECT_EQ(mrcloth::count_roots(mesh), static_cast<std::size_t>(kGridFaces));
+  const auto layers = mrcloth::get_layers(mesh);
+  for (const auto v : mesh.vertices()) EXPECT_EQ(mesh.property(layers.mode, v), mrcloth::kDefaultMode);
+}
+
+// Three quads sharing the edge 0-1.
+const char* const kThreeQuadsOnOneEdgeObj =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\nv 1 -1 0\nv 0 0 1\nv 1 0 1\n"
+    "f 1 2 3 4\nf 2 1 5 6\nf 1 2 8 7\n";
+
+}  // namespace
+
+// --- units -------------------------------------------------------------------
+
+TEST(Units, TableOfAcceptedUnits) {
+  EXPECT_EQ(mrcloth::metres_per_unit("m"), 1.0);
+  EXPECT_EQ(mrcloth::metres_per_unit("metres"), 1.0);
+  EXPECT_EQ(mrcloth::metres_per_unit("meters"), 1.0);
+  EXPECT_EQ(mrcloth::metres_per_unit("metre"), 1.0);
+  EXPECT_EQ(mrcloth::metres_per_unit("meter"), 1.0);
+  EXPECT_EQ(mrcloth::metres_per_unit("dm"), 0.1);
+  EXPECT_EQ(mrcloth::metres_per_unit("cm"), 0.01);
+  EXPECT_EQ(mrcloth::metres_per_unit("mm"), 0.001);
+  EXPECT_EQ(mrcloth::metres_per_unit("inch"), 0.0254);
+  EXPECT_EQ(mrcloth::metres_per_unit("in"), 0.0254);
+}
+
+TEST(Units, NamesAreCaseInsensitive) {
+  EXPECT_EQ(mrcloth::metres_per_unit("DM"), 0.1);
+  EXPECT_EQ(mrcloth::metres_per_unit("Cm"), 0.01);
+  EXPECT_EQ(mrcloth::metres_per_unit("INCH"), 0.0254);
+  EXPECT_EQ(mrcloth::metres_per_unit("Metres"), 1.0);
+}
+
+TEST(Units, UnknownUnitIsRefusedWithTheAcceptedList) {
+  for (const std::string unit : {"furlong", "", "km", "m "}) {
+    try {
+      mrcloth::metres_per_unit(unit);
+      ADD_FAILURE() << "unit '" << unit << "' was accepted";
+    } catch (const mrcloth::ArgumentError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("unknown unit '" + unit + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find("m, dm, cm, mm, inch"), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(Units, LoadWithUnknownUnitIsAnArgumentError) {
+  ScratchDir dir;
+  const std::string path = write_file(dir.file("grid.obj"), grid_obj());
+  EXPECT_THROW(mrcloth::load_garment(path, {"yards"}), mrcloth::ArgumentError);
+}
+
+// --- loading good files ------------------------------------------------------
+
+TEST(GarmentLoad, ObjQuadGridInDecimetres) {
+  ScratchDir dir;
+  expect_grid_as_read(mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()), {"dm"}), 0.1);
+}
+
+TEST(GarmentLoad, OffQuadGridInDecimetres) {
+  ScratchDir dir;
+  expect_grid_as_read(mrcloth::load_garment(write_file(dir.file("grid.off"), grid_off()), {"dm"}), 0.1);
+}
+
+TEST(GarmentLoad, PlyQuadGridInDecimetres) {
+  ScratchDir dir;
+  expect_grid_as_read(mrcloth::load_garment(write_file(dir.file("grid.ply"), grid_ply()), {"dm"}), 0.1);
+}
+
+TEST(GarmentLoad, PlyWithMoreVertexPropertiesKeepsDoubles) {
+  // x, y, z are picked out by name, in any order, among other properties.
+  ScratchDir dir;
+  const std::string path = write_file(dir.file("rich.ply"),
+                                      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double z\n"
+                                      "property uchar red\nproperty float x\nproperty float confidence\n"
+                                      "property float y\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n0.1 7 0.3 0 -0.7\n0.1 7 1.7 0.5 -0.7\n0.2 7 1.7 1 0.45\n"
+                                      "0.2 7 0.3 0 0.45\n4 0 1 2 3\n");
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(path, {"mm"});
+  ASSERT_EQ(loaded.mesh.n_vertices(), 4u);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  EXPECT_EQ(loaded.mesh.point(QuadMesh::VertexHandle(1)), OpenMesh::Vec3d(1.7 * 0.001, -0.7 * 0.001, 0.1 * 0.001));
+  EXPECT_EQ(loaded.mesh.point(QuadMesh::VertexHandle(2)), OpenMesh::Vec3d(1.7 * 0.001, 0.45 * 0.001, 0.2 * 0.001));
+}
+
+TEST(GarmentLoad, DefaultUnitIsMetresAndExtensionCaseDoesNotMatter) {
+  ScratchDir dir;
+  expect_grid_as_read(mrcloth::load_garment(write_file(dir.file("GRID.OBJ"), grid_obj())), 1.0);
+  expect_grid_as_read(mrcloth::load_garment(write_file(dir.file("grid.Off"), grid_off()), {"cm"}), 0.01);
+}
+
+TEST(GarmentLoad, TrianglesAndPentagonsAreSplitIntoQuads) {
+  // A pentagon 0-4, a triangle on its edge 4-0 and a quad on its edge 1-2:
+  // 8 vertices, 10 edges, 3 faces -> 8 + 10 + 3 vertices and 5 + 3 + 4 quads.
+  ScratchDir dir;
+  const std::string path = write_file(dir.file("mixed.obj"),
+                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0.5 1.5 0\nv 0 1 0\n"
+                                      "v -1 0.5 0\nv 2 0 0\nv 2 1 0\n"
+                                      "f 1 2 3 4 5\nf 1 5 6\nf 2 7 8 3\n");
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(path);
+  const QuadMesh& mesh = loaded.mesh;
+  EXPECT_EQ(mesh.n_vertices(), 21u);
+  EXPECT_EQ(mesh.n_faces(), 12u);
+  EXPECT_EQ(mesh.n_edges(), 32u);  // Euler: V - E + F = 1 for a disc
+  for (const auto f : mesh.faces()) EXPECT_EQ(mesh.valence(f), 4u) << "face " << f.idx();
+  EXPECT_EQ(mrcloth::quadtree(mesh).size(), 12u);
+  // The file's vertices keep their indices; then edge midpoints, then centres.
+  EXPECT_EQ(mesh.point(QuadMesh::VertexHandle(3)), OpenMesh::Vec3d(0.5, 1.5, 0));
+  EXPECT_EQ(mesh.point(QuadMesh::VertexHandle(7)), OpenMesh::Vec3d(2, 1, 0));
+  const OpenMesh::Vec3d triangle_centre = mesh.point(QuadMesh::VertexHandle(19));
+  EXPECT_NEAR(triangle_centre[0], -1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(triangle_centre[1], 0.5, 1e-15);
+  EXPECT_EQ(mesh.point(QuadMesh::VertexHandle(20)), OpenMesh::Vec3d(1.5, 0.5, 0));
+  // Every edge midpoint exists once: the boundary has 2 * 8 edges, all halves.
+  std::size_t boundary = 0;
+  for (const auto e : mesh.edges()) boundary += mesh.is_boundary(e) ? 1 : 0;
+  EXPECT_EQ(boundary, 16u);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  const std::string& warning = loaded.warnings[0];
+  EXPECT_EQ(warning.rfind(path + ": ", 0), 0u) << warning;
+  EXPECT_NE(warning.find("1 triangle and 1 n-gon"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("split into quads"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("21 vertices instead of 8"), std::string::npos) << warning;
+}
+
+TEST(GarmentLoad, AllTriangleOffIsSplitWithPluralWarning) {
+  ScratchDir dir;
+  const std::string path =
+      write_file(dir.file("two.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(path);
+  EXPECT_EQ(loaded.mesh.n_vertices(), 4u + 5u + 2u);
+  EXPECT_EQ(loaded.mesh.n_faces(), 6u);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("2 triangles and 0 n-gons"), std::string::npos) << loaded.warnings[0];
+}
+
+// --- refusing bad files --------------------------------------------------------
+
+TEST(GarmentLoadErrors, MissingFile) {
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(dir.file("absent.obj"), "cannot open file");
+}
+
+TEST(GarmentLoadErrors, FolderInsteadOfFile) {
+  ScratchDir dir;
+  fs::create_directories(dir.file("folder.obj"));
+  EXPECT_LOAD_ERROR(dir.file("folder.obj"), "cannot open file");
+}
+
+TEST(GarmentLoadErrors, UnknownExtension) {
+  ScratchDir dir;
+  const std::string stl = write_file(dir.file("shirt.stl"), "solid x\nendsolid x\n");
+  EXPECT_LOAD_ERROR(stl, "unknown mesh format (extension '.stl'); expected one of .obj, .off, .ply, .om");
+  const std::string bare = write_file(dir.file("shirt"), grid_obj());
+  EXPECT_LOAD_ERROR(bare, "unknown mesh format (extension none)");
+}
+
+TEST(GarmentLoadErrors, EmptyFiles) {
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("empty.obj"), ""), "the file is empty");
+  EXPECT_LOAD_ERROR(write_file(dir.file("empty.off"), ""), "the file is empty");
+  EXPECT_LOAD_ERROR(write_file(dir.file("comments.obj"), "# nothing here\n"), "the file has no vertices");
+  EXPECT_LOAD_ERROR(write_file(dir.file("points.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\n"), "the file has no faces");
+  EXPECT_LOAD_ERROR(write_file(dir.file("points.off"), "OFF\n3 0 0\n0 0 0\n1 0 0\n1 1 0\n"), "the file has no faces");
+}
+
+TEST(GarmentLoadErrors, NonFiniteCoordinateObj) {
+  ScratchDir dir;
+  const std::string quad_faces = "v 1 0 0\nv 1 1 0\nf 1 2 3 4\n";
+  EXPECT_LOAD_ERROR(write_file(dir.file("nan.obj"), "v nan 0 0\nv 0 1 0\n" + quad_faces),
+                    "vertex 0 (line 1) has a non-finite coordinate (nan)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("huge.obj"), "# c\nv 0 0 0\nv 0 1 0\nv 1 1e999 0\nv 1 0 0\nf 1 2 3 4\n"),
+                    "vertex 2 (line 4) has a non-finite coordinate (1e999)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("inf.obj"), "v 0 0 -inf\nv 0 1 0\n" + quad_faces),
+                    "vertex 0 (line 1) has a non-finite coordinate (-inf)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("word.obj"), "v 0 0 zero\nv 0 1 0\n" + quad_faces),
+                    "vertex 0 (line 1) has a coordinate that is not a number ('zero')");
+}
+
+TEST(GarmentLoadErrors, NonFiniteCoordinateOffAndPly) {
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("nan.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 NaN 0\n0 1 0\n4 0 1 2 3\n"),
+                    "vertex 2 (line 5) has a non-finite coordinate (NaN)");
+  EXPECT_LOAD_ERROR(
+      write_file(dir.file("inf.ply"), ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 inf 0\n4 0 1 2 3\n"),
+      "vertex 3 has a non-finite coordinate (inf)");
+}
+
+TEST(GarmentLoadErrors, NonManifoldEdge) {
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("fan.obj"), kThreeQuadsOnOneEdgeObj),
+                    "face 2 is non-manifold (it would make an edge shared by more than two faces");
+  // With texture coordinates the OBJ reader takes another path after add_face.
+  EXPECT_LOAD_ERROR(write_file(dir.file("fan_uv.obj"),
+                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\nv 1 -1 0\nv 0 0 1\nv 1 0 1\nvt 0 0\n"
+                               "f 1/1 2/1 3/1 4/1\nf 2/1 1/1 5/1 6/1\nf 1/1 2/1 8/1 7/1\nf 5/1 6/1 8/1\n"),
+                    "face 2 is non-manifold");
+  EXPECT_LOAD_ERROR(write_file(dir.file("fan.off"),
+                               "OFF\n8 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 -1 0\n1 -1 0\n0 0 1\n1 0 1\n"
+                               "4 0 1 2 3\n4 1 0 4 5\n4 1 0 6 7\n"),
+                    "face 2 is non-manifold");
+}
+
+TEST(GarmentLoadErrors, NonManifoldVertex) {
+  // Four quads close a disc around vertex 4; a fifth quad then touches that
+  // interior vertex from above.
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("spike.off"),
+                               "OFF\n12 5 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n0 2 0\n1 2 0\n2 2 0\n"
+                               "1 1 1\n2 1 1\n2 2 1\n"
+                               "4 0 1 4 3\n4 1 2 5 4\n4 3 4 7 6\n4 4 5 8 7\n4 4 9 10 11\n"),
+                    "face 4 is non-manifold");
+}
+
+TEST(GarmentLoadErrors, RepeatedVertexInFace) {
+  ScratchDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n";
+  EXPECT_LOAD_ERROR(write_file(dir.file("repeat.obj"), vertices + "f 1 2 3 4\nf 2 5 5 6\n"),
+                    "face 1 (line 8) uses vertex 5 more than once");
+  EXPECT_LOAD_ERROR(write_file(dir.file("repeat.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 1 3\n"),
+                    "face 0 uses vertex 1 more than once");
+  EXPECT_LOAD_ERROR(write_file(dir.file("repeat.ply"), ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 3 2 3\n"),
+                    "face 0 uses vertex 3 more than once");
+}
+
+TEST(GarmentLoadErrors, VertexIndexOutOfRange) {
+  ScratchDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  EXPECT_LOAD_ERROR(write_file(dir.file("range.obj"), vertices + "f 1 2 3 9\n"),
+                    "face 0 (line 5) refers to vertex 9, which does not exist (4 vertices are defined before it");
+  EXPECT_LOAD_ERROR(write_file(dir.file("zero.obj"), vertices + "f 1 2 3 4\nf 0 1 2 3\n"),
+                    "face 1 (line 6) refers to vertex 0, which does not exist");
+  EXPECT_LOAD_ERROR(write_file(dir.file("range.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n"),
+                    "face 0 refers to vertex 7, which does not exist (the file has 4 vertices)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("range.ply"), ply_header(4, 2) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                                                          "4 0 1 2 3\n3 0 2 12\n"),
+                    "face 1 refers to vertex 12, which does not exist (the file has 4 vertices)");
+}
+
+TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
+  ScratchDir dir;
+  // Face 1 repeats a vertex (seen by the OBJ scan), face 2 is out of range.
+  EXPECT_LOAD_ERROR(write_file(dir.file("two.obj"),
+                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 1 2 3\nf 1 2 3 7\n"),
+                    "face 1 (line 6) uses vertex 1 more than once");
+  // Face 1 is non-manifold (found by the importer) before face 2 repeats a vertex.
+  EXPECT_LOAD_ERROR(write_file(dir.file("order.obj"),
+                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\n"
+                               "f 1 2 3 4\nf 1 2 3 5\nf 1 4 4 5\n"),
+                    "face 1 is non-manifold");
+}
+
+TEST(GarmentLoadErrors, OpenMeshDiagnosticsStayQuiet) {
+  ScratchDir dir;
+  const std::string fan = write_file(dir.file("fan.obj"), kThreeQuadsOnOneEdgeObj);
+  const std::string range = write_file(dir.file("range.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
+  ::testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStdout();
+  EXPECT_THROW(mrcloth::load_garment(fan), mrcloth::InputError);
+  EXPECT_THROW(mrcloth::load_garment(range), mrcloth::InputError);
+  EXPECT_THROW(mrcloth::load_garment(dir.file("absent.ply")), mrcloth::InputError);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+  EXPECT_TRUE(::omerr().is_enabled());
+  EXPECT_TRUE(::omlog().is_enabled());
+}
+
+// --- saving --------------------------------------------------------------------
+
+TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
+  ScratchDir dir;
+  mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()), {"inch"});
+  QuadMesh& mesh = loaded.mesh;
+  const mrcloth::Layers l = mrcloth::get_layers(mesh);
+  for (const auto v : mesh.vertices()) {
+    const int i = v.idx();
+    mesh.property(l.mode, v) = i % 4 + 1;
+    mesh.property(l.r_value, v) = i / 3.0 + 1e-300;
+    mesh.property(l.hanging, v) = i % 3 == 1;
+    mesh.property(l.parents, v) = OpenMesh::Vec2i(i - 1, i + 7);
+  }
+  for (const auto f : mesh.faces()) {
+    mesh.property(l.level, f) = f.idx() + 2;
+    mesh.property(l.quad, f) = 100 - f.idx();
+  }
+  auto& forest = mesh.property(l.quadtree);
+  forest[1].active = 0;
+  forest[1].children = {6, 7, 8, 9};
+  mrcloth::QuadRecord child;
+  child.level = 2;
+  child.parent = 1;
+  child.corners = {1, 12, 13, 14};
+  forest.push_back(child);
+
+  const std::string path = dir.file("saved.om");
+  mrcloth::save_mesh(mesh, path);
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"grid.obj", "saved.om"}));
+
+  const mrcloth::LoadResult back = mrcloth::load_garment(path);
+  const QuadMesh& copy = back.mesh;
+  EXPECT_TRUE(back.warnings.empty());
+  ASSERT_EQ(copy.n_vertices(), mesh.n_vertices());
+  ASSERT_EQ(copy.n_faces(), mesh.n_faces());
+  const mrcloth::Layers c = mrcloth::get_layers(copy);
+  for (const auto v : mesh.vertices()) {
+    const auto w = QuadMesh::VertexHandle(v.idx());
+    EXPECT_EQ(std::memcmp(mesh.point(v).data(), copy.point(w).data(), 3 * sizeof(double)), 0) << v.idx();
+    EXPECT_EQ(copy.property(c.mode, w), mesh.property(l.mode, v));
+    EXPECT_EQ(std::memcmp(&copy.property(c.r_value, w), &mesh.property(l.r_value, v), sizeof(double)), 0);
+    EXPECT_EQ(copy.property(c.hanging, w), mesh.property(l.hanging, v)) << v.idx();
+    EXPECT_EQ(copy.property(c.parents, w), mesh.property(l.parents, v));
+  }
+  for (const auto f : mesh.faces()) {
+    const auto g = QuadMesh::FaceHandle(f.idx());
+    EXPECT_EQ(copy.property(c.level, g), f.idx() + 2);
+    EXPECT_EQ(copy.property(c.quad, g), 100 - f.idx());
+    EXPECT_EQ(canonical_loop(copy, g), canonical_loop(mesh, f));
+  }
+  const auto& restored = copy.property(c.quadtree);
+  ASSERT_EQ(restored.size(), forest.size());
+  for (std::size_t i = 0; i < forest.size(); ++i) {
+    EXPECT_EQ(restored[i].level, forest[i].level) << i;
+    EXPECT_EQ(restored[i].active, forest[i].active) << i;
+    EXPECT_EQ(restored[i].parent, forest[i].parent) << i;
+    EXPECT_EQ(restored[i].children, forest[i].children) << i;
+    EXPECT_EQ(restored[i].corners, forest[i].corners) << i;
+  }
+}
+
+TEST(GarmentSave, OmWithoutForestIsMadeRefinable) {
+  // A .om written by plain OpenMesh has no mrcloth layers: it loads like any mesh.
+  ScratchDir dir;
+  QuadMesh plain;
+  const mrcloth::LoadResult grid = mrcloth::load_garment(write_file(dir.file("grid.off"), grid_off()));
+  for (const auto v : grid.mesh.vertices()) plain.add_vertex(grid.mesh.point(v));
+  for (const auto& f : grid_faces())
+    plain.add_face({QuadMesh::VertexHandle(f[0]), QuadMesh::VertexHandle(f[1]), QuadMesh::VertexHandle(f[2]),
+                    QuadMesh::VertexHandle(f[3])});
+  const std::string path = dir.file("plain.om");
+  ::omlog().disable();  // the OM writer reports its byte count there
+  const bool written = OpenMesh::IO::write_mesh(plain, path, OpenMesh::IO::Options::Binary);
+  ::omlog().enable();
+  ASSERT_TRUE(written);
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(path, {"dm"});
+  expect_grid_as_read(loaded, 0.1);
+}
+
+TEST(GarmentSave, TextFormatsRoundTripDoublesExactly) {
+  ScratchDir dir;
+  mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.ply"), grid_ply()));
+  QuadMesh& mesh = loaded.mesh;
+  // Values no decimal short form or float would keep.
+  mesh.point(QuadMesh::VertexHandle(0)) = OpenMesh::Vec3d(1.0 / 3.0, -2.0 / 7.0, 1e-310);
+  mesh.point(QuadMesh::VertexHandle(5)) = OpenMesh::Vec3d(std::nextafter(1.0, 2.0), 123456.789e10, -0.0);
+  for (const std::string name : {"out.obj", "out.off", "out.ply", "OUT.OBJ"}) {
+    const std::string path = dir.file(name);
+    mrcloth::save_mesh(mesh, path);
+    const mrcloth::LoadResult back = mrcloth::load_garment(path);
+    EXPECT_TRUE(back.warnings.empty()) << name;
+    ASSERT_EQ(back.mesh.n_vertices(), mesh.n_vertices()) << name;
+    ASSERT_EQ(back.mesh.n_faces(), mesh.n_faces()) << name;
+    for (const auto v : mesh.vertices()) {
+      EXPECT_EQ(std::memcmp(mesh.point(v).data(), back.mesh.point(v).data(), 3 * sizeof(double)), 0)
+          << name << " vertex " << v.idx();
+    }
+    for (const auto f : mesh.faces()) EXPECT_EQ(canonical_loop(back.mesh, f), canonical_loop(mesh, f)) << name;
+  }
+}
+
+TEST(GarmentSave, FailedSavesLeaveNoFileBehind) {
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const std::vector<std::string> before = dir.entries();
+
+  const std::string nowhere = dir.file("no_such_folder/out.om");
+  try {
+    mrcloth::save_mesh(loaded.mesh, nowhere);
+    ADD_FAILURE() << "saved into a missing folder";
+  } catch (const mrcloth::OutputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(nowhere + ": cannot write file", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(mrcloth::save_mesh(loaded.mesh, dir.file("out.stl")), mrcloth::ArgumentError);
+  EXPECT_THROW(mrcloth::save_mesh(loaded.mesh, dir.file("out")), mrcloth::ArgumentError);
+  EXPECT_THROW(mrcloth::export_surface(loaded.mesh, dir.file("out.off")), mrcloth::ArgumentError);
+  EXPECT_THROW(mrcloth::export_surface(loaded.mesh, dir.file("no_such_folder/out.ply")), mrcloth::OutputError);
+  EXPECT_EQ(dir.entries(), before);
+
+  fs::create_directories(dir.file("taken.om"));
+  EXPECT_THROW(mrcloth::save_mesh(loaded.mesh, dir.file("taken.om")), mrcloth::OutputError);
+  std::vector<std::string> expected = before;
+  expected.push_back("taken.om");
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(dir.entries(), expected);
+  EXPECT_TRUE(fs::is_empty(dir.file("taken.om")));
+}
+
+TEST(GarmentSave, SaveReplacesAnExistingFile) {
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const std::string path = write_file(dir.file("out.obj"), "old contents\n");
+  mrcloth::save_mesh(loaded.mesh, path);
+  EXPECT_EQ(mrcloth::load_garment(path).mesh.n_faces(), static_cast<std::size_t>(kGridFaces));
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"grid.obj", "out.obj"}));
+}
+
+// --- exporting -----------------------------------------------------------------
+
+TEST(GarmentExport, PaletteHasDistinctColoursAndGreyForUnset) {
+  const auto grey = mrcloth::palette_color(0);
+  EXPECT_EQ(mrcloth::palette_color(-4), grey);
+  std::vector<std::array<unsigned char, 3>> colours;
+  for (int value = 1; value <= 9; ++value) {
+    const auto colour = mrcloth::palette_color(value);
+    EXPECT_NE(colour, grey) << value;
+    EXPECT_EQ(std::count(colours.begin(), colours.end(), colour), 0) << "value " << value << " repeats a colour";
+    colours.push_back(colour);
+  }
+  EXPECT_EQ(mrcloth::palette_color(1), (std::array<unsigned char, 3>{31, 119, 180}));
+  EXPECT_EQ(mrcloth::palette_color(10), mrcloth::palette_color(1));  // wraps around
+}
+
+TEST(GarmentExport, PlyWithModeColoursReadsBackInOpenMesh) {
+  ScratchDir dir;
+  mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()), {"dm"});
+  QuadMesh& mesh = loaded.mesh;
+  const auto mode = mrcloth::get_layers(mesh).mode;
+  for (const auto v : mesh.vertices()) mesh.property(mode, v) = v.idx() % 5;  // includes 0 (grey)
+  const std::string path = dir.file("modes.ply");
+  mrcloth::export_surface(mesh, path, {mrcloth::ColorBy::mode, false});
+
+  OpenMesh::PolyMesh_ArrayKernelT<> back;
+  back.request_vertex_colors();
+  OpenMesh::IO::Options options(OpenMesh::IO::Options::VertexColor);
+  ASSERT_TRUE(OpenMesh::IO::read_mesh(back, path, options));
+  EXPECT_TRUE(options.check(OpenMesh::IO::Options::VertexColor));
+  ASSERT_EQ(back.n_vertices(), static_cast<std::size_t>(kGridVertices));
+  ASSERT_EQ(back.n_faces(), static_cast<std::size_t>(kGridFaces));
+  for (const auto v : back.vertices()) {
+    const auto expected = mrcloth::palette_color(v.idx() % 5);
+    const auto colour = back.color(v);
+    EXPECT_EQ((std::array<unsigned char, 3>{colour[0], colour[1], colour[2]}), expected) << "vertex " << v.idx();
+    const OpenMesh::Vec3d& p = mesh.point(QuadMesh::VertexHandle(v.idx()));
+    EXPECT_NEAR(back.point(v)[0], p[0], 1e-6);
+  }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"grid.obj", "modes.ply"}));
+}
+
+TEST(GarmentExport, ObjTriangulatedWithLevelColours) {
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.off"), grid_off()));
+  const std::string path = dir.file("levels.obj");
+  mrcloth::export_surface(loaded.mesh, path, {mrcloth::ColorBy::level, true});
+  std::istringstream text(read_file(path));
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  const auto level1 = mrcloth::palette_color(1);
+  for (std::string line; std::getline(text, line);) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    std::vector<double> numbers;
+    for (double x; words >> x;) numbers.push_back(x);
+    if (key == "v") {
+      ASSERT_EQ(numbers.size(), 6u) << line;
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(std::lround(numbers[3 + k] * 255.0), level1[k]) << line;
+      ++vertices;
+    } else if (key == "f") {
+      EXPECT_EQ(numbers.size(), 3u) << line;
+      ++triangles;
+    }
+  }
+  EXPECT_EQ(vertices, static_cast<std::size_t>(kGridVertices));
+  EXPECT_EQ(triangles, 2u * kGridFaces);
+}
+
+TEST(GarmentExport, UncolouredPlyHasNoColourProperties) {
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const std::string path = dir.file("plain.ply");
+  mrcloth::export_surface(loaded.mesh, path);
+  const std::string text = read_file(path);
+  EXPECT_EQ(text.find("red"), std::string::npos);
+  EXPECT_NE(text.find("element face 6\n"), std::string::npos);
+  const mrcloth::LoadResult back = mrcloth::load_garment(path);
+  EXPECT_EQ(back.mesh.n_faces(), static_cast<std::size_t>(kGridFaces));
+}
+
+// --- real data -----------------------------------------------------------------
+
+TEST(GarmentRealData, MakeHumanSkirtHelperInDecimetres) {
+  const std::string path = std::string(MRCLOTH_SHARED_DATA) + "/garments/makehuman/skirthelper.obj";
+  if (!fs::exists(path)) GTEST_SKIP() << "shared data not found at " << path;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(path, {"dm"});
+  const QuadMesh& mesh = loaded.mesh;
+  EXPECT_EQ(mesh.n_vertices(), 720u);
+  EXPECT_EQ(mesh.n_faces(), 684u);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const auto v : mesh.vertices()) {
+    low = std::min(low, mesh.point(v)[1]);
+    high = std::max(high, mesh.point(v)[1]);
+  }
+  // The file's y spans -7.2846 .. 1.8385 decimetres.
+  EXPECT_NEAR(low, -0.72846, 1e-12);
+  EXPECT_NEAR(high, 0.18385, 1e-12);
+  EXPECT_EQ(mrcloth::quadtree(mesh).size(), 684u);
+}
