@@ -1,5 +1,6 @@
 #include "garment_io.h"
 
+#include "atomic_file.h"
 #include "errors.h"
 #include "quadtree_forest.h"
 #include "units.h"
@@ -699,52 +700,6 @@ void write_ply(std::ostream& out, const Surface& s) {
   }
 }
 
-/// "dir/.name.tmp-<random>.om": beside the target so the final rename stays
-/// within one file system, hidden, and ending in the real extension because
-/// OpenMesh chooses its writer by extension.
-fs::path temporary_path(const fs::path& target, const std::string& extension) {
-  static std::atomic<unsigned> counter{0};
-  std::random_device entropy;
-  for (int attempt = 0;; ++attempt) {
-    std::ostringstream name;
-    name << '.' << target.filename().string() << ".tmp-" << std::hex << entropy() << '-' << counter++
-         << extension;
-    fs::path candidate = target.parent_path() / name.str();
-    std::error_code error;
-    if (!fs::exists(candidate, error) || attempt > 100) return candidate;
-  }
-}
-
-/// Runs `write` on a temporary file and renames it to `path` only when it
-/// succeeded; on any failure the temporary file is removed.
-void write_atomically(const std::string& path, const std::string& extension,
-                      const std::function<bool(const std::string&)>& write) {
-  const fs::path target(path);
-  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code error;
-  if (!fs::is_directory(folder, error))
-    throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' does not exist)"));
-  if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
-  const fs::path temporary = temporary_path(target, extension);
-  bool written = false;
-  try {
-    written = write(temporary.string());
-  } catch (...) {
-    fs::remove(temporary, error);
-    throw;
-  }
-  if (!written) {
-    fs::remove(temporary, error);
-    throw OutputError(with_path(path, "cannot write file (writing '" + temporary.filename().string() + "' failed)"));
-  }
-  fs::rename(temporary, target, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw OutputError(with_path(path, "cannot write file (" + error.message() + ")"));
-  }
-}
-
 bool write_text(const std::string& file, const Surface& surface, Format format) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) return false;
@@ -805,11 +760,11 @@ void save_mesh(const QuadMesh& mesh, const std::string& path) {
   const Format format = output_format(path, true);
   const std::string extension = lower_extension(path);
   if (format == Format::om) {
-    write_atomically(path, extension, [&](const std::string& file) { return write_om(mesh, file); });
+    write_file_atomically(path, extension, [&](const std::string& file) { return write_om(mesh, file); });
     return;
   }
   const Surface surface = active_surface(mesh);
-  write_atomically(path, extension, [&](const std::string& file) { return write_text(file, surface, format); });
+  write_file_atomically(path, extension, [&](const std::string& file) { return write_text(file, surface, format); });
 }
 
 void export_surface(const QuadMesh& mesh, const std::string& path, const ExportOptions& options) {
@@ -824,7 +779,7 @@ void export_surface(const QuadMesh& mesh, const std::string& path, const ExportO
     for (const auto v : mesh.all_vertices()) surface.colors.push_back(palette_color(mesh.property(mode, v)));
   }
   if (options.triangulate) triangulate(surface);
-  write_atomically(path, lower_extension(path),
+  write_file_atomically(path, lower_extension(path),
                    [&](const std::string& file) { return write_text(file, surface, format); });
 }
 
