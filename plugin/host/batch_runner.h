@@ -1,0 +1,19 @@
+#pragma once
+// Batch mode: evaluate one script file and turn its outcome into an exit code.
+#include <QString>
+
+class QJSEngine;
+
+namespace mrcloth {
+
+class HostLog;
+class ScriptCore;
+
+/// Evaluates the script at `path` in `engine` (file name passed along so that
+/// errors carry the right line numbers; a leading #! line is ignored).
+/// Returns core.exitApplication's code if the script called it; else 1 after
+/// printing "<path>:<line>: <error>" (and the JS stack) for an uncaught
+/// exception or an unreadable file; else 0.
+int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& core, const HostLog& log);
+
+}  // namespace mrcloth

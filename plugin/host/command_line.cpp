@@ -1,0 +1,94 @@
+#include "command_line.h"
+
+namespace mrcloth {
+namespace {
+
+[[noreturn]] void fail(const QString& message) { throw UsageError(message.toStdString()); }
+
+void setScript(CommandLine& command, const QString& path) {
+  if (!command.scriptPath.isEmpty())
+    fail(QStringLiteral("more than one script given ('%1' and '%2')").arg(command.scriptPath, path));
+  if (path.isEmpty()) fail(QStringLiteral("empty script path"));
+  command.scriptPath = path;
+}
+
+}  // namespace
+
+CommandLine parseCommandLine(const QStringList& arguments) {
+  CommandLine command;
+  for (qsizetype i = 0; i < arguments.size(); ++i) {
+    const QString& argument = arguments[i];
+    // "--name=value" and "--name value" are both accepted for options with a value.
+    const qsizetype equals = argument.startsWith(QLatin1String("--")) ? argument.indexOf(QLatin1Char('=')) : -1;
+    const QString option = equals < 0 ? argument : argument.left(equals);
+    auto value = [&]() -> QString {
+      if (equals >= 0) return argument.mid(equals + 1);
+      if (i + 1 >= arguments.size()) fail(QStringLiteral("option '%1' needs a value").arg(option));
+      return arguments[++i];
+    };
+    auto noValue = [&] {
+      if (equals >= 0) fail(QStringLiteral("option '%1' takes no value").arg(option));
+    };
+
+    if (argument == QLatin1String("--")) {
+      command.scriptArguments = arguments.mid(i + 1);
+      break;
+    } else if (option == QLatin1String("-b") || option == QLatin1String("--batch")) {
+      setScript(command, value());
+    } else if (option == QLatin1String("--plugins")) {
+      command.pluginFolder = value();
+      if (command.pluginFolder.isEmpty()) fail(QStringLiteral("empty plugin folder"));
+    } else if (option == QLatin1String("-q") || option == QLatin1String("--quiet")) {
+      noValue();
+      command.quiet = true;
+    } else if (option == QLatin1String("-h") || option == QLatin1String("--help")) {
+      noValue();
+      command.help = true;
+    } else if (option == QLatin1String("--api") || option == QLatin1String("--help-api")) {
+      noValue();
+      command.api = true;
+    } else if (option == QLatin1String("--version")) {
+      noValue();
+      command.version = true;
+    } else if (argument.startsWith(QLatin1Char('-')) && argument.size() > 1) {
+      fail(QStringLiteral("unknown option '%1'").arg(option));
+    } else {
+      setScript(command, argument);
+    }
+  }
+  return command;
+}
+
+QString usageText() {
+  return QStringLiteral(
+      "Usage: mrcloth [options] -b <script.js> [-- <script arguments>...]\n"
+      "       mrcloth --api\n"
+      "\n"
+      "Runs mrcloth scripts headless: garments as multi-resolution quad meshes whose\n"
+      "refinement is driven by deformation modes. The script sees the object `core`\n"
+      "and one object per plugin (\"Multires Cloth\" as `multirescloth`); see --api.\n"
+      "\n"
+      "Options:\n"
+      "  -b, --batch <script.js>  run the script and exit: 0 when it runs to the end,\n"
+      "                           1 on an uncaught error (printed as file:line: message),\n"
+      "                           or the code given to core.exitApplication(code).\n"
+      "                           A lone positional argument is taken as the script too.\n"
+      "  --api, --help-api        print the scripting API of core and every plugin\n"
+      "  --plugins <dir>          load plugins from <dir> (default: the plugin folder\n"
+      "                           of the build/installation, found from the executable)\n"
+      "  -q, --quiet              hide [info] and [job] lines (warnings and errors stay)\n"
+      "  -h, --help               print this help\n"
+      "  --version                print the version\n"
+      "  --                       pass the remaining arguments to the script\n"
+      "                           (core.scriptArguments())\n"
+      "\n"
+      "Output: print(), console.log() and core.print() go to stdout; [info], [job],\n"
+      "[warn] and [error] lines go to stderr.\n"
+      "\n"
+      "Environment:\n"
+      "  MRCLOTH_RESOURCES        overrides core.resourcePath() (the resources folder)\n"
+      "\n"
+      "Exit codes: 0 success, 1 script error, 2 bad command line, other: exitApplication.\n");
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,57 @@
+#pragma once
+// Where everything the host, the plugins and the scripts say goes:
+//  - script output (print, console.log/info, core.print, LOGOUT) -> stdout, unprefixed;
+//  - "[info] ..." and "[job] ..." -> stderr, hidden by --quiet;
+//  - "[warn] ..." and "[error] ..." -> stderr, always.
+// Keeping stdout for script output only lets a script's printed results be
+// piped and compared (the script tests do).
+#include "plugin/interfaces/logging_interface.h"
+
+#include <QElapsedTimer>
+#include <QHash>
+#include <QObject>
+#include <QString>
+
+namespace mrcloth {
+
+class HostLog : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit HostLog(bool quiet, QObject* parent = nullptr);
+  ~HostLog() override;
+
+  void out(const QString& text) const;    ///< stdout
+  void info(const QString& text) const;   ///< [info], unless quiet
+  void warn(const QString& text) const;   ///< [warn]
+  void error(const QString& text) const;  ///< [error]
+  /// A line on stderr exactly as given (e.g. "file:line: message").
+  void raw(const QString& text) const;
+
+  /// Routes Qt's messages here: the script engine's console (category "js")
+  /// to stdout or [warn]/[error], Qt's own warnings to [warn]. Undone by the destructor.
+  void installMessageHandler();
+
+  // Slots connected by signature string to the plugins' LoggingInterface and
+  // ProcessInterface signals; the parameter types must be spelled as there.
+ public slots:
+  void onLog(Logtype type, QString message);
+  void onStartJob(QString jobId, QString description, int min, int max);
+  void onSetJobState(QString jobId, int value);
+  void onFinishJob(QString jobId);
+
+ private:
+  struct Job {
+    QString description;
+    int min = 0;
+    int max = 0;
+    QElapsedTimer timer;
+  };
+  void line(bool to_stdout, const QString& prefix, const QString& text) const;
+
+  bool quiet_;
+  bool handler_installed_ = false;
+  QHash<QString, Job> jobs_;
+};
+
+}  // namespace mrcloth

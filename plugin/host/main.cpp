@@ -1,0 +1,102 @@
+// mrcloth: the headless host. Loads the plugins, exposes `core` and every
+// plugin to a JavaScript engine, and runs one script in batch mode
+// (OpenFlipper's `-b` without the GUI).
+#include "batch_runner.h"
+#include "command_line.h"
+#include "host_log.h"
+#include "plugin/core/object_store.h"
+#include "plugin/interfaces/base_interface.h"
+#include "plugin_registry.h"
+#include "script_api.h"
+#include "script_core.h"
+
+#include <QCoreApplication>
+#include <QJSEngine>
+
+#include <cstdio>
+
+namespace {
+
+using namespace mrcloth;
+
+void printUsage(std::FILE* stream) {
+  std::fputs(usageText().toUtf8().constData(), stream);
+}
+
+/// The --api listing: core first, then every plugin with a scripting API.
+/// Descriptions that disagree with the real slots are reported as [warn].
+void printApi(const ScriptCore& core, const PluginRegistry& plugins, const HostLog& log) {
+  QString text = QStringLiteral("mrcloth %1 scripting API. Run scripts with: mrcloth -b script.js [-- args...]\n"
+                                "Errors in any call throw a JavaScript Error (name: ArgumentError, InputError, "
+                                "OutputError or Error).\n\n")
+                     .arg(QCoreApplication::applicationVersion());
+  text += formatScriptApi(QStringLiteral("core"), QStringLiteral("the host: objects, files, script control"),
+                          core.slotDescriptions());
+  QStringList problems = checkSlotDescriptions(core, QStringLiteral("core"), core.slotDescriptions());
+  for (const LoadedPlugin& plugin : plugins.plugins()) {
+    const QString heading = QStringLiteral("%1 %2: %3")
+                                .arg(plugin.base->name(), plugin.base->version(), plugin.base->description());
+    const QList<SlotDescription> slot_list = plugin.script ? plugin.script->slotDescriptions() : QList<SlotDescription>{};
+    text += QLatin1Char('\n') + formatScriptApi(plugin.scriptName, heading, slot_list);
+    problems += checkSlotDescriptions(*plugin.object, plugin.scriptName, slot_list);
+  }
+  log.out(text);
+  for (const QString& problem : problems) log.warn(problem);
+}
+
+/// Makes `object` a global of the script engine. The engine must not delete
+/// it: core lives on main's stack and plugins belong to their loaders.
+void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
+  QJSEngine::setObjectOwnership(object, QJSEngine::CppOwnership);
+  engine.globalObject().setProperty(name, engine.newQObject(object));
+}
+
+}  // namespace
+
+int main(int argc, char* argv[]) {
+  QCoreApplication application(argc, argv);
+  QCoreApplication::setApplicationName(QStringLiteral("mrcloth"));
+  QCoreApplication::setApplicationVersion(QStringLiteral(MRCLOTH_VERSION));
+
+  CommandLine command;
+  try {
+    command = parseCommandLine(QCoreApplication::arguments().mid(1));
+  } catch (const UsageError& error) {
+    std::fprintf(stderr, "[error] %s\n\n", error.what());
+    printUsage(stderr);
+    return 2;
+  }
+  if (command.help) {
+    printUsage(stdout);
+    return 0;
+  }
+  if (command.version) {
+    std::printf("mrcloth %s\n", MRCLOTH_VERSION);
+    return 0;
+  }
+  if (!command.api && command.scriptPath.isEmpty()) {
+    std::fputs("[error] nothing to do: give a script with -b <script.js>, or --api, or --help\n\n", stderr);
+    printUsage(stderr);
+    return 2;
+  }
+
+  HostLog log(command.quiet);
+  log.installMessageHandler();
+  ObjectStore store;
+  PluginRegistry plugins(log, store);
+  plugins.loadFolder(command.pluginFolder.isEmpty() ? PluginRegistry::defaultFolder() : command.pluginFolder);
+  ScriptCore core(store, log, command.scriptArguments);
+
+  if (command.api) {
+    printApi(core, plugins, log);
+    return 0;
+  }
+
+  // Declared after core so that it is destroyed first.
+  QJSEngine engine;
+  engine.installExtensions(QJSEngine::ConsoleExtension);
+  exposeToScripts(engine, QStringLiteral("core"), &core);
+  for (const LoadedPlugin& plugin : plugins.plugins()) exposeToScripts(engine, plugin.scriptName, plugin.object);
+
+  return runBatchScript(command.scriptPath, engine, core, log);
+}

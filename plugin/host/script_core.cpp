@@ -1,0 +1,240 @@
+#include "script_core.h"
+
+#include "host_log.h"
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/lumped_mass.h"
+#include "mesh_ops/mode_layer.h"
+#include "mesh_ops/quad_mesh.h"
+#include "plugin/core/object_store.h"
+#include "plugin/core/script_errors.h"
+#include "plugin/core/script_values.h"
+#include "solver/material.h"
+
+#include <QDir>
+#include <QFileInfo>
+#include <QJSEngine>
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <numeric>
+
+namespace mrcloth {
+namespace {
+
+QVariantList toVariantList(const OpenMesh::Vec3d& point) { return {point[0], point[1], point[2]}; }
+
+/// Axis-aligned bounding box of all vertices, as {min: [x, y, z], max: [x, y, z]} in metres.
+QVariantMap boundingBox(const QuadMesh& mesh) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  OpenMesh::Vec3d low(infinity, infinity, infinity), high(-infinity, -infinity, -infinity);
+  for (const auto vertex : mesh.vertices()) {
+    low.minimize(mesh.point(vertex));
+    high.maximize(mesh.point(vertex));
+  }
+  if (mesh.n_vertices() == 0) low = high = OpenMesh::Vec3d(0, 0, 0);
+  return {{QStringLiteral("min"), toVariantList(low)}, {QStringLiteral("max"), toVariantList(high)}};
+}
+
+/// Vertices per mode: element m counts the vertices of mode m.
+std::vector<std::size_t> verticesPerMode(const QuadMesh& mesh) {
+  const std::vector<int> modes = get_modes(mesh);
+  std::vector<std::size_t> counts;
+  for (const int mode : modes) {
+    if (mode < 0) continue;
+    if (static_cast<std::size_t>(mode) >= counts.size()) counts.resize(static_cast<std::size_t>(mode) + 1, 0);
+    ++counts[static_cast<std::size_t>(mode)];
+  }
+  return counts;
+}
+
+int highestLevel(const std::vector<std::size_t>& faces_per_level) {
+  for (std::size_t level = faces_per_level.size(); level-- > 0;)
+    if (faces_per_level[level] > 0) return static_cast<int>(level);
+  return 0;
+}
+
+}  // namespace
+
+ScriptCore::ScriptCore(ObjectStore& store, HostLog& log, QStringList scriptArguments, QObject* parent)
+    : QObject(parent), store_(store), log_(log), script_arguments_(std::move(scriptArguments)) {}
+
+template <class Body>
+auto ScriptCore::guarded(const char* slot, Body&& body) -> decltype(body()) {
+  return runScriptSlot(this, QStringLiteral("core.") + QLatin1String(slot), std::forward<Body>(body));
+}
+
+QString ScriptCore::resourceFolder() {
+  const QString overridden = qEnvironmentVariable("MRCLOTH_RESOURCES");
+  return QDir::cleanPath(overridden.isEmpty() ? QStringLiteral(MRCLOTH_RESOURCES_DIR) : overridden);
+}
+
+int ScriptCore::loadObject(QVariant path, QVariant options) {
+  return guarded("loadObject", [&] {
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const script::Options given(options, QStringLiteral("loadObject options"), {QStringLiteral("units")});
+    LoadOptions settings;
+    settings.units = given.string(QStringLiteral("units"), QString::fromStdString(settings.units)).toStdString();
+
+    LoadResult loaded = load_garment(file.toStdString(), settings);
+    for (const std::string& text : loaded.warnings) {
+      const QString warning = QString::fromStdString(text);
+      // mesh_ops usually names the file itself; name it only when it does not.
+      log_.warn(QStringLiteral("loadObject: ") + (warning.contains(file) ? warning : file + QStringLiteral(": ") + warning));
+    }
+    auto mesh = std::make_shared<QuadMesh>(std::move(loaded.mesh));
+    const int id = store_.add(mesh, QFileInfo(file).completeBaseName(), file);
+    log_.info(QStringLiteral("loadObject: %1 -> object %2: %3 vertices, %4 faces")
+                  .arg(file).arg(id).arg(mesh->n_vertices()).arg(mesh->n_faces()));
+    return id;
+  });
+}
+
+void ScriptCore::saveObject(QVariant id, QVariant path) {
+  guarded("saveObject", [&] {
+    const int object_id = script::toInt(id, QStringLiteral("id"));
+    const QString file = script::toString(path, QStringLiteral("path"));
+    save_mesh(store_.mesh(object_id), file.toStdString());
+    store_.setPath(object_id, file);
+    log_.info(QStringLiteral("saveObject: object %1 -> %2").arg(object_id).arg(file));
+  });
+}
+
+QVariantMap ScriptCore::objectInfo(QVariant id) {
+  return guarded("objectInfo", [&] {
+    const StoredObject& object = store_.get(script::toInt(id, QStringLiteral("id")));
+    const QuadMesh& mesh = *object.mesh;
+    const std::vector<double> masses = lumped_mass(mesh, kDefaultArealDensity);
+    const std::vector<std::size_t> faces_by_level = faces_per_level(mesh);
+    return QVariantMap{
+        {QStringLiteral("id"), object.id},
+        {QStringLiteral("name"), object.name},
+        {QStringLiteral("path"), object.path},
+        {QStringLiteral("vertices"), static_cast<qlonglong>(mesh.n_vertices())},
+        {QStringLiteral("faces"), static_cast<qlonglong>(mesh.n_faces())},
+        {QStringLiteral("hangingNodes"), static_cast<qlonglong>(count_hanging(mesh))},
+        {QStringLiteral("area"), garment_area(mesh)},
+        {QStringLiteral("arealDensity"), kDefaultArealDensity},
+        {QStringLiteral("totalMass"), std::accumulate(masses.begin(), masses.end(), 0.0)},
+        {QStringLiteral("facesPerLevel"), script::toVariantList(faces_by_level)},
+        {QStringLiteral("verticesPerLevel"), script::toVariantList(vertices_per_level(mesh))},
+        {QStringLiteral("verticesPerMode"), script::toVariantList(verticesPerMode(mesh))},
+        {QStringLiteral("maxLevel"), highestLevel(faces_by_level)},
+        {QStringLiteral("bbox"), boundingBox(mesh)}};
+  });
+}
+
+QVariantList ScriptCore::objectList() {
+  return guarded("objectList", [&] {
+    QVariantList list;
+    for (const StoredObject& object : store_.list())
+      list.append(QVariantMap{{QStringLiteral("id"), object.id},
+                              {QStringLiteral("name"), object.name},
+                              {QStringLiteral("path"), object.path}});
+    return list;
+  });
+}
+
+void ScriptCore::deleteObject(QVariant id) {
+  guarded("deleteObject", [&] { store_.remove(script::toInt(id, QStringLiteral("id"))); });
+}
+
+void ScriptCore::exitApplication(QVariant code) {
+  guarded("exitApplication", [&] {
+    const int exit_code = code.isValid() ? script::toInt(code, QStringLiteral("code")) : 0;
+    if (exit_code < 0 || exit_code > 255)
+      throw ArgumentError("code must be an integer in [0, 255], got " + std::to_string(exit_code));
+    exit_requested_ = true;
+    exit_code_ = exit_code;
+    // An interrupt, unlike a thrown error, cannot be caught by the script's
+    // try/catch: evaluation stops here and the host returns exit_code_.
+    if (QJSEngine* engine = qjsEngine(this)) engine->setInterrupted(true);
+  });
+}
+
+void ScriptCore::print(QJSValue value) { log_.out(value.toString()); }
+void ScriptCore::log(QJSValue value) { log_.info(value.toString()); }
+void ScriptCore::warn(QJSValue value) { log_.warn(value.toString()); }
+
+QString ScriptCore::resourcePath() { return resourceFolder(); }
+
+QStringList ScriptCore::scriptArguments() { return script_arguments_; }
+
+void ScriptCore::makePath(QVariant path) {
+  guarded("makePath", [&] {
+    const QString folder = script::toString(path, QStringLiteral("path"));
+    if (!QDir().mkpath(folder)) throw OutputError("cannot create folder " + folder.toStdString());
+  });
+}
+
+bool ScriptCore::fileExists(QVariant path) {
+  return guarded("fileExists", [&] { return QFileInfo::exists(script::toString(path, QStringLiteral("path"))); });
+}
+
+QList<SlotDescription> ScriptCore::slotDescriptions() const {
+  const QString id_text = QStringLiteral("object id");
+  return {
+      {QStringLiteral("loadObject(string path, object options = {}) -> int"),
+       QStringLiteral("Loads an OBJ/OFF/PLY/OM garment as a refinable quad mesh in metres; returns its id. Load "
+                      "warnings (e.g. polygons split into quads) are logged."),
+       {QStringLiteral("path"), QStringLiteral("options")},
+       {QStringLiteral("garment file"),
+        QStringLiteral("{units: \"m\" | \"dm\" | \"cm\" | \"mm\" | \"inch\" = \"m\"}: unit of the file's coordinates")}},
+      {QStringLiteral("saveObject(int id, string path)"),
+       QStringLiteral("Saves the object (atomically); .om keeps the hierarchy and every layer, .obj/.off/.ply the "
+                      "active surface only."),
+       {QStringLiteral("id"), QStringLiteral("path")},
+       {id_text, QStringLiteral("output file; the extension picks the format")}},
+      {QStringLiteral("objectInfo(int id) -> object"),
+       QStringLiteral("Returns {id, name, path, vertices, faces, hangingNodes, area (m^2), arealDensity (kg/m^2), "
+                      "totalMass (kg), facesPerLevel, verticesPerLevel, verticesPerMode, maxLevel, "
+                      "bbox: {min: [x, y, z], max: [x, y, z]} (m)}. Per-level lists: element L = level L "
+                      "(coarse = 1, element 0 unused); verticesPerMode: element m = mode m."),
+       {QStringLiteral("id")},
+       {id_text}},
+      {QStringLiteral("objectList() -> object[]"),
+       QStringLiteral("Returns [{id, name, path}] of every object, by id."),
+       {},
+       {}},
+      {QStringLiteral("deleteObject(int id)"),
+       QStringLiteral("Forgets the object; its id is never reused."),
+       {QStringLiteral("id")},
+       {id_text}},
+      {QStringLiteral("exitApplication(int code = 0)"),
+       QStringLiteral("Stops the script at once (catch blocks cannot intercept it; finally blocks still run); mrcloth exits with `code`."),
+       {QStringLiteral("code")},
+       {QStringLiteral("exit code in [0, 255]")}},
+      {QStringLiteral("print(any value)"),
+       QStringLiteral("Prints the value as a line on stdout (like print() and console.log())."),
+       {QStringLiteral("value")},
+       {QStringLiteral("anything; converted with String(value)")}},
+      {QStringLiteral("log(any value)"),
+       QStringLiteral("Logs an [info] line on stderr (hidden by --quiet)."),
+       {QStringLiteral("value")},
+       {QStringLiteral("anything; converted with String(value)")}},
+      {QStringLiteral("warn(any value)"),
+       QStringLiteral("Logs a [warn] line on stderr."),
+       {QStringLiteral("value")},
+       {QStringLiteral("anything; converted with String(value)")}},
+      {QStringLiteral("resourcePath() -> string"),
+       QStringLiteral("Returns the resources folder (garments/, scripts/): $MRCLOTH_RESOURCES, else the source "
+                      "tree's resources/."),
+       {},
+       {}},
+      {QStringLiteral("scriptArguments() -> string[]"),
+       QStringLiteral("Returns the command-line arguments after `--`."),
+       {},
+       {}},
+      {QStringLiteral("makePath(string path)"),
+       QStringLiteral("Creates the folder and any missing parents (no error if it exists)."),
+       {QStringLiteral("path")},
+       {QStringLiteral("folder to create")}},
+      {QStringLiteral("fileExists(string path) -> bool"),
+       QStringLiteral("Returns whether the file or folder exists."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file or folder")}},
+  };
+}
+
+}  // namespace mrcloth

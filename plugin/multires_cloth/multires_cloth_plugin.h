@@ -1,0 +1,68 @@
+#pragma once
+// The "Multires Cloth" plugin: the scripting face of mesh_ops. Every public
+// slot is a thin adapter (check arguments, call mesh_ops, store the result,
+// report); no geometry happens here. Slots that refine never modify their
+// input: they refine a copy and return the new object's id, so a script can
+// compare meshes and rerun a step with other options.
+#include "plugin/interfaces/base_interface.h"
+#include "plugin/interfaces/load_save_interface.h"
+#include "plugin/interfaces/logging_interface.h"
+#include "plugin/interfaces/process_interface.h"
+#include "plugin/interfaces/script_interface.h"
+
+#include <QObject>
+#include <QVariant>
+#include <QVariantList>
+#include <QVariantMap>
+
+namespace mrcloth {
+
+class MultiresClothPlugin : public QObject,
+                            public BaseInterface,
+                            public LoggingInterface,
+                            public LoadSaveInterface,
+                            public ProcessInterface,
+                            public ScriptInterface {
+  Q_OBJECT
+  Q_PLUGIN_METADATA(IID "mrcloth.BaseInterface/1.0")
+  Q_INTERFACES(mrcloth::BaseInterface mrcloth::LoggingInterface mrcloth::LoadSaveInterface
+                   mrcloth::ProcessInterface mrcloth::ScriptInterface)
+
+ signals:
+  // LoggingInterface and ProcessInterface, implemented by moc.
+  void log(Logtype type, QString message) override;
+  void startJob(QString jobId, QString description, int min, int max) override;
+  void setJobState(QString jobId, int value) override;
+  void finishJob(QString jobId) override;
+
+ public:
+  // BaseInterface
+  QString name() const override { return QStringLiteral("Multires Cloth"); }
+  QString description() const override;
+  // LoadSaveInterface
+  void setObjectStore(ObjectStore* store) override { store_ = store; }
+  // ScriptInterface
+  QList<SlotDescription> slotDescriptions() const override;
+
+  // The scripting API. Parameters are QVariant so that wrong types are
+  // reported by name (see plugin/core/script_values.h); slotDescriptions()
+  // gives the types a script must pass.
+ public slots:
+  int refineUniform(QVariant id, QVariant levels);
+  int setModes(QVariant id, QVariant vertexIds, QVariant mode);
+  int paintModes(QVariant id, QVariant brush);
+  QVariantList getModes(QVariant id);
+  int refineAdaptive(QVariant id, QVariant options = QVariant());
+  QVariantMap lastReport();
+  void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
+
+ private:
+  ObjectStore& store() const;
+  template <class Body>
+  auto guarded(const char* slot, Body&& body) -> decltype(body());
+
+  ObjectStore* store_ = nullptr;
+  QVariantMap last_report_;
+};
+
+}  // namespace mrcloth

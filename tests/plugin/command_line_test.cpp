@@ -1,0 +1,50 @@
+#include "plugin/host/command_line.h"
+
+#include <gtest/gtest.h>
+
+namespace mrcloth {
+namespace {
+
+TEST(CommandLine, BatchScriptAndItsArguments) {
+  const CommandLine command =
+      parseCommandLine({"-q", "-b", "job.js", "--", "out", "--not-ours", "-b", "two words"});
+  EXPECT_EQ(command.scriptPath, QStringLiteral("job.js"));
+  EXPECT_TRUE(command.quiet);
+  EXPECT_EQ(command.scriptArguments, (QStringList{"out", "--not-ours", "-b", "two words"}));
+}
+
+TEST(CommandLine, LongFormsWithEqualsAndPositionalScript) {
+  CommandLine command = parseCommandLine({"--batch=job.js", "--plugins=/p"});
+  EXPECT_EQ(command.scriptPath, QStringLiteral("job.js"));
+  EXPECT_EQ(command.pluginFolder, QStringLiteral("/p"));
+  command = parseCommandLine({"job.js", "--plugins", "/q", "--quiet"});
+  EXPECT_EQ(command.scriptPath, QStringLiteral("job.js"));
+  EXPECT_EQ(command.pluginFolder, QStringLiteral("/q"));
+  EXPECT_TRUE(parseCommandLine({"--help-api"}).api);
+  EXPECT_TRUE(parseCommandLine({"--api"}).api);
+  EXPECT_TRUE(parseCommandLine({"-h"}).help);
+  EXPECT_TRUE(parseCommandLine({"--version"}).version);
+  EXPECT_TRUE(parseCommandLine({}).scriptPath.isEmpty());
+}
+
+TEST(CommandLine, ErrorsNameTheArgument) {
+  auto messageOf = [](const QStringList& arguments) -> std::string {
+    try {
+      parseCommandLine(arguments);
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(messageOf({"--frobnicate"}), "unknown option '--frobnicate'");
+  EXPECT_EQ(messageOf({"--frobnicate=3"}), "unknown option '--frobnicate'");
+  EXPECT_EQ(messageOf({"-x"}), "unknown option '-x'");
+  EXPECT_EQ(messageOf({"-b"}), "option '-b' needs a value");
+  EXPECT_EQ(messageOf({"--plugins"}), "option '--plugins' needs a value");
+  EXPECT_EQ(messageOf({"--quiet=yes"}), "option '--quiet' takes no value");
+  EXPECT_EQ(messageOf({"a.js", "b.js"}), "more than one script given ('a.js' and 'b.js')");
+  EXPECT_EQ(messageOf({"-b", "a.js", "b.js"}), "more than one script given ('a.js' and 'b.js')");
+}
+
+}  // namespace
+}  // namespace mrcloth

@@ -1,0 +1,2 @@
+// Prints core.resourcePath() for the resource path checks.
+print("resources: " + core.resourcePath());
