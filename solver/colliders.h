@@ -1,0 +1,60 @@
+#pragma once
+// Analytic colliders: plane, sphere, tapered capsule (a cone-sphere: two
+// spheres of different radii and the cone tangent to both). Each has a
+// thickness (the cloth keeps this distance from the surface) and a Coulomb
+// friction coefficient. Positions in metres.
+#include <Eigen/Core>
+
+#include <variant>
+#include <vector>
+
+namespace mrcloth {
+
+struct PlaneCollider {
+  Eigen::Vector3d point{0, 0, 0};   ///< a point on the plane
+  Eigen::Vector3d normal{0, 1, 0};  ///< outward normal (normalised on use)
+};
+struct SphereCollider {
+  Eigen::Vector3d center{0, 0, 0};
+  double radius = 0.1;  ///< metres, > 0
+};
+struct CapsuleCollider {
+  Eigen::Vector3d a{0, 0, 0}, b{0, 1, 0};  ///< segment end points
+  double radius_a = 0.1, radius_b = 0.1;     ///< radii at a and b, metres, >= 0, not both 0
+};
+
+struct Collider {
+  std::variant<PlaneCollider, SphereCollider, CapsuleCollider> shape;
+  double thickness = 0.002;  ///< metres kept between cloth and surface
+  double friction = 0.3;     ///< Coulomb coefficient mu >= 0
+};
+
+/// Signed distance from p to the collider's surface (negative inside),
+/// ignoring thickness, with the outward unit normal of the closest surface
+/// point. Exact for all three shapes (the tapered capsule uses the exact
+/// cone-sphere distance).
+struct SurfaceQuery {
+  double distance = 0.0;
+  Eigen::Vector3d normal{0, 1, 0};
+};
+SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p);
+
+/// Throws ArgumentError for a non-positive radius, a zero normal, negative
+/// thickness or friction, or non-finite values; names the collider index.
+void validate_colliders(const std::vector<Collider>& colliders);
+
+/// The collision response of one point, for a step that moved it from
+/// `previous` to `position`: if it is closer than thickness to (or inside) a
+/// collider, it is projected to distance `thickness` along the normal, and
+/// its tangential displacement over the step is reduced by mu times the
+/// normal correction (static friction removes it entirely when within the
+/// cone). Colliders are applied in order, twice, so corners between two
+/// colliders resolve. Returns the largest normal correction applied (metres).
+double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector3d& previous,
+                     Eigen::Vector3d& position);
+
+/// Deepest penetration of p below any collider surface less thickness
+/// (metres, 0 when p is at least `thickness` outside all of them).
+double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p);
+
+}  // namespace mrcloth

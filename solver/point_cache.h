@@ -1,0 +1,65 @@
+#pragma once
+// Point caches: PC2 (the format Blender's Mesh Cache modifier, Maya and
+// Marvelous Designer read) and OBJ sequences. Written atomically: a cache
+// appears at its path only when complete.
+//
+// PC2 layout (little-endian): char[12] "POINTCACHE2\0", int32 version (1),
+// int32 numPoints, float32 startFrame, float32 sampleRate, int32 numSamples,
+// then numSamples x numPoints x float32[3] positions.
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+/// Positions of one frame: #points x 3, metres.
+using FramePositions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Streams frames to a PC2 file. Frames go to a temporary file; `finish()`
+/// patches the sample count and renames it into place. Destroying an
+/// unfinished writer (error, cancel) removes the temporary file, so nothing
+/// half-written is left behind.
+class Pc2Writer {
+ public:
+  /// path: target file; num_points > 0; start_frame and sample_rate
+  /// (frames between samples, usually 1) go into the header.
+  Pc2Writer(const std::string& path, int num_points, double start_frame = 0.0, double sample_rate = 1.0);
+  ~Pc2Writer();
+  Pc2Writer(const Pc2Writer&) = delete;
+  Pc2Writer& operator=(const Pc2Writer&) = delete;
+
+  /// Appends one frame (num_points x 3). Throws ArgumentError on a size
+  /// mismatch, OutputError on a write failure.
+  void add_frame(const FramePositions& positions);
+  /// Completes the file and renames it into place. Throws OutputError.
+  void finish();
+  int frames_written() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct PointCache {
+  int num_points = 0;
+  double start_frame = 0.0;
+  double sample_rate = 1.0;
+  std::vector<FramePositions> frames;  ///< each num_points x 3 (float precision in the file)
+};
+
+/// Reads a whole PC2 file. Throws InputError naming the file and the problem
+/// (bad signature, version, sizes not matching the file length).
+PointCache read_pc2(const std::string& path);
+
+/// Reads one frame without loading the rest (for streaming analysis).
+FramePositions read_pc2_frame(const std::string& path, int frame);
+
+/// Writes `frames` as an OBJ sequence `<prefix>_0000.obj`, ... sharing the
+/// faces of `faces` (each a vertex-index polygon, 0-based). Every file is
+/// written atomically. Returns the paths written.
+std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
+                                            const std::vector<std::vector<int>>& faces);
+
+}  // namespace mrcloth

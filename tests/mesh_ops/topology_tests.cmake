@@ -1,0 +1,1 @@
+# bend partner and boundary loop tests

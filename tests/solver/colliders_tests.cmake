@@ -1,0 +1,1 @@
+# colliders_tests
