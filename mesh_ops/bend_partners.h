@@ -6,8 +6,9 @@
 // Definition, on the quadtree records (active or not) of a refinable mesh:
 //  - Grid-line pairs: for two records of the same level that share a whole
 //    corner-to-corner edge (p, q), at least one of them active, with
-//    F = (p, q, r, s) and G = (q, p, t, u) in their own corner order, the
-//    pairs (s, u) through p and (r, t) through q. On a regular grid these are
+//    F = (p, q, r, s) and G = (q, p, t, u) in their own corner order (so s
+//    and t are p's neighbours off the shared edge, r and u are q's), the
+//    pairs (s, t) through p and (r, u) through q. On a regular grid these are
 //    the vertices two steps away along the grid lines. Where an active face
 //    borders a refined one of its own level, the refined record still counts,
 //    so the coarse face keeps its bending across the level interface.
