@@ -63,4 +63,8 @@ void write_file_atomically(const std::string& path, const std::string& extension
   }
 }
 
+std::string temporary_path_beside(const std::string& path, const std::string& extension) {
+  return temporary_path(fs::path(path), extension).string();
+}
+
 }  // namespace mrcloth

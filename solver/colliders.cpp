@@ -1,1 +1,201 @@
-// placeholder until implemented
+#include "colliders.h"
+
+#include "mesh_ops/errors.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <locale>
+#include <sstream>
+#include <string>
+#include <type_traits>
+
+namespace mrcloth {
+namespace {
+
+using Eigen::Vector3d;
+
+/// A unit vector perpendicular to unit `u`, the same every time for the same
+/// `u`: crossing with the coordinate axis least aligned with `u` keeps it
+/// well conditioned.
+Vector3d any_perpendicular(const Vector3d& u) {
+  int least = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(u(k)) < std::abs(u(least))) least = k;
+  return u.cross(Vector3d::Unit(least)).normalized();
+}
+
+/// Distance to a ball; at the centre every direction is closest, so +y.
+SurfaceQuery ball_query(const Vector3d& center, double radius, const Vector3d& p) {
+  const Vector3d offset = p - center;
+  const double length = offset.norm();
+  SurfaceQuery query;
+  query.distance = length - radius;
+  query.normal = length > 0.0 ? Vector3d(offset / length) : Vector3d::UnitY();
+  return query;
+}
+
+SurfaceQuery query_plane(const PlaneCollider& plane, const Vector3d& p) {
+  assert(plane.normal.squaredNorm() > 0.0 && "validate_colliders refuses a zero plane normal");
+  SurfaceQuery query;
+  query.normal = plane.normal.normalized();
+  query.distance = query.normal.dot(p - plane.point);
+  return query;
+}
+
+/// The exact signed distance to the convex hull of two balls (a, ra), (b, rb).
+/// By rotational symmetry it is a 2D problem in the half-plane spanned by the
+/// axis and p, with coordinates t (along the axis from a) and h >= 0 (from
+/// the axis). There the boundary is an arc of circle a, the slant line
+/// tangent to both circles, and an arc of circle b. The slant line has
+/// outward normal n = (s, c) with s = (ra - rb) / L (L = |b - a|) and
+/// touches circle a at ra * n and circle b at (L, 0) + rb * n; the signed
+/// position of q = (t, h) along the line, sigma = c t - s h, tells which of
+/// the three pieces is closest, for points inside as well as outside.
+SurfaceQuery query_capsule(const CapsuleCollider& capsule, const Vector3d& p) {
+  const Vector3d axis = capsule.b - capsule.a;
+  const double length = axis.norm();
+  const double dr = capsule.radius_a - capsule.radius_b;
+  // One ball inside the other (or equal centres): the hull is the larger ball.
+  if (length <= std::abs(dr)) {
+    return capsule.radius_a >= capsule.radius_b ? ball_query(capsule.a, capsule.radius_a, p)
+                                                : ball_query(capsule.b, capsule.radius_b, p);
+  }
+  const Vector3d u = axis / length;
+  const Vector3d offset = p - capsule.a;
+  const double t = offset.dot(u);
+  const Vector3d radial = offset - t * u;
+  const double h = radial.norm();
+  // On the axis every radial direction is closest; any fixed one will do.
+  const Vector3d e = h > 0.0 ? Vector3d(radial / h) : any_perpendicular(u);
+
+  const double s = dr / length;
+  const double c = std::sqrt(std::max(0.0, (1.0 - s) * (1.0 + s)));
+  const double sigma = c * t - s * h;
+  if (sigma < 0.0) return ball_query(capsule.a, capsule.radius_a, p);
+  if (sigma > length * c) return ball_query(capsule.b, capsule.radius_b, p);
+  SurfaceQuery query;
+  query.distance = s * t + c * h - capsule.radius_a;
+  query.normal = (s * u + c * e).normalized();
+  return query;
+}
+
+/// Reports "collider 3 (sphere): radius must be > 0 (got -0.1)".
+[[noreturn]] void refuse(std::size_t index, const char* kind, const std::string& problem) {
+  throw ArgumentError("collider " + std::to_string(index) + " (" + kind + "): " + problem);
+}
+
+std::string text(double value) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << value;
+  return out.str();
+}
+
+std::string text(const Vector3d& v) { return "(" + text(v.x()) + ", " + text(v.y()) + ", " + text(v.z()) + ")"; }
+
+void require_finite(std::size_t index, const char* kind, const char* field, const Vector3d& v) {
+  if (!v.allFinite()) refuse(index, kind, std::string(field) + " must be finite (got " + text(v) + ")");
+}
+
+void require_finite_at_least(std::size_t index, const char* kind, const char* field, double value, double minimum,
+                             bool strict) {
+  const bool ok = std::isfinite(value) && (strict ? value > minimum : value >= minimum);
+  if (!ok) {
+    refuse(index, kind,
+           std::string(field) + " must be a finite number " + (strict ? "> " : ">= ") + text(minimum) + " (got " +
+               text(value) + ")");
+  }
+}
+
+void validate_shape(std::size_t index, const PlaneCollider& plane) {
+  require_finite(index, "plane", "point", plane.point);
+  require_finite(index, "plane", "normal", plane.normal);
+  if (!(plane.normal.squaredNorm() > 0.0)) refuse(index, "plane", "normal must not be zero");
+}
+
+void validate_shape(std::size_t index, const SphereCollider& sphere) {
+  require_finite(index, "sphere", "center", sphere.center);
+  require_finite_at_least(index, "sphere", "radius", sphere.radius, 0.0, true);
+}
+
+void validate_shape(std::size_t index, const CapsuleCollider& capsule) {
+  require_finite(index, "capsule", "a", capsule.a);
+  require_finite(index, "capsule", "b", capsule.b);
+  require_finite_at_least(index, "capsule", "radius_a", capsule.radius_a, 0.0, false);
+  require_finite_at_least(index, "capsule", "radius_b", capsule.radius_b, 0.0, false);
+  if (capsule.radius_a == 0.0 && capsule.radius_b == 0.0)
+    refuse(index, "capsule", "radius_a and radius_b are both 0 (at least one must be > 0)");
+}
+
+const char* kind_of(const Collider& collider) {
+  switch (collider.shape.index()) {
+    case 0: return "plane";
+    case 1: return "sphere";
+    default: return "capsule";
+  }
+}
+
+/// Pushes `position` out to `thickness` from one collider and applies
+/// Coulomb friction to the step's tangential displacement; returns the
+/// normal correction (0 when the point is clear).
+double resolve_against(const Collider& collider, const Vector3d& previous, Vector3d& position) {
+  const SurfaceQuery query = query_surface(collider, position);
+  const double gap = query.distance - collider.thickness;
+  if (!(gap < 0.0)) return 0.0;
+  const double correction = -gap;
+  position += correction * query.normal;
+  const Vector3d step = position - previous;
+  const Vector3d tangential = step - query.normal * query.normal.dot(step);
+  const double slide = tangential.norm();
+  const double grip = collider.friction * correction;
+  // Inside the friction cone the point sticks; outside it slides, slowed by
+  // mu times the normal impulse (here expressed as displacements).
+  if (slide <= grip) position -= tangential;
+  else position -= tangential * (grip / slide);
+  return correction;
+}
+
+}  // namespace
+
+SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p) {
+  return std::visit(
+      [&](const auto& shape) -> SurfaceQuery {
+        using Shape = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<Shape, PlaneCollider>) return query_plane(shape, p);
+        else if constexpr (std::is_same_v<Shape, SphereCollider>) return ball_query(shape.center, shape.radius, p);
+        else return query_capsule(shape, p);
+      },
+      collider.shape);
+}
+
+void validate_colliders(const std::vector<Collider>& colliders) {
+  for (std::size_t i = 0; i < colliders.size(); ++i) {
+    const Collider& collider = colliders[i];
+    std::visit([&](const auto& shape) { validate_shape(i, shape); }, collider.shape);
+    require_finite_at_least(i, kind_of(collider), "thickness", collider.thickness, 0.0, false);
+    require_finite_at_least(i, kind_of(collider), "friction", collider.friction, 0.0, false);
+  }
+}
+
+double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector3d& previous,
+                     Eigen::Vector3d& position) {
+  double largest = 0.0;
+  // A second sweep settles a point that the later of two touching colliders
+  // pushed back into the earlier one (a corner).
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (const Collider& collider : colliders) largest = std::max(largest, resolve_against(collider, previous, position));
+  }
+  return largest;
+}
+
+double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p) {
+  double deepest = 0.0;
+  for (const Collider& collider : colliders)
+    deepest = std::max(deepest, collider.thickness - query_surface(collider, p).distance);
+  return deepest;
+}
+
+}  // namespace mrcloth
