@@ -1,1 +1,190 @@
-// placeholder until implemented
+#include "dynamics_model.h"
+
+#include "mesh_ops/bend_partners.h"
+#include "mesh_ops/errors.h"
+#include "mesh_ops/lumped_mass.h"
+
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace mrcloth {
+namespace {
+
+std::uint64_t pair_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+double level_scale(double alpha, int level) { return std::exp2(alpha * (level - 1)); }
+
+class SpringSet {
+ public:
+  explicit SpringSet(const Positions& rest) : rest_(rest) {}
+  void add(int i, int j, double k, SpringKind kind, int level) {
+    if (!seen_.emplace(pair_key(i, j), static_cast<int>(springs_.size())).second) return;
+    Spring s;
+    s.i = std::min(i, j);
+    s.j = std::max(i, j);
+    s.rest = (rest_.row(i) - rest_.row(j)).norm();
+    s.stiffness = k;
+    s.kind = kind;
+    s.level = level;
+    springs_.push_back(s);
+  }
+  std::vector<Spring> take() { return std::move(springs_); }
+
+ private:
+  const Positions& rest_;
+  std::unordered_map<std::uint64_t, int> seen_;
+  std::vector<Spring> springs_;
+};
+
+std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, const DynamicsOptions& o) {
+  const Material& m = o.material;
+  SpringSet set(rest);
+  const auto& forest = quadtree(mesh);
+  // Stretch first, then shear, then bend: a pair that is both (impossible on
+  // a quad mesh without degenerate faces) keeps the stiffer role.
+  for (const QuadRecord& q : forest) {
+    if (!q.active) continue;
+    for (int k = 0; k < 4; ++k)
+      set.add(q.corners[k], q.corners[(k + 1) % 4], m.stretch_stiffness * level_scale(o.alpha, q.level),
+              SpringKind::stretch, q.level);
+  }
+  for (const QuadRecord& q : forest) {
+    if (!q.active) continue;
+    const double k = m.shear_stiffness * level_scale(o.alpha, q.level);
+    set.add(q.corners[0], q.corners[2], k, SpringKind::shear, q.level);
+    set.add(q.corners[1], q.corners[3], k, SpringKind::shear, q.level);
+  }
+  for (const BendPair& b : bend_pairs(mesh))
+    set.add(b.i, b.j, m.bend_stiffness * level_scale(o.alpha_bend, b.level), SpringKind::bend, b.level);
+  return set.take();
+}
+
+void check_options(const QuadMesh& mesh, const DynamicsOptions& o, const std::vector<char>& hanging) {
+  const Material& m = o.material;
+  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!positive(m.areal_density)) throw ArgumentError("material areal density must be > 0 kg/m^2");
+  if (!positive(m.stretch_stiffness) || !positive(m.shear_stiffness) || !(m.bend_stiffness >= 0.0))
+    throw ArgumentError("material stiffnesses must be > 0 N/m (bend >= 0)");
+  if (!(m.damping >= 0.0)) throw ArgumentError("material damping must be >= 0 1/s");
+  if (!(m.stretch_limit > 0.0)) throw ArgumentError("material stretch limit must be > 0");
+  if (!std::isfinite(o.alpha) || !std::isfinite(o.alpha_bend)) throw ArgumentError("alpha must be finite");
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (int v : o.pinned) {
+    if (v < 0 || v >= n)
+      throw ArgumentError("pinned vertex " + std::to_string(v) + " is out of range; the mesh has " +
+                          std::to_string(n) + " vertices");
+    if (hanging[v])
+      throw ArgumentError("pinned vertex " + std::to_string(v) +
+                          " is a hanging node (T-node) whose position its parents decide; pin its parents instead");
+  }
+}
+
+}  // namespace
+
+DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options) {
+  const Layers layers = get_layers(mesh);
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::vector<char> hanging(n, 0);
+  for (auto v : mesh.vertices()) hanging[v.idx()] = mesh.property(layers.hanging, v) ? 1 : 0;
+  check_options(mesh, options, hanging);
+
+  DynamicsModel model;
+  model.num_vertices = n;
+  model.material = options.material;
+  model.alpha = options.alpha;
+  model.alpha_bend = options.alpha_bend;
+  model.rest.resize(n, 3);
+  for (auto v : mesh.vertices())
+    for (int c = 0; c < 3; ++c) model.rest(v.idx(), c) = mesh.point(v)[c];
+  const std::vector<double> mass = lumped_mass(mesh, options.material.areal_density);
+  model.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), n);
+  model.springs = build_springs(mesh, model.rest, options);
+
+  // Classify vertices; free and pinned indices follow vertex order.
+  std::vector<char> pinned(n, 0);
+  for (int v : options.pinned) pinned[v] = 1;
+  std::vector<int> free_index(n, -1), pinned_index(n, -1);
+  for (int v = 0; v < n; ++v) {
+    if (pinned[v]) {
+      pinned_index[v] = static_cast<int>(model.pinned_vertices.size());
+      model.pinned_vertices.push_back(v);
+    } else if (hanging[v]) {
+      model.hanging_vertices.push_back(v);
+    } else {
+      free_index[v] = static_cast<int>(model.free_vertices.size());
+      model.free_vertices.push_back(v);
+    }
+  }
+
+  // Rows of S and P: a hanging vertex's row is the mean of its parents' rows.
+  // Parents have lower indices than the midpoints they made, so one forward
+  // sweep composes chains.
+  std::vector<std::map<int, double>> free_row(n), pinned_row(n);
+  for (int v = 0; v < n; ++v) {
+    if (free_index[v] >= 0) {
+      free_row[v][free_index[v]] = 1.0;
+    } else if (pinned_index[v] >= 0) {
+      pinned_row[v][pinned_index[v]] = 1.0;
+    } else {
+      const OpenMesh::Vec2i p = mesh.property(layers.parents, mesh.vertex_handle(v));
+      for (int parent : {p[0], p[1]}) {
+        for (const auto& [col, w] : free_row[parent]) free_row[v][col] += 0.5 * w;
+        for (const auto& [col, w] : pinned_row[parent]) pinned_row[v][col] += 0.5 * w;
+      }
+    }
+  }
+  std::vector<Eigen::Triplet<double>> s_entries, p_entries;
+  model.stencil.resize(n);
+  for (int v = 0; v < n; ++v) {
+    for (const auto& [col, w] : free_row[v]) {
+      s_entries.emplace_back(v, col, w);
+      model.stencil[v].push_back({col, w});
+    }
+    for (const auto& [col, w] : pinned_row[v]) p_entries.emplace_back(v, col, w);
+  }
+  model.S.resize(n, static_cast<int>(model.free_vertices.size()));
+  model.S.setFromTriplets(s_entries.begin(), s_entries.end());
+  model.P.resize(n, static_cast<int>(model.pinned_vertices.size()));
+  model.P.setFromTriplets(p_entries.begin(), p_entries.end());
+
+  model.free_mass.resize(static_cast<int>(model.free_vertices.size()));
+  for (std::size_t f = 0; f < model.free_vertices.size(); ++f) model.free_mass[f] = model.mass[model.free_vertices[f]];
+  for (std::size_t f = 0; f < model.free_vertices.size(); ++f)
+    if (!(model.free_mass[f] > 0.0))
+      throw ArgumentError("free vertex " + std::to_string(model.free_vertices[f]) +
+                          " has no mass (an isolated vertex?); every simulated vertex needs a face");
+  return model;
+}
+
+Positions full_positions(const DynamicsModel& model, const Positions& free, const Positions& pinned) {
+  Positions x = model.S * free;
+  if (model.P.cols() > 0) x += model.P * pinned;
+  return x;
+}
+
+Positions free_rows(const DynamicsModel& model, const Positions& full) {
+  Positions q(static_cast<int>(model.free_vertices.size()), 3);
+  for (std::size_t f = 0; f < model.free_vertices.size(); ++f) q.row(f) = full.row(model.free_vertices[f]);
+  return q;
+}
+
+Positions pinned_rows(const DynamicsModel& model, const Positions& full) {
+  Positions p(static_cast<int>(model.pinned_vertices.size()), 3);
+  for (std::size_t k = 0; k < model.pinned_vertices.size(); ++k) p.row(k) = full.row(model.pinned_vertices[k]);
+  return p;
+}
+
+double max_stretch(const DynamicsModel& model, const Positions& full) {
+  double worst = 0.0;
+  for (const Spring& s : model.springs) {
+    if (s.kind != SpringKind::stretch) continue;
+    worst = std::max(worst, ((full.row(s.i) - full.row(s.j)).norm() - s.rest) / s.rest);
+  }
+  return worst;
+}
+
+}  // namespace mrcloth

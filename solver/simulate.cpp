@@ -1,1 +1,99 @@
-// placeholder until implemented
+#include "simulate.h"
+
+#include "point_cache.h"
+
+#include "mesh_ops/errors.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace mrcloth {
+namespace {
+
+void check(const SimulationOptions& o) {
+  if (o.frames < 1) throw ArgumentError("frames must be >= 1, got " + std::to_string(o.frames));
+  if (!(o.fps > 0.0) || !std::isfinite(o.fps)) throw ArgumentError("fps must be > 0");
+  if (o.substeps < 1) throw ArgumentError("substeps must be >= 1, got " + std::to_string(o.substeps));
+  validate_colliders(o.colliders);
+}
+
+double deepest_penetration(const std::vector<Collider>& colliders, const Positions& x) {
+  double deepest = 0.0;
+  if (colliders.empty()) return deepest;
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    deepest = std::max(deepest, penetration(colliders, x.row(v).transpose()));
+  return deepest;
+}
+
+}  // namespace
+
+SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
+                          const PinTrajectory& pins, const SimulationProgress& progress,
+                          std::vector<Positions>* frames_out) {
+  check(options);
+  SimulationReport report;
+  IntegratorOptions io;
+  io.time_step = 1.0 / (options.fps * options.substeps);
+  io.iterations = options.iterations;
+  io.strain_limit_sweeps = options.strain_limit_sweeps;
+  io.gravity = options.gravity;
+  report.time_step = io.time_step;
+
+  auto start = std::chrono::steady_clock::now();
+  ImplicitIntegrator integrator;
+  integrator.precompute(model, io);
+  report.precompute_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  std::unique_ptr<Pc2Writer> cache;
+  if (!options.cache_path.empty())
+    cache = std::make_unique<Pc2Writer>(options.cache_path, model.num_vertices, 1.0, 1.0);
+
+  const Positions rest_pinned = pinned_rows(model, model.rest);
+  Positions pinned_next = rest_pinned;
+  for (int frame = 0; frame < options.frames; ++frame) {
+    FrameTiming timing;
+    for (int sub = 0; sub < options.substeps; ++sub) {
+      pinned_next = rest_pinned;
+      if (pins) pins(state.time + io.time_step, pinned_next);
+      const StepReport step = integrator.step(state, pinned_next, options.colliders);
+      timing.dynamics_ms += step.dynamics_ms;
+      timing.collision_ms += step.collision_ms;
+      ++report.steps;
+      if (!step.finite) {
+        report.non_finite = true;
+        break;
+      }
+    }
+    if (report.non_finite) break;
+    const Positions x = full_positions(model, state.positions, state.pinned);
+    report.max_stretch = std::max(report.max_stretch, max_stretch(model, x));
+    report.max_penetration = std::max(report.max_penetration, deepest_penetration(options.colliders, x));
+    if (cache) cache->add_frame(x);
+    if (frames_out) frames_out->push_back(x);
+    report.per_frame.push_back(timing);
+    ++report.frames;
+    if (progress && !progress(report.frames, options.frames)) {
+      report.cancelled = true;
+      break;
+    }
+  }
+  for (const FrameTiming& t : report.per_frame) {
+    report.ms_per_frame_dynamics += t.dynamics_ms;
+    report.ms_per_frame_collision += t.collision_ms;
+  }
+  if (report.frames > 0) {
+    report.ms_per_frame_dynamics /= report.frames;
+    report.ms_per_frame_collision /= report.frames;
+  }
+  report.ms_per_frame_total = report.ms_per_frame_dynamics + report.ms_per_frame_collision;
+  // Only a complete, finite run leaves a cache; the writer removes its
+  // temporary file otherwise.
+  if (cache && !report.cancelled && !report.non_finite) {
+    cache->finish();
+    report.cache_path = options.cache_path;
+  }
+  return report;
+}
+
+}  // namespace mrcloth

@@ -1,1 +1,44 @@
-// placeholder until implemented
+#include "spring_energy.h"
+
+namespace mrcloth {
+
+SpringEvaluation evaluate_spring(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, double rest, double stiffness) {
+  const Eigen::Vector3d e = xi - xj;
+  const double length = e.norm();
+  SpringEvaluation out;
+  const double stretch = length - rest;
+  out.energy = 0.5 * stiffness * stretch * stretch;
+  if (length == 0.0) {  // direction undefined: no force, isotropic stiffness
+    out.gradient_i.setZero();
+    out.hessian = stiffness * Eigen::Matrix3d::Identity();
+    return out;
+  }
+  const Eigen::Vector3d n = e / length;
+  out.gradient_i = stiffness * stretch * n;
+  out.hessian = stiffness * (n * n.transpose() + (stretch / length) * (Eigen::Matrix3d::Identity() - n * n.transpose()));
+  return out;
+}
+
+double spring_energy(const DynamicsModel& model, const Positions& x) {
+  double energy = 0.0;
+  for (const Spring& s : model.springs) {
+    const double stretch = (x.row(s.i) - x.row(s.j)).norm() - s.rest;
+    energy += 0.5 * s.stiffness * stretch * stretch;
+  }
+  return energy;
+}
+
+Positions spring_forces(const DynamicsModel& model, const Positions& x) {
+  Positions f = Positions::Zero(x.rows(), 3);
+  for (const Spring& s : model.springs) {
+    const Eigen::Vector3d e = (x.row(s.i) - x.row(s.j)).transpose();
+    const double length = e.norm();
+    if (length == 0.0) continue;
+    const Eigen::Vector3d g = s.stiffness * (length - s.rest) / length * e;
+    f.row(s.i) -= g.transpose();
+    f.row(s.j) += g.transpose();
+  }
+  return f;
+}
+
+}  // namespace mrcloth

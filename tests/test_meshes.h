@@ -39,6 +39,21 @@ inline QuadMesh make_tube(int around, int rings, double radius, double height) {
   return mesh;
 }
 
+/// A horizontal square sheet of `side` metres at height y, centred on the y
+/// axis, with n x n vertices (n >= 2), vertex (i, k) at index k * n + i,
+/// faces oriented with normal +y, made refinable.
+inline QuadMesh make_sheet(int n, double side = 1.0, double y = 0.0) {
+  QuadMesh mesh;
+  const double step = side / (n - 1);
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i) mesh.add_vertex(QuadMesh::Point(-0.5 * side + i * step, y, -0.5 * side + k * step));
+  const auto vid = [&](int i, int k) { return mesh.vertex_handle(k * n + i); };
+  for (int k = 0; k + 1 < n; ++k)
+    for (int i = 0; i + 1 < n; ++i) mesh.add_face(vid(i, k), vid(i, k + 1), vid(i + 1, k + 1), vid(i + 1, k));
+  init_forest(mesh);
+  return mesh;
+}
+
 /// Shared real data folder (may be absent: callers skip).
 inline std::string shared_data(const std::string& relative) {
   return std::string(MRCLOTH_SHARED_DATA) + "/" + relative;

@@ -1,0 +1,99 @@
+#pragma once
+// The multi-resolution mass-spring system of paper section 6, built once from
+// the active surface of a refined mesh (Algorithm 4). Nothing in it changes
+// during animation: that is the point of the method.
+//
+// Spring sets (all deduplicated by vertex pair, rest length = rest distance):
+//  - stretch: the four corner-to-corner edges of every active quadtree record.
+//    A coarse face with a hanging node on an edge keeps its own spring along
+//    the whole edge (paper: "the coarse face keeps its own springs") and the
+//    finer faces have their springs to the hanging node.
+//  - shear: both corner diagonals of every active record.
+//  - bend: every bend pair of mesh_ops/bend_partners.h (two steps along grid
+//    lines and diagonals, same-level records, including across the interface
+//    where an active face borders a refined face of its own level).
+//  Boundaries have no special springs: a pair exists only where its records do.
+//  Irregular vertices get stretch and shear springs from their faces and
+//  bend springs across each edge, none diagonal (see bend_partners.h).
+//  A spring's level is the level of the records that define it.
+// Stiffness (eq. 1): k_L = k * 2^(alpha * (L - 1)) for stretch and shear and
+// k_L = k * 2^(alpha_bend * (L - 1)) for bend, so coarse springs have the
+// material's stiffness.
+//
+// Degrees of freedom: a vertex is pinned (follows a target), hanging (a T-node:
+// exactly the midpoint of its parents, chains compose) or free. Full positions
+// are x = S q + P p, with q the free positions (#free x 3), p the pinned
+// targets (#pinned x 3), and S, P sparse interpolation matrices whose rows sum
+// to 1. A hanging vertex has no mass of its own (lumped_mass gives it to its
+// parents), so forces on it act on its parents through S^T.
+#include "material.h"
+
+#include "mesh_ops/quad_mesh.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace mrcloth {
+
+/// Row-major n x 3 positions, one row per vertex (metres).
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+enum class SpringKind { stretch, shear, bend };
+
+struct Spring {
+  int i = -1, j = -1;        ///< full vertex indices
+  double rest = 0.0;         ///< rest length, metres
+  double stiffness = 0.0;    ///< N/m, already scaled by level
+  SpringKind kind = SpringKind::stretch;
+  int level = 1;
+};
+
+struct DynamicsOptions {
+  Material material;         ///< density, stiffnesses, damping, stretch limit
+  double alpha = 0.0;        ///< eq. 1 exponent for stretch and shear (0 = same k at every level)
+  double alpha_bend = 1.0;   ///< eq. 1 exponent for bend springs
+  std::vector<int> pinned;   ///< full vertex ids that follow targets; none may be hanging
+};
+
+/// One term of a full vertex's position in free coordinates: x_v = sum w * q_free.
+struct StencilTerm {
+  int free = -1;
+  double weight = 0.0;
+};
+
+struct DynamicsModel {
+  int num_vertices = 0;
+  Positions rest;                              ///< #V x 3 rest positions
+  Eigen::VectorXd mass;                        ///< #V lumped masses, kg (0 for hanging vertices)
+  std::vector<Spring> springs;                 ///< stretch, then shear, then bend
+  std::vector<int> free_vertices;              ///< free index -> full vertex
+  std::vector<int> pinned_vertices;            ///< pinned index -> full vertex
+  std::vector<int> hanging_vertices;           ///< full vertices that are T-nodes
+  Eigen::SparseMatrix<double> S;               ///< #V x #free
+  Eigen::SparseMatrix<double> P;               ///< #V x #pinned
+  Eigen::VectorXd free_mass;                   ///< #free, diag of S^T M S (kg)
+  std::vector<std::vector<StencilTerm>> stencil;  ///< per full vertex: its S row (free terms only)
+  Material material;
+  double alpha = 0.0, alpha_bend = 1.0;
+};
+
+/// Builds the model from a refinable mesh (its points are the rest state).
+/// Throws ArgumentError for a pinned id out of range or hanging, or a
+/// non-positive stiffness or density.
+DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options);
+
+/// Full positions x = S q + P p.
+Positions full_positions(const DynamicsModel& model, const Positions& free, const Positions& pinned);
+
+/// Free positions taken from full positions (rows of the free vertices).
+Positions free_rows(const DynamicsModel& model, const Positions& full);
+
+/// Pinned rows of full positions.
+Positions pinned_rows(const DynamicsModel& model, const Positions& full);
+
+/// Largest strain (|xi - xj| - rest) / rest over stretch springs (0 if none is stretched).
+double max_stretch(const DynamicsModel& model, const Positions& full);
+
+}  // namespace mrcloth

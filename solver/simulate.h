@@ -1,0 +1,62 @@
+#pragma once
+// Runs a dynamics model over frames: substeps, moving pins, colliders,
+// recording to a PC2 cache, timings, progress and cancellation.
+#include "colliders.h"
+#include "dynamics_model.h"
+#include "implicit_integrator.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+struct SimulationOptions {
+  int frames = 60;                            ///< output frames to simulate, >= 1
+  double fps = 30.0;                          ///< output frames per second, > 0
+  int substeps = 4;                           ///< time steps per output frame (h = 1 / (fps * substeps)), >= 1
+  int iterations = 4;                         ///< local/global iterations per step
+  int strain_limit_sweeps = 4;                ///< see IntegratorOptions
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};   ///< m/s^2
+  std::vector<Collider> colliders;            ///< analytic colliders
+  std::string cache_path;                     ///< PC2 file of all vertices per frame; empty: none
+};
+
+/// Pinned targets at a time: fills `pinned` (#pinned x 3, metres; it holds
+/// the rest positions of the pinned vertices on entry). Empty: pins stay at rest.
+using PinTrajectory = std::function<void(double time, Positions& pinned)>;
+
+/// Called after every output frame with frames done and total; return false to cancel.
+using SimulationProgress = std::function<bool(int frames_done, int frames_total)>;
+
+struct FrameTiming {
+  double dynamics_ms = 0.0;
+  double collision_ms = 0.0;
+};
+
+struct SimulationReport {
+  int frames = 0;                      ///< output frames completed
+  int steps = 0;                       ///< time steps taken
+  double time_step = 0.0;              ///< seconds
+  double precompute_ms = 0.0;          ///< model factorisation
+  double ms_per_frame_dynamics = 0.0;  ///< mean over frames
+  double ms_per_frame_collision = 0.0;
+  double ms_per_frame_total = 0.0;
+  double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
+  double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
+  bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
+  bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)
+  std::vector<FrameTiming> per_frame;  ///< timings of every output frame
+  std::string cache_path;              ///< the PC2 written, empty if none
+};
+
+/// Simulates from `initial` (advanced in place) for options.frames frames.
+/// The PC2 cache (if asked) holds one sample per output frame, sample k at
+/// time (k + 1) / fps, of all vertices (hanging and pinned included). It
+/// appears only when the run completes; a cancelled or failed run leaves none.
+/// `frames_out`, if given, receives the full positions of every output frame.
+SimulationReport simulate(const DynamicsModel& model, ClothState& initial, const SimulationOptions& options,
+                          const PinTrajectory& pins = {}, const SimulationProgress& progress = {},
+                          std::vector<Positions>* frames_out = nullptr);
+
+}  // namespace mrcloth

@@ -1,0 +1,27 @@
+#pragma once
+// One spring's energy and derivatives on its 2-vertex stencil, the shape
+// every force in the solver takes (value, gradient, Hessian) so each can be
+// checked against finite differences.
+#include "dynamics_model.h"
+
+#include <Eigen/Core>
+
+namespace mrcloth {
+
+/// E = k/2 (|xi - xj| - rest)^2. gradient_i = dE/dxi (dE/dxj = -gradient_i);
+/// hessian = d2E/dxi2 (= d2E/dxj2 = -d2E/dxi dxj), the exact (possibly
+/// indefinite) Hessian for |xi - xj| > 0.
+struct SpringEvaluation {
+  double energy = 0.0;           ///< J
+  Eigen::Vector3d gradient_i;    ///< N (negative force on i)
+  Eigen::Matrix3d hessian;       ///< N/m
+};
+SpringEvaluation evaluate_spring(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, double rest, double stiffness);
+
+/// Total spring energy of full positions x (#V x 3), J.
+double spring_energy(const DynamicsModel& model, const Positions& x);
+
+/// Spring forces on every full vertex (#V x 3), N: minus the energy gradient.
+Positions spring_forces(const DynamicsModel& model, const Positions& x);
+
+}  // namespace mrcloth
