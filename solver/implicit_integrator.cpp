@@ -73,6 +73,43 @@ std::vector<int> bend_middles(const DynamicsModel& model) {
   return middle;
 }
 
+// Stretch springs in breadth-first order over the spring graph from vertex
+// 0: Gauss-Seidel then carries a correction across the cloth in a sweep or
+// two, whatever order refinement created the vertices in.
+std::vector<int> wavefront_order(const DynamicsModel& model) {
+  std::vector<std::vector<int>> incident(model.num_vertices);
+  std::vector<int> stretch;
+  for (std::size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    if (s.kind != SpringKind::stretch) continue;
+    incident[s.i].push_back(static_cast<int>(k));
+    incident[s.j].push_back(static_cast<int>(k));
+    stretch.push_back(static_cast<int>(k));
+  }
+  std::vector<int> rank(model.num_vertices, -1);
+  std::vector<int> queue;
+  queue.reserve(model.num_vertices);
+  for (int seed = 0; seed < model.num_vertices; ++seed) {  // every connected piece
+    if (rank[seed] >= 0) continue;
+    rank[seed] = static_cast<int>(queue.size());
+    queue.push_back(seed);
+    for (std::size_t head = queue.size() - 1; head < queue.size(); ++head)
+      for (int k : incident[queue[head]]) {
+        const Spring& s = model.springs[k];
+        const int other = s.i == queue[head] ? s.j : s.i;
+        if (rank[other] >= 0) continue;
+        rank[other] = static_cast<int>(queue.size());
+        queue.push_back(other);
+      }
+  }
+  const auto key = [&](int k) {
+    const Spring& s = model.springs[k];
+    return std::make_pair(std::min(rank[s.i], rank[s.j]), std::max(rank[s.i], rank[s.j]));
+  };
+  std::sort(stretch.begin(), stretch.end(), [&](int a, int b) { return key(a) < key(b); });
+  return stretch;
+}
+
 void check(const IntegratorOptions& o) {
   if (!(o.time_step > 0.0) || !std::isfinite(o.time_step)) throw ArgumentError("time step must be > 0 seconds");
   if (o.iterations < 1) throw ArgumentError("iterations must be >= 1");
@@ -106,6 +143,7 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   solver_.factorize(Q);
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
+  sweep_order_ = wavefront_order(model);
   pinned_part_ = Positions::Zero(model.num_vertices, 3);
 }
 
@@ -141,25 +179,31 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
   const DynamicsModel& m = *model_;
   const double limit = 1.0 + m.material.stretch_limit;
   std::vector<StencilTerm> terms;
+  const auto limit_spring = [&](const Spring& s) {
+    const Eigen::Vector3d e = position_of(s.i, q) - position_of(s.j, q);
+    const double length = e.norm();
+    const double excess = length - limit * s.rest;
+    if (excess <= 0.0) return false;
+    terms.clear();
+    for (const StencilTerm& t : m.stencil[s.i]) terms.push_back(t);
+    for (const StencilTerm& t : m.stencil[s.j]) terms.push_back({t.free, -t.weight});
+    double denominator = 0.0;
+    for (const StencilTerm& t : terms) denominator += t.weight * t.weight / m.free_mass[t.free];
+    if (denominator <= 0.0) return false;  // both ends pinned
+    const Eigen::Vector3d n = e / length;
+    const double lambda = excess / denominator;
+    for (const StencilTerm& t : terms) q.row(t.free) -= (lambda * t.weight / m.free_mass[t.free]) * n.transpose();
+    return true;
+  };
+  // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
+  // across the whole cloth in a few sweeps instead of one row per sweep.
+  const std::size_t count = sweep_order_.size();
   for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
     bool any = false;
-    for (const Spring& s : m.springs) {
-      if (s.kind != SpringKind::stretch) continue;
-      const Eigen::Vector3d e = position_of(s.i, q) - position_of(s.j, q);
-      const double length = e.norm();
-      const double excess = length - limit * s.rest;
-      if (excess <= 0.0) continue;
-      terms.clear();
-      for (const StencilTerm& t : m.stencil[s.i]) terms.push_back(t);
-      for (const StencilTerm& t : m.stencil[s.j]) terms.push_back({t.free, -t.weight});
-      double denominator = 0.0;
-      for (const StencilTerm& t : terms) denominator += t.weight * t.weight / m.free_mass[t.free];
-      if (denominator <= 0.0) continue;  // both ends pinned
-      const Eigen::Vector3d n = e / length;
-      const double lambda = excess / denominator;
-      for (const StencilTerm& t : terms) q.row(t.free) -= (lambda * t.weight / m.free_mass[t.free]) * n.transpose();
-      any = true;
-    }
+    if (sweep % 2 == 0)
+      for (std::size_t k = 0; k < count; ++k) any |= limit_spring(m.springs[sweep_order_[k]]);
+    else
+      for (std::size_t k = count; k-- > 0;) any |= limit_spring(m.springs[sweep_order_[k]]);
     if (!any) break;
   }
 }
@@ -169,7 +213,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   if (colliders.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
-  for (int round = 0; round < options_.collision_rounds; ++round) {
+  {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
       Eigen::Vector3d x = q.row(f).transpose();
       largest = std::max(largest, resolve_point(colliders, q_previous.row(f).transpose(), x));
@@ -201,7 +245,6 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     throw ArgumentError("pinned targets have " + std::to_string(pinned_next.rows()) + " rows; the model pins " +
                         std::to_string(m.pinned_vertices.size()) + " vertices");
   StepReport report;
-  const auto start = Clock::now();
   const double h = options_.time_step;
   if (m.P.cols() > 0) pinned_part_.noalias() = m.P * pinned_next;
 
@@ -210,19 +253,38 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   // fall follows the true parabola and a hanging cloth carries its full weight.
   Positions y = state.positions + h * state.velocities;
   y.rowwise() += (0.5 * h * h) * options_.gravity.transpose();
+  // Colliders act on the inertial target first: the springs then solve for
+  // a state that is already outside, and the push-outs after the solve stay
+  // small instead of stretching short springs on impact.
+  if (!colliders.empty()) {
+    const auto collide_start = Clock::now();
+    report.max_correction = resolve_collisions(q_previous, y, colliders);
+    report.collision_ms += ms_since(collide_start);
+  }
   Positions q = y;  // the inertial prediction is the usual warm start
+  const auto start = Clock::now();
   Positions delta(q.rows(), 3);
   for (int it = 0; it < options_.iterations; ++it) {
     gradient(q, y, delta);
     solver_.solve_in_place(delta);
     q -= delta;
   }
-  limit_strain(q);
   report.dynamics_ms = ms_since(start);
 
-  const auto collide_start = Clock::now();
-  report.max_correction = resolve_collisions(q_previous, q, colliders);
-  report.collision_ms = ms_since(collide_start);
+  // Strain limiting and collisions alternate: a collision push-out can
+  // stretch springs, and limiting can pull vertices back in, so each round
+  // does both and the last word is the collision's. Friction acts once, on
+  // the step's own motion; later rounds only project, or friction would undo
+  // the strain limiter's tangential corrections and re-stretch the cloth.
+  for (int round = 0; round < options_.collision_rounds; ++round) {
+    const auto limit_start = Clock::now();
+    limit_strain(q);
+    report.dynamics_ms += ms_since(limit_start);
+    const auto collide_start = Clock::now();
+    const Positions& reference = round == 0 ? q_previous : Positions(q);
+    report.max_correction = std::max(report.max_correction, resolve_collisions(reference, q, colliders));
+    report.collision_ms += ms_since(collide_start);
+  }
 
   const double keep = 1.0 / (1.0 + m.material.damping * h);
   state.velocities = (keep / h) * (q - q_previous);

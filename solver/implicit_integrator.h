@@ -40,7 +40,7 @@ struct IntegratorOptions {
   int iterations = 4;                           ///< local/global iterations per step, >= 1
   int strain_limit_sweeps = 4;                  ///< Gauss-Seidel sweeps over stretch springs, >= 0
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
-  int collision_rounds = 2;                     ///< collision passes per step (T-nodes need a second)
+  int collision_rounds = 2;                     ///< rounds of (strain limiting, collisions) per step, >= 1
 };
 
 /// State in free coordinates (rows follow DynamicsModel::free_vertices).
@@ -85,6 +85,7 @@ class ImplicitIntegrator {
   SparseLdlt3 solver_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
+  std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
 };
 
 }  // namespace mrcloth

@@ -11,7 +11,7 @@ namespace {
 // bounded by the strain limit anyway.
 std::vector<Material> presets() {
   return {
-      {"cotton", 0.15, 2000.0, 200.0, 0.5, 0.2, 0.05},
+      {"cotton", 0.15, 2000.0, 200.0, 0.5, 0.2, 0.03},
       {"denim", 0.40, 6000.0, 800.0, 3.0, 0.2, 0.03},
       {"silk", 0.08, 800.0, 60.0, 0.08, 0.3, 0.06},
   };

@@ -20,7 +20,7 @@ struct Material {
   double shear_stiffness = 200.0;               ///< N/m, springs along face diagonals
   double bend_stiffness = 0.5;                  ///< N/m, springs between bend partners
   double damping = 0.2;                         ///< 1/s, velocity damping (air drag-like, mass-proportional)
-  double stretch_limit = 0.05;                  ///< largest strain of a stretch spring after a step (0.05 = 5 %)
+  double stretch_limit = 0.03;                  ///< target largest strain of a stretch spring after a step (0.03 = 3 %)
 };
 
 /// Presets: "cotton" (150 g/m^2), "denim" (400 g/m^2, stiffest), "silk"
