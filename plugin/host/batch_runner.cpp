@@ -1,6 +1,7 @@
 #include "batch_runner.h"
 
 #include "host_log.h"
+#include "interrupt.h"
 #include "script_core.h"
 
 #include <QFile>
@@ -26,7 +27,8 @@ StackFrame parseFrame(const QString& frame) {
 
 }  // namespace
 
-int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& core, const HostLog& log) {
+int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& core, const HostLog& log,
+                   const std::atomic_bool& interrupted) {
   QFile file(path);
   if (!file.open(QIODevice::ReadOnly)) {
     log.error(QStringLiteral("cannot read script %1: %2").arg(path, file.errorString()));
@@ -38,6 +40,11 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
 
   QStringList stack;
   const QJSValue result = engine.evaluate(program, path, 1, &stack);
+  // Ctrl-C wins over everything the interrupted script did afterwards.
+  if (interrupted.load()) {
+    log.error(QStringLiteral("%1: interrupted (SIGINT)").arg(path));
+    return kInterruptedExitCode;
+  }
   if (core.exitRequested()) return core.exitCode();
   // An uncaught `throw 42` is not an Error object, but it leaves a stack.
   if (!result.isError() && stack.isEmpty()) return 0;

@@ -9,6 +9,22 @@ namespace {
 
 const HostLog* g_message_target = nullptr;
 
+/// Progress lines of a long job come at most this often (plus its last step).
+constexpr qint64 kProgressIntervalNs = 1'000'000'000;
+
+/// "5.8 s", "2 min 05 s", "1 h 02 min".
+QString formatDuration(double seconds) {
+  if (seconds < 59.95) return QStringLiteral("%1 s").arg(seconds, 0, 'f', 1);
+  const qint64 whole = static_cast<qint64>(seconds + 0.5);
+  if (whole < 3600) return QStringLiteral("%1 min %2 s").arg(whole / 60).arg(whole % 60, 2, 10, QLatin1Char('0'));
+  return QStringLiteral("%1 h %2 min").arg(whole / 3600).arg((whole % 3600) / 60, 2, 10, QLatin1Char('0'));
+}
+
+/// Steps per second with three significant digits ("8.34", "125").
+QString formatRate(double rate) {
+  return rate >= 100.0 ? QString::number(rate, 'f', 0) : QString::number(rate, 'g', 3);
+}
+
 void routeQtMessage(QtMsgType type, const QMessageLogContext& context, const QString& message) {
   if (!g_message_target) return;
   const bool from_script = context.category && qstrcmp(context.category, "js") == 0;
@@ -76,20 +92,47 @@ void HostLog::onLog(Logtype type, QString message) {
 
 void HostLog::onStartJob(QString jobId, QString description, int min, int max) {
   Job& job = jobs_[jobId];
+  job = Job{};
   job.description = description;
   job.min = min;
   job.max = max;
+  job.value = min;
   job.timer.start();
   if (!quiet_) line(false, QStringLiteral("[job] "), QStringLiteral("%1: %2 ...").arg(jobId, description));
 }
 
 void HostLog::onSetJobState(QString jobId, int value) {
-  const auto it = jobs_.constFind(jobId);
+  const auto it = jobs_.find(jobId);
+  if (it == jobs_.end()) return;
+  Job& job = *it;
+  job.value = value;
+  const qint64 now = job.timer.nsecsElapsed();
+  if (job.first_state_ns < 0) {
+    job.first_state_ns = now;
+    job.first_state = value;
+  }
   // A 0..1 job only says "done"; its finish line says the same with a time.
-  if (quiet_ || it == jobs_.constEnd() || it->max - it->min <= 1) return;
-  const double percent = 100.0 * (value - it->min) / (it->max - it->min);
-  line(false, QStringLiteral("[job] "),
-       QStringLiteral("%1: %2/%3 (%4%)").arg(jobId).arg(value - it->min).arg(it->max - it->min).arg(percent, 0, 'f', 0));
+  const int total = job.max - job.min;
+  if (quiet_ || total <= 1) return;
+  const bool last = value >= job.max;
+  if (!last && job.printed_ns >= 0 && now - job.printed_ns < kProgressIntervalNs) return;
+  if (!last && job.printed_ns < 0 && now < kProgressIntervalNs) return;  // short jobs print only their end
+  job.printed_ns = now;
+
+  const int done = value - job.min;
+  QString text = QStringLiteral("%1: %2/%3 (%4%)").arg(jobId).arg(done).arg(total)
+                     .arg(100.0 * done / total, 0, 'f', 0);
+  // Rate from the first state on, so that set-up before it (a factorisation)
+  // does not make the estimate pessimistic; from the start until then.
+  const bool since_first = value > job.first_state && now > job.first_state_ns;
+  const double steps = since_first ? value - job.first_state : done;
+  const double seconds = static_cast<double>(since_first ? now - job.first_state_ns : now) / 1e9;
+  if (steps > 0 && seconds > 0) {
+    const double rate = steps / seconds;
+    text += QStringLiteral(", %1/s").arg(formatRate(rate));
+    if (!last) text += QStringLiteral(", ETA %1").arg(formatDuration((job.max - value) / rate));
+  }
+  line(false, QStringLiteral("[job] "), text);
 }
 
 void HostLog::onFinishJob(QString jobId) {
@@ -97,7 +140,14 @@ void HostLog::onFinishJob(QString jobId) {
   if (it == jobs_.constEnd()) return;
   if (!quiet_) {
     const double milliseconds = static_cast<double>(it->timer.nsecsElapsed()) / 1e6;
-    line(false, QStringLiteral("[job] "), QStringLiteral("%1: finished in %2 ms").arg(jobId).arg(milliseconds, 0, 'f', 1));
+    // A long job that ends before its last step was cancelled or failed.
+    if (it->max - it->min > 1 && it->value < it->max)
+      line(false, QStringLiteral("[job] "), QStringLiteral("%1: stopped at %2/%3 after %4 ms")
+                                                .arg(jobId).arg(it->value - it->min).arg(it->max - it->min)
+                                                .arg(milliseconds, 0, 'f', 1));
+    else
+      line(false, QStringLiteral("[job] "),
+           QStringLiteral("%1: finished in %2 ms").arg(jobId).arg(milliseconds, 0, 'f', 1));
   }
   jobs_.erase(it);
 }

@@ -1,7 +1,9 @@
 #pragma once
 // Where everything the host, the plugins and the scripts say goes:
 //  - script output (print, console.log/info, core.print, LOGOUT) -> stdout, unprefixed;
-//  - "[info] ..." and "[job] ..." -> stderr, hidden by --quiet;
+//  - "[info] ..." and "[job] ..." -> stderr, hidden by --quiet; a job with
+//    more than one step prints "<id>: 12/60 (20%), 8.3/s, ETA 5.8 s" at most
+//    once a second and at its last step;
 //  - "[warn] ..." and "[error] ..." -> stderr, always.
 // Keeping stdout for script output only lets a script's printed results be
 // piped and compared (the script tests do).
@@ -45,7 +47,11 @@ class HostLog : public QObject {
     QString description;
     int min = 0;
     int max = 0;
-    QElapsedTimer timer;
+    int value = 0;                ///< last state reported
+    QElapsedTimer timer;          ///< since startJob
+    qint64 first_state_ns = -1;   ///< timer reading at the first state (rates leave set-up time out)
+    int first_state = 0;
+    qint64 printed_ns = -1;       ///< timer reading of the last progress line
   };
   void line(bool to_stdout, const QString& prefix, const QString& text) const;
 

@@ -4,8 +4,10 @@
 #include "batch_runner.h"
 #include "command_line.h"
 #include "host_log.h"
+#include "interrupt.h"
 #include "plugin/core/object_store.h"
 #include "plugin/interfaces/base_interface.h"
+#include "plugin/interfaces/process_interface.h"
 #include "plugin_registry.h"
 #include "script_api.h"
 #include "script_core.h"
@@ -98,5 +100,9 @@ int main(int argc, char* argv[]) {
   exposeToScripts(engine, QStringLiteral("core"), &core);
   for (const LoadedPlugin& plugin : plugins.plugins()) exposeToScripts(engine, plugin.scriptName, plugin.object);
 
-  return runBatchScript(command.scriptPath, engine, core, log);
+  // Ctrl-C: jobs stop early, the script stops, exit code 130.
+  InterruptHandler interrupt_handler(engine);
+  for (const LoadedPlugin& plugin : plugins.plugins())
+    if (qobject_cast<ProcessInterface*>(plugin.object)) interrupt_handler.watchJobs(plugin.object);
+  return runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
 }

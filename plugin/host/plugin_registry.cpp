@@ -1,6 +1,7 @@
 #include "plugin_registry.h"
 
 #include "host_log.h"
+#include "interrupt.h"
 #include "plugin/interfaces/base_interface.h"
 #include "plugin/interfaces/load_save_interface.h"
 #include "plugin/interfaces/logging_interface.h"
@@ -84,7 +85,8 @@ void PluginRegistry::wire(LoadedPlugin& plugin) {
   };
   if (qobject_cast<LoggingInterface*>(object))
     connectOrWarn(SIGNAL(log(Logtype, QString)), SLOT(onLog(Logtype, QString)), "LoggingInterface");
-  if (qobject_cast<ProcessInterface*>(object)) {
+  if (auto* process = qobject_cast<ProcessInterface*>(object)) {
+    process->setCancelFlag(&interruptFlag());
     connectOrWarn(SIGNAL(startJob(QString, QString, int, int)), SLOT(onStartJob(QString, QString, int, int)),
                   "ProcessInterface");
     connectOrWarn(SIGNAL(setJobState(QString, int)), SLOT(onSetJobState(QString, int)), "ProcessInterface");

@@ -12,6 +12,7 @@
 #include "solver/material.h"
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QJSEngine>
 
@@ -47,6 +48,14 @@ std::vector<std::size_t> verticesPerMode(const QuadMesh& mesh) {
     ++counts[static_cast<std::size_t>(mode)];
   }
   return counts;
+}
+
+/// An existing regular file, else InputError naming it.
+QFileInfo existingFile(const QString& path) {
+  const QFileInfo info(path);
+  if (!info.exists()) throw InputError(path.toStdString() + ": no such file");
+  if (!info.isFile()) throw InputError(path.toStdString() + ": not a file");
+  return info;
 }
 
 int highestLevel(const std::vector<std::size_t>& faces_per_level) {
@@ -172,6 +181,28 @@ bool ScriptCore::fileExists(QVariant path) {
   return guarded("fileExists", [&] { return QFileInfo::exists(script::toString(path, QStringLiteral("path"))); });
 }
 
+double ScriptCore::fileSize(QVariant path) {
+  return guarded("fileSize", [&] {
+    return static_cast<double>(existingFile(script::toString(path, QStringLiteral("path"))).size());
+  });
+}
+
+bool ScriptCore::filesEqual(QVariant pathA, QVariant pathB) {
+  return guarded("filesEqual", [&] {
+    const QString name_a = script::toString(pathA, QStringLiteral("pathA"));
+    const QString name_b = script::toString(pathB, QStringLiteral("pathB"));
+    QFile file_a(existingFile(name_a).absoluteFilePath()), file_b(existingFile(name_b).absoluteFilePath());
+    for (QFile* file : {&file_a, &file_b})
+      if (!file->open(QIODevice::ReadOnly))
+        throw InputError(file->fileName().toStdString() + ": cannot open file (" + file->errorString().toStdString() + ")");
+    if (file_a.size() != file_b.size()) return false;
+    constexpr qint64 kChunk = qint64{1} << 20;
+    while (!file_a.atEnd())
+      if (file_a.read(kChunk) != file_b.read(kChunk)) return false;
+    return true;
+  });
+}
+
 QList<SlotDescription> ScriptCore::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id");
   return {
@@ -234,6 +265,14 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Returns whether the file or folder exists."),
        {QStringLiteral("path")},
        {QStringLiteral("file or folder")}},
+      {QStringLiteral("fileSize(string path) -> number"),
+       QStringLiteral("Returns the size of a file in bytes (InputError if it is missing or a folder)."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file")}},
+      {QStringLiteral("filesEqual(string pathA, string pathB) -> bool"),
+       QStringLiteral("Returns whether two files have exactly the same bytes (InputError if either is missing)."),
+       {QStringLiteral("pathA"), QStringLiteral("pathB")},
+       {QStringLiteral("first file"), QStringLiteral("second file")}},
   };
 }
 

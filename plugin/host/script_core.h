@@ -48,6 +48,8 @@ class ScriptCore : public QObject, public ScriptInterface {
   QStringList scriptArguments();
   void makePath(QVariant path);
   bool fileExists(QVariant path);
+  double fileSize(QVariant path);
+  bool filesEqual(QVariant pathA, QVariant pathB);
 
  private:
   template <class Body>

@@ -9,6 +9,11 @@
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
+#include "simulation_options.h"
+#include "solver/dynamics_model.h"
+#include "solver/implicit_integrator.h"
+#include "solver/point_cache.h"
+#include "solver/simulate.h"
 
 #include <QElapsedTimer>
 
@@ -17,22 +22,24 @@
 namespace mrcloth {
 namespace {
 
-/// Announces a job to the host for as long as it is alive, so that a job
-/// that throws is still reported finished.
+/// Announces a job of `steps` steps to the host for as long as it is alive,
+/// so that a job that throws is still reported finished.
 class JobScope {
  public:
-  JobScope(ProcessInterface& process, QString id, const QString& description)
-      : process_(process), id_(std::move(id)) {
-    process_.startJob(id_, description, 0, 1);
+  JobScope(ProcessInterface& process, QString id, const QString& description, int steps = 1)
+      : process_(process), id_(std::move(id)), steps_(steps) {
+    process_.startJob(id_, description, 0, steps_);
   }
   ~JobScope() { process_.finishJob(id_); }
-  void done() { process_.setJobState(id_, 1); }
+  void progress(int steps_done) { process_.setJobState(id_, steps_done); }
+  void done() { process_.setJobState(id_, steps_); }
   JobScope(const JobScope&) = delete;
   JobScope& operator=(const JobScope&) = delete;
 
  private:
   ProcessInterface& process_;
   QString id_;
+  int steps_;
 };
 
 double millisecondsSince(const QElapsedTimer& timer) { return static_cast<double>(timer.nsecsElapsed()) / 1e6; }
@@ -54,6 +61,18 @@ QVariantMap meshCounts(const QuadMesh& mesh) {
           {QStringLiteral("hangingNodes"), static_cast<qlonglong>(count_hanging(mesh))},
           {QStringLiteral("verticesPerLevel"), script::toVariantList(vertices_per_level(mesh))},
           {QStringLiteral("facesPerLevel"), script::toVariantList(faces_per_level(mesh))}};
+}
+
+/// Every active face as its polygon (hanging vertices included), for OBJ sequences.
+std::vector<std::vector<int>> activeFaces(const QuadMesh& mesh) {
+  std::vector<std::vector<int>> faces;
+  faces.reserve(mesh.n_faces());
+  for (const auto face : mesh.faces()) {
+    std::vector<int> polygon;
+    for (const auto vertex : mesh.fv_range(face)) polygon.push_back(vertex.idx());
+    faces.push_back(std::move(polygon));
+  }
+  return faces;
 }
 
 }  // namespace
@@ -199,6 +218,77 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
   });
 }
 
+QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
+  return guarded("simulate", [&] {
+    const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
+    const SimulationRequest request = parseSimulationOptions(options, *input.mesh);
+    const DynamicsModel model = build_dynamics(*input.mesh, request.dynamics);
+    ClothState state = rest_state(model);
+
+    const SimulationOptions& settings = request.simulation;
+    std::vector<Positions> frames;  // kept only for an OBJ sequence
+    SimulationReport report;
+    {
+      JobScope job(*this, QStringLiteral("simulate"),
+                   QStringLiteral("simulation of %1: %2 vertices, %3 frames at %4 fps x %5 substeps, %6, pins %7, "
+                                  "%8 collider(s)")
+                       .arg(describeObject(input)).arg(model.num_vertices).arg(settings.frames).arg(settings.fps)
+                       .arg(settings.substeps).arg(QString::fromStdString(request.dynamics.material.name))
+                       .arg(request.pinsText).arg(settings.colliders.size()),
+                   settings.frames);
+      const SimulationProgress progress = [&](int frames_done, int) {
+        job.progress(frames_done);
+        return !cancelRequested();
+      };
+      report = mrcloth::simulate(model, state, settings, {}, progress,
+                                 request.objSequence.isEmpty() ? nullptr : &frames);
+    }
+    const bool complete = !report.cancelled && !report.non_finite;
+
+    // Like the PC2 cache, the other outputs exist only for a complete run.
+    QStringList obj_files;
+    if (complete && !request.objSequence.isEmpty())
+      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, activeFaces(*input.mesh)))
+        obj_files << QString::fromStdString(file);
+    int result = 0;
+    if (complete && request.updateObject) {
+      auto simulated = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
+      const Positions last = full_positions(model, state.positions, state.pinned);
+      for (const auto vertex : simulated->vertices()) {
+        const auto row = last.row(vertex.idx());
+        simulated->set_point(vertex, OpenMesh::Vec3d(row(0), row(1), row(2)));
+      }
+      result = store().add(simulated, QStringLiteral("%1 simulated").arg(input.name));
+    }
+
+    last_report_ = simulationReportMap(report, model);
+    last_report_.insert({{QStringLiteral("operation"), QStringLiteral("simulate")},
+                         {QStringLiteral("source"), input.id},
+                         {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
+                         {QStringLiteral("objFiles"), obj_files}});
+    if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
+
+    if (report.cancelled)
+      emit log(LOGWARN, QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
+                            .arg(report.frames).arg(settings.frames));
+    else if (report.non_finite)
+      emit log(LOGWARN, QStringLiteral("simulate: the simulation became non-finite (NaN or infinity) in frame %1 "
+                                       "of %2; nothing was written (try more substeps or a softer material)")
+                            .arg(report.frames + 1).arg(settings.frames));
+    else
+      emit log(LOGINFO, QStringLiteral("simulate: object %1: %2 frames, %3 steps, %4 ms/frame (dynamics %5, "
+                                       "collision %6), max stretch %7 %, max penetration %8 mm%9")
+                            .arg(input.id).arg(report.frames).arg(report.steps)
+                            .arg(report.ms_per_frame_total, 0, 'f', 2).arg(report.ms_per_frame_dynamics, 0, 'f', 2)
+                            .arg(report.ms_per_frame_collision, 0, 'f', 2).arg(100.0 * report.max_stretch, 0, 'f', 2)
+                            .arg(1000.0 * report.max_penetration, 0, 'f', 3)
+                            .arg(report.cache_path.empty() ? QString()
+                                                           : QStringLiteral(" -> ") +
+                                                                 QString::fromStdString(report.cache_path)));
+    return last_report_;
+  });
+}
+
 QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id (from core.loadObject or a refinement)");
   return {
@@ -227,10 +317,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("{delta: number = 8 (split a face when the R of its 4 corners sums to >= delta), "
                                 "maxLevel: int >= 1 = 3 (coarse = 1), balance: bool = true (2:1 balance)}")}},
       {QStringLiteral("lastReport() -> object"),
-       QStringLiteral("Report of the last refineUniform/refineAdaptive: operation, source, result, vertices, "
-                      "faces, hangingNodes, verticesPerLevel, facesPerLevel (element L = level L), milliseconds; "
-                      "adaptive also facesRefinedPerPass, passes, facesRefinedForBalance, delta, maxLevel, "
-                      "balance. {} before any refinement."),
+       QStringLiteral("Report of the last refineUniform/refineAdaptive/simulate. Refinements: operation, source, "
+                      "result, vertices, faces, hangingNodes, verticesPerLevel, facesPerLevel (element L = level "
+                      "L), milliseconds; adaptive also facesRefinedPerPass, passes, facesRefinedForBalance, delta, "
+                      "maxLevel, balance. simulate: what simulate returned. {} before any of them."),
        {},
        {}},
       {QStringLiteral("exportSurface(int id, string path, object options = {})"),
@@ -238,6 +328,27 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
        {id_text, QStringLiteral("output file; the extension picks the format"),
         QStringLiteral("{colorBy: \"level\" | \"mode\" | \"none\" = \"none\", triangulate: bool = false}")}},
+      {QStringLiteral("simulate(int id, object options = {}) -> object"),
+       QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
+                      "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
+                      "{dynamics, collision, total}, maxStretch (strain), maxPenetration (m), nonFinite, cancelled, "
+                      "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
+                      "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
+                      "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN)."),
+       {QStringLiteral("id"), QStringLiteral("options")},
+       {id_text,
+        QStringLiteral(
+            "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
+            "iterations: int >= 1 = 4 (per step), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
+            "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
+            "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 1 (stiffness x "
+            "2^(alpha (level - 1))), gravity: [x, y, z] m/s^2 = [0, -9.81, 0], pins: vertex ids or a boundary "
+            "loop \"top\" | \"bottom\" | \"loop:N\" (or an array mixing both) = none, colliders: [{type: "
+            "\"plane\", point = [0, 0, 0], normal = [0, 1, 0]} | {type: \"sphere\", center, radius} | {type: "
+            "\"capsule\", a, b, radius or radiusA and radiusB}, each with thickness (m) = 0.002 and friction = "
+            "0.3], output: PC2 file (its folder must exist) = none, objSequence: OBJ file prefix "
+            "(<prefix>_0000.obj ...) = none, updateObject: bool = false (store the last frame as a new "
+            "object)}; lengths in m")}},
   };
 }
 

@@ -1,9 +1,10 @@
 #pragma once
-// The "Multires Cloth" plugin: the scripting face of mesh_ops. Every public
-// slot is a thin adapter (check arguments, call mesh_ops, store the result,
-// report); no geometry happens here. Slots that refine never modify their
-// input: they refine a copy and return the new object's id, so a script can
-// compare meshes and rerun a step with other options.
+// The "Multires Cloth" plugin: the scripting face of mesh_ops and the solver.
+// Every public slot is a thin adapter (check arguments, call mesh_ops or the
+// solver, store the result, report); no geometry happens here. Slots never
+// modify their input: refinements refine a copy and return the new object's
+// id, a simulation writes a point cache (and, if asked, a new object), so a
+// script can compare meshes and rerun a step with other options.
 #include "plugin/interfaces/base_interface.h"
 #include "plugin/interfaces/load_save_interface.h"
 #include "plugin/interfaces/logging_interface.h"
@@ -55,6 +56,7 @@ class MultiresClothPlugin : public QObject,
   int refineAdaptive(QVariant id, QVariant options = QVariant());
   QVariantMap lastReport();
   void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
+  QVariantMap simulate(QVariant id, QVariant options = QVariant());
 
  private:
   ObjectStore& store() const;

@@ -1,0 +1,60 @@
+#pragma once
+// Ctrl-C in batch mode. The first SIGINT raises the host's interrupt flag:
+// running jobs see it through ProcessInterface::cancelRequested() and stop
+// early (a simulation leaves no cache), and the script engine is interrupted
+// so the script stops at its next statement; the host then exits with 130
+// (128 + SIGINT, as shells report it). A second SIGINT ends the process at once.
+#include <QObject>
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+class QJSEngine;
+
+namespace mrcloth {
+
+/// Exit code of a script stopped by SIGINT.
+inline constexpr int kInterruptedExitCode = 130;
+
+/// The host's interrupt flag: false until SIGINT arrives while an
+/// InterruptHandler is installed. Lives for the whole process.
+const std::atomic_bool& interruptFlag();
+
+/// While alive: SIGINT raises interruptFlag() and interrupts `engine`. A
+/// signal handler may only touch lock-free atomics, so a small thread waits
+/// for the flag and calls QJSEngine::setInterrupted (which is thread-safe);
+/// that catches a script busy in JavaScript. A job cancelled by the flag
+/// returns to the script sooner than the thread may look, so the handler also
+/// listens to the plugins' job signals and interrupts the engine there, before
+/// the script can run another statement.
+class InterruptHandler : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit InterruptHandler(QJSEngine& engine);
+  ~InterruptHandler() override;  ///< restores the previous SIGINT disposition
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+
+  /// Connects a ProcessInterface plugin's job signals to checkNow().
+  void watchJobs(QObject* plugin);
+
+ public slots:
+  /// Interrupts the engine if the flag is up (called on the engine's thread).
+  void checkNow();
+
+ private:
+  void watch();
+
+  QJSEngine& engine_;
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  void (*previous_)(int) = nullptr;
+  std::thread watcher_;
+};
+
+}  // namespace mrcloth

@@ -1,0 +1,321 @@
+#include "simulation_options.h"
+
+#include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/errors.h"
+#include "plugin/core/script_values.h"
+#include "solver/colliders.h"
+#include "solver/material.h"
+
+#include <QDir>
+#include <QFileInfo>
+
+#include <array>
+
+namespace mrcloth {
+namespace {
+
+[[noreturn]] void fail(const QString& message) { throw ArgumentError(message.toStdString()); }
+
+QString optionLabel(const QString& key) { return QStringLiteral("option '%1'").arg(key); }
+
+bool isNumber(const QVariant& value) {
+  switch (value.typeId()) {
+    case QMetaType::Int: case QMetaType::UInt: case QMetaType::LongLong: case QMetaType::ULongLong:
+    case QMetaType::Double: case QMetaType::Float: case QMetaType::Short: case QMetaType::UShort:
+    case QMetaType::Long: case QMetaType::ULong:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool isObjectLike(const QVariant& value) {
+  return value.typeId() == QMetaType::QVariantMap || value.typeId() == QMetaType::QVariantList ||
+         qstrcmp(value.metaType().name(), "QJSValue") == 0;
+}
+
+/// One options object, the top level or a nested one ("material",
+/// "colliders[1]"). Errors name the full key: "option 'colliders[1].radius'
+/// must be a number > 0, got the number -1".
+class Fields {
+ public:
+  Fields(const QVariant& value, const QString& path, const QStringList& accepted)
+      : path_(path),
+        accepted_(accepted),
+        options_(value, path.isEmpty() ? QStringLiteral("simulate options") : optionLabel(path), accepted) {}
+
+  QString label(const QString& key) const { return optionLabel(path_.isEmpty() ? key : path_ + '.' + key); }
+  bool has(const QString& key) const { return options_.has(key); }
+
+  QVariant required(const QString& key) const {
+    if (!has(key))
+      fail(QStringLiteral("missing %1 (accepted: %2)").arg(label(key), accepted_.join(QStringLiteral(", "))));
+    return options_.required(key);
+  }
+  double number(const QString& key, double fallback) const {
+    return has(key) ? script::toNumber(required(key), label(key)) : fallback;
+  }
+  /// A number >= minimum (or > minimum when `strict`).
+  double numberFrom(const QString& key, double fallback, double minimum, bool strict) const {
+    if (!has(key)) return fallback;
+    const double value = script::toNumber(required(key), label(key));
+    if (strict ? !(value > minimum) : !(value >= minimum))
+      fail(QStringLiteral("%1 must be a number %2 %3, got %4")
+               .arg(label(key), strict ? QStringLiteral(">") : QStringLiteral(">="))
+               .arg(minimum)
+               .arg(script::describeValue(required(key))));
+    return value;
+  }
+  int integerAtLeast(const QString& key, int fallback, int minimum) const {
+    return has(key) ? script::toIntAtLeast(required(key), label(key), minimum) : fallback;
+  }
+  bool boolean(const QString& key, bool fallback) const {
+    return has(key) ? script::toBool(required(key), label(key)) : fallback;
+  }
+  QString string(const QString& key) const { return has(key) ? script::toString(required(key), label(key)) : QString(); }
+  Eigen::Vector3d vec3(const QString& key) const {
+    const std::array<double, 3> v = script::toVec3(required(key), label(key));
+    return {v[0], v[1], v[2]};
+  }
+  Eigen::Vector3d vec3(const QString& key, const Eigen::Vector3d& fallback) const {
+    return has(key) ? vec3(key) : fallback;
+  }
+
+ private:
+  QString path_;
+  QStringList accepted_;
+  script::Options options_;
+};
+
+QStringList presetNames() {
+  QStringList names;
+  for (const std::string& name : material_preset_names()) names << QString::fromStdString(name);
+  return names;
+}
+
+Material parseMaterial(const QVariant& value) {
+  const QString label = optionLabel(QStringLiteral("material"));
+  const QStringList presets = presetNames();
+  if (value.typeId() == QMetaType::QString)
+    return material_preset(script::toChoice(value, label, presets).toStdString());
+  if (!isObjectLike(value))
+    fail(QStringLiteral("%1 must be a preset name (\"%2\") or an object {preset, arealDensity, ...}, got %3")
+             .arg(label, presets.join(QStringLiteral("\", \"")), script::describeValue(value)));
+  const Fields fields(value, QStringLiteral("material"),
+                      {QStringLiteral("preset"), QStringLiteral("arealDensity"), QStringLiteral("stretchStiffness"),
+                       QStringLiteral("shearStiffness"), QStringLiteral("bendStiffness"), QStringLiteral("damping"),
+                       QStringLiteral("stretchLimit")});
+  Material m = material_preset(
+      fields.has(QStringLiteral("preset"))
+          ? script::toChoice(fields.required(QStringLiteral("preset")), fields.label(QStringLiteral("preset")), presets)
+                .toStdString()
+          : Material{}.name);
+  m.areal_density = fields.numberFrom(QStringLiteral("arealDensity"), m.areal_density, 0.0, true);
+  m.stretch_stiffness = fields.numberFrom(QStringLiteral("stretchStiffness"), m.stretch_stiffness, 0.0, true);
+  m.shear_stiffness = fields.numberFrom(QStringLiteral("shearStiffness"), m.shear_stiffness, 0.0, true);
+  m.bend_stiffness = fields.numberFrom(QStringLiteral("bendStiffness"), m.bend_stiffness, 0.0, false);
+  m.damping = fields.numberFrom(QStringLiteral("damping"), m.damping, 0.0, false);
+  m.stretch_limit = fields.numberFrom(QStringLiteral("stretchLimit"), m.stretch_limit, 0.0, true);
+  return m;
+}
+
+Collider parseCollider(const QVariant& value, const QString& path) {
+  const QStringList types = {QStringLiteral("plane"), QStringLiteral("sphere"), QStringLiteral("capsule")};
+  const QStringList plane_keys = {QStringLiteral("point"), QStringLiteral("normal")};
+  const QStringList sphere_keys = {QStringLiteral("center"), QStringLiteral("radius")};
+  const QStringList capsule_keys = {QStringLiteral("a"), QStringLiteral("b"), QStringLiteral("radius"),
+                                    QStringLiteral("radiusA"), QStringLiteral("radiusB")};
+  // The accepted keys depend on the type; an unknown or missing type accepts
+  // them all so that the type itself is what the error is about.
+  const QString type = value.toMap().value(QStringLiteral("type")).toString();
+  QStringList accepted = {QStringLiteral("type")};
+  if (type == QLatin1String("plane")) accepted += plane_keys;
+  else if (type == QLatin1String("sphere")) accepted += sphere_keys;
+  else if (type == QLatin1String("capsule")) accepted += capsule_keys;
+  else accepted += plane_keys + sphere_keys + capsule_keys;
+  accepted.removeDuplicates();
+  accepted += {QStringLiteral("thickness"), QStringLiteral("friction")};
+  const Fields fields(value, path, accepted);
+  script::toChoice(fields.required(QStringLiteral("type")), fields.label(QStringLiteral("type")), types);
+
+  Collider collider;
+  if (type == QLatin1String("plane")) {
+    PlaneCollider plane;
+    plane.point = fields.vec3(QStringLiteral("point"), plane.point);
+    plane.normal = fields.vec3(QStringLiteral("normal"), plane.normal);
+    collider.shape = plane;
+  } else if (type == QLatin1String("sphere")) {
+    SphereCollider sphere;
+    sphere.center = fields.vec3(QStringLiteral("center"));
+    fields.required(QStringLiteral("radius"));
+    sphere.radius = fields.numberFrom(QStringLiteral("radius"), sphere.radius, 0.0, true);
+    collider.shape = sphere;
+  } else {
+    CapsuleCollider capsule;
+    capsule.a = fields.vec3(QStringLiteral("a"));
+    capsule.b = fields.vec3(QStringLiteral("b"));
+    const bool both = fields.has(QStringLiteral("radius"));
+    const bool each = fields.has(QStringLiteral("radiusA")) || fields.has(QStringLiteral("radiusB"));
+    if (both && each)
+      fail(QStringLiteral("%1: give either 'radius' or 'radiusA' and 'radiusB', not both").arg(optionLabel(path)));
+    if (both) {
+      capsule.radius_a = capsule.radius_b = fields.numberFrom(QStringLiteral("radius"), 0.0, 0.0, true);
+    } else {
+      if (!each) fields.required(QStringLiteral("radius"));  // "missing option '...radius'"
+      fields.required(QStringLiteral("radiusA"));
+      fields.required(QStringLiteral("radiusB"));
+      capsule.radius_a = fields.numberFrom(QStringLiteral("radiusA"), 0.0, 0.0, false);
+      capsule.radius_b = fields.numberFrom(QStringLiteral("radiusB"), 0.0, 0.0, false);
+    }
+    collider.shape = capsule;
+  }
+  collider.thickness = fields.numberFrom(QStringLiteral("thickness"), collider.thickness, 0.0, false);
+  collider.friction = fields.numberFrom(QStringLiteral("friction"), collider.friction, 0.0, false);
+  return collider;
+}
+
+std::vector<Collider> parseColliders(const QVariant& value) {
+  const QVariantList list = script::toList(value, optionLabel(QStringLiteral("colliders")));
+  std::vector<Collider> colliders;
+  for (qsizetype i = 0; i < list.size(); ++i)
+    colliders.push_back(parseCollider(list[i], QStringLiteral("colliders[%1]").arg(i)));
+  try {
+    validate_colliders(colliders);  // what the shapes need beyond types (a zero normal, two zero radii)
+  } catch (const ArgumentError& error) {
+    fail(QStringLiteral("%1: %2").arg(optionLabel(QStringLiteral("colliders")), QString::fromUtf8(error.what())));
+  }
+  return colliders;
+}
+
+std::vector<int> loopVertices(const QuadMesh& mesh, const QString& name, const QString& label) {
+  try {
+    return boundary_loop_by_name(mesh, name.toStdString());
+  } catch (const ArgumentError& error) {
+    fail(QStringLiteral("%1: %2").arg(label, QString::fromUtf8(error.what())));
+  }
+}
+
+/// Pins: a loop name, or an array whose elements are vertex ids or loop names.
+std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, QString& text) {
+  const QString label = optionLabel(QStringLiteral("pins"));
+  const QString expected = QStringLiteral("a boundary loop name (\"top\", \"bottom\", \"loop:N\")");
+  if (value.typeId() == QMetaType::QString) {
+    const QString name = script::toString(value, label);
+    std::vector<int> pins = loopVertices(mesh, name, label);
+    text = QStringLiteral("\"%1\" (%2 vertices)").arg(name).arg(pins.size());
+    return pins;
+  }
+  if (!isObjectLike(value))
+    fail(QStringLiteral("%1 must be %2 or an array of vertex ids and loop names, got %3")
+             .arg(label, expected, script::describeValue(value)));
+  const QVariantList list = script::toList(value, label);
+  std::vector<int> pins;
+  QStringList names;
+  int ids = 0;
+  for (qsizetype i = 0; i < list.size(); ++i) {
+    const QString element = QStringLiteral("option 'pins[%1]'").arg(i);
+    if (list[i].typeId() == QMetaType::QString) {
+      const QString name = script::toString(list[i], element);
+      const std::vector<int> loop = loopVertices(mesh, name, element);
+      pins.insert(pins.end(), loop.begin(), loop.end());
+      names << QStringLiteral("\"%1\"").arg(name);
+    } else if (isNumber(list[i])) {
+      pins.push_back(script::toInt(list[i], element));
+      ++ids;
+    } else {
+      fail(QStringLiteral("%1 must be a vertex id or %2, got %3").arg(element, expected, script::describeValue(list[i])));
+    }
+  }
+  if (ids > 0) names << QStringLiteral("%1 vertex id%2").arg(ids).arg(ids == 1 ? QString() : QStringLiteral("s"));
+  text = names.isEmpty() ? QStringLiteral("none") : names.join(QStringLiteral(" + "));
+  return pins;
+}
+
+/// The folder a file (or an OBJ sequence prefix) goes into must exist.
+QString checkedOutputPath(const Fields& fields, const QString& key) {
+  const QString path = fields.string(key);
+  if (path.isEmpty()) return path;
+  const QFileInfo info(path);
+  if (!info.absoluteDir().exists())
+    throw OutputError(QStringLiteral("%1: folder '%2' does not exist")
+                          .arg(fields.label(key), QDir::toNativeSeparators(info.absolutePath()))
+                          .toStdString());
+  if (info.isDir())
+    throw OutputError(QStringLiteral("%1: '%2' is a folder").arg(fields.label(key), path).toStdString());
+  return path;
+}
+
+}  // namespace
+
+QStringList simulationOptionKeys() {
+  return {QStringLiteral("frames"),   QStringLiteral("fps"),         QStringLiteral("substeps"),
+          QStringLiteral("iterations"), QStringLiteral("material"),  QStringLiteral("alpha"),
+          QStringLiteral("alphaBend"), QStringLiteral("gravity"),    QStringLiteral("pins"),
+          QStringLiteral("colliders"), QStringLiteral("output"),     QStringLiteral("objSequence"),
+          QStringLiteral("updateObject")};
+}
+
+SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh) {
+  const Fields fields(options, QString(), simulationOptionKeys());
+  SimulationRequest request;
+  SimulationOptions& sim = request.simulation;
+  sim.frames = fields.integerAtLeast(QStringLiteral("frames"), sim.frames, 1);
+  sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
+  sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
+  sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
+  sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
+  if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
+  sim.cache_path = checkedOutputPath(fields, QStringLiteral("output")).toStdString();
+
+  DynamicsOptions& dynamics = request.dynamics;
+  if (fields.has(QStringLiteral("material"))) dynamics.material = parseMaterial(fields.required(QStringLiteral("material")));
+  dynamics.alpha = fields.number(QStringLiteral("alpha"), dynamics.alpha);
+  dynamics.alpha_bend = fields.number(QStringLiteral("alphaBend"), dynamics.alpha_bend);
+  request.pinsText = QStringLiteral("none");
+  if (fields.has(QStringLiteral("pins")))
+    dynamics.pinned = parsePins(fields.required(QStringLiteral("pins")), mesh, request.pinsText);
+
+  request.objSequence = checkedOutputPath(fields, QStringLiteral("objSequence"));
+  request.updateObject = fields.boolean(QStringLiteral("updateObject"), request.updateObject);
+  return request;
+}
+
+QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model) {
+  qlonglong stretch = 0, shear = 0, bend = 0;
+  for (const Spring& spring : model.springs) {
+    switch (spring.kind) {
+      case SpringKind::stretch: ++stretch; break;
+      case SpringKind::shear: ++shear; break;
+      case SpringKind::bend: ++bend; break;
+    }
+  }
+  QVariantList per_frame;
+  per_frame.reserve(static_cast<qsizetype>(report.per_frame.size()));
+  for (const FrameTiming& timing : report.per_frame)
+    per_frame.append(QVariantMap{{QStringLiteral("dynamics"), timing.dynamics_ms},
+                                 {QStringLiteral("collision"), timing.collision_ms}});
+  return {
+      {QStringLiteral("frames"), report.frames},
+      {QStringLiteral("steps"), report.steps},
+      {QStringLiteral("timeStep"), report.time_step},
+      {QStringLiteral("precomputeMs"), report.precompute_ms},
+      {QStringLiteral("msPerFrame"), QVariantMap{{QStringLiteral("dynamics"), report.ms_per_frame_dynamics},
+                                                 {QStringLiteral("collision"), report.ms_per_frame_collision},
+                                                 {QStringLiteral("total"), report.ms_per_frame_total}}},
+      {QStringLiteral("maxStretch"), report.max_stretch},
+      {QStringLiteral("maxPenetration"), report.max_penetration},
+      {QStringLiteral("nonFinite"), report.non_finite},
+      {QStringLiteral("cancelled"), report.cancelled},
+      {QStringLiteral("output"), QString::fromStdString(report.cache_path)},
+      {QStringLiteral("vertices"), model.num_vertices},
+      {QStringLiteral("freeVertices"), static_cast<qlonglong>(model.free_vertices.size())},
+      {QStringLiteral("pinnedVertices"), static_cast<qlonglong>(model.pinned_vertices.size())},
+      {QStringLiteral("hangingVertices"), static_cast<qlonglong>(model.hanging_vertices.size())},
+      {QStringLiteral("springs"), QVariantMap{{QStringLiteral("stretch"), stretch},
+                                              {QStringLiteral("shear"), shear},
+                                              {QStringLiteral("bend"), bend}}},
+      {QStringLiteral("perFrameMs"), per_frame},
+  };
+}
+
+}  // namespace mrcloth

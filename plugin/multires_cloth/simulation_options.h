@@ -1,0 +1,43 @@
+#pragma once
+// multirescloth.simulate's script side: the options object a script passes,
+// checked strictly and turned into solver settings, and the solver's report
+// turned into the object the script gets back. No simulation happens here.
+#include "mesh_ops/quad_mesh.h"
+#include "solver/dynamics_model.h"
+#include "solver/simulate.h"
+
+#include <QString>
+#include <QStringList>
+#include <QVariant>
+#include <QVariantMap>
+
+namespace mrcloth {
+
+/// Everything one simulate call asks for.
+struct SimulationRequest {
+  DynamicsOptions dynamics;      ///< material, alpha, alphaBend, pinned vertex ids
+  SimulationOptions simulation;  ///< frames, fps, substeps, iterations, gravity, colliders, cache_path (= output)
+  QString pinsText;              ///< how the pins were given, for messages ("\"top\"", "4 vertex ids", "none")
+  QString objSequence;           ///< OBJ sequence prefix; empty: none
+  bool updateObject = false;     ///< store the last frame as a new object
+};
+
+/// The keys simulate's options object accepts, in the order the errors list them.
+QStringList simulationOptionKeys();
+
+/// Checks a script's options object against `mesh` (loop names in "pins" are
+/// resolved on it) and fills a request; every field absent keeps its solver
+/// default. Throws ArgumentError naming the option for an unknown key, a wrong
+/// type or a value out of range, and OutputError when the folder of `output`
+/// or `objSequence` does not exist. Pinned ids are range-checked later, by
+/// build_dynamics, which also rejects hanging vertices.
+SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh);
+
+/// The script's view of a finished (or cancelled) run: frames, steps,
+/// timeStep, precomputeMs, msPerFrame {dynamics, collision, total},
+/// maxStretch, maxPenetration, nonFinite, cancelled, output, vertices,
+/// freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear,
+/// bend}, perFrameMs [{dynamics, collision}].
+QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model);
+
+}  // namespace mrcloth

@@ -1,0 +1,42 @@
+#!/bin/sh
+# Ctrl-C during multirescloth.simulate: the host exits with 130, the
+# simulation reports "cancelled", and no cache (nor a temporary file) is left.
+#
+# simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder>
+set -u
+host=$1 data=$2 tmp=$3
+rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
+script="$tmp/long_simulation.js"
+cat > "$script" <<'JS'
+"use strict";
+const [dataDir, tmpDir] = core.scriptArguments();
+const grid = multirescloth.refineUniform(core.loadObject(dataDir + "/grid3x3.obj"), 2);
+multirescloth.simulate(grid, {frames: 1000000, pins: [12, 13, 14, 15], output: tmpDir + "/never.pc2"});
+print("not reached: the simulation finished");
+JS
+"$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
+pid=$!
+# Wait until the simulation is running (its job line), at most 60 s.
+tries=0
+until grep -q '^\[job\] simulate: simulation of' "$tmp/stderr" 2>/dev/null; do
+  tries=$((tries + 1))
+  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
+    echo "the simulation did not start"; cat "$tmp/stderr"; kill "$pid" 2>/dev/null; exit 1
+  fi
+  sleep 0.1
+done
+sleep 0.5
+kill -INT "$pid"
+wait "$pid"
+code=$?
+echo "--- stderr"; cat "$tmp/stderr"; echo "--- stdout"; cat "$tmp/stdout"; echo "---"
+failed=0
+[ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }
+grep -q 'simulate: cancelled after [0-9]* of 1000000 frames' "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
+grep -q '^\[job\] simulate: stopped at [0-9]*/1000000' "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
+grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
+grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }
+leftovers=$(ls "$tmp" | grep -v -e '^stdout$' -e '^stderr$' -e '^long_simulation\.js$')
+[ -z "$leftovers" ] || { echo "files left behind: $leftovers"; failed=1; }
+[ "$failed" -eq 0 ] && echo "interrupt: ok"
+exit "$failed"
