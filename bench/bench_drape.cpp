@@ -25,8 +25,8 @@ using namespace mrcloth;
 struct BenchOptions {
   int frames = 50;                          // output frames at 25 fps
   std::vector<int> sizes{28, 64, 110};      // vertices per side of the uniform sheets
-  int iterations = 4;                       // local/global iterations per step
-  int sweeps = 4;                           // strain-limiting sweeps per round
+  int iterations = 2;                       // local/global iterations per step (the library default)
+  int sweeps = 6;                           // strain-limiting sweeps per round (the library default)
 };
 
 QuadMesh make_sheet(int n, double side = 1.0) {

@@ -144,6 +144,15 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
   sweep_order_ = wavefront_order(model);
+  std::vector<char> has_pinned_part(model.num_vertices, 0);
+  for (int col = 0; col < model.P.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(model.P, col); it; ++it) has_pinned_part[it.row()] = 1;
+  direct_free_.assign(model.num_vertices, -1);
+  for (int v = 0; v < model.num_vertices; ++v) {
+    const auto& st = model.stencil[v];
+    if (st.size() == 1 && st[0].weight == 1.0 && !has_pinned_part[v]) direct_free_[v] = st[0].free;
+  }
+  inverse_mass_ = model.free_mass.cwiseInverse();
   pinned_part_ = Positions::Zero(model.num_vertices, 3);
 }
 
@@ -179,7 +188,9 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
   const DynamicsModel& m = *model_;
   const double limit = 1.0 + m.material.stretch_limit;
   std::vector<StencilTerm> terms;
-  const auto limit_spring = [&](const Spring& s) {
+  // Ends that are T-nodes or pinned: the constraint acts on their free
+  // stencils, mass-weighted (general, slower path).
+  const auto limit_general = [&](const Spring& s) {
     const Eigen::Vector3d e = position_of(s.i, q) - position_of(s.j, q);
     const double length = e.norm();
     const double excess = length - limit * s.rest;
@@ -195,15 +206,38 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
     for (const StencilTerm& t : terms) q.row(t.free) -= (lambda * t.weight / m.free_mass[t.free]) * n.transpose();
     return true;
   };
+  // Both ends free vertices: plain mass-weighted projection.
+  const auto limit_direct = [&](const Spring& s, int fi, int fj) {
+    double e[3], length2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      e[c] = q(fi, c) - q(fj, c);
+      length2 += e[c] * e[c];
+    }
+    const double max_length = limit * s.rest;
+    if (length2 <= max_length * max_length) return false;
+    const double length = std::sqrt(length2);
+    const double wi = inverse_mass_[fi], wj = inverse_mass_[fj];
+    const double lambda = (length - max_length) / ((wi + wj) * length);
+    for (int c = 0; c < 3; ++c) {
+      q(fi, c) -= lambda * wi * e[c];
+      q(fj, c) += lambda * wj * e[c];
+    }
+    return true;
+  };
+  const auto limit_spring = [&](int k) {
+    const Spring& s = m.springs[k];
+    const int fi = direct_free_[s.i], fj = direct_free_[s.j];
+    return (fi >= 0 && fj >= 0) ? limit_direct(s, fi, fj) : limit_general(s);
+  };
   // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
   // across the whole cloth in a few sweeps instead of one row per sweep.
   const std::size_t count = sweep_order_.size();
   for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
     bool any = false;
     if (sweep % 2 == 0)
-      for (std::size_t k = 0; k < count; ++k) any |= limit_spring(m.springs[sweep_order_[k]]);
+      for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_order_[k]);
     else
-      for (std::size_t k = count; k-- > 0;) any |= limit_spring(m.springs[sweep_order_[k]]);
+      for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_order_[k]);
     if (!any) break;
   }
 }
@@ -253,14 +287,6 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   // fall follows the true parabola and a hanging cloth carries its full weight.
   Positions y = state.positions + h * state.velocities;
   y.rowwise() += (0.5 * h * h) * options_.gravity.transpose();
-  // Colliders act on the inertial target first: the springs then solve for
-  // a state that is already outside, and the push-outs after the solve stay
-  // small instead of stretching short springs on impact.
-  if (!colliders.empty()) {
-    const auto collide_start = Clock::now();
-    report.max_correction = resolve_collisions(q_previous, y, colliders);
-    report.collision_ms += ms_since(collide_start);
-  }
   Positions q = y;  // the inertial prediction is the usual warm start
   const auto start = Clock::now();
   Positions delta(q.rows(), 3);

@@ -37,8 +37,8 @@ namespace mrcloth {
 
 struct IntegratorOptions {
   double time_step = 1.0 / 120.0;               ///< seconds, > 0
-  int iterations = 4;                           ///< local/global iterations per step, >= 1
-  int strain_limit_sweeps = 4;                  ///< Gauss-Seidel sweeps over stretch springs, >= 0
+  int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
+  int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs per round, >= 0
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 2;                     ///< rounds of (strain limiting, collisions) per step, >= 1
 };
@@ -86,6 +86,8 @@ class ImplicitIntegrator {
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
+  std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
+  Eigen::VectorXd inverse_mass_;       // per free vertex, 1/kg
 };
 
 }  // namespace mrcloth

@@ -15,8 +15,8 @@ struct SimulationOptions {
   int frames = 60;                            ///< output frames to simulate, >= 1
   double fps = 30.0;                          ///< output frames per second, > 0
   int substeps = 4;                           ///< time steps per output frame (h = 1 / (fps * substeps)), >= 1
-  int iterations = 4;                         ///< local/global iterations per step
-  int strain_limit_sweeps = 4;                ///< see IntegratorOptions
+  int iterations = 2;                         ///< local/global iterations per step
+  int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};   ///< m/s^2
   std::vector<Collider> colliders;            ///< analytic colliders
   std::string cache_path;                     ///< PC2 file of all vertices per frame; empty: none
