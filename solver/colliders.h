@@ -48,8 +48,9 @@ void validate_colliders(const std::vector<Collider>& colliders);
 /// collider, it is projected to distance `thickness` along the normal, and
 /// its tangential displacement over the step is reduced by mu times the
 /// normal correction (static friction removes it entirely when within the
-/// cone). Colliders are applied in order, twice, so corners between two
-/// colliders resolve. Returns the largest normal correction applied (metres).
+/// cone). Colliders are applied in order, in sweeps repeated until one
+/// changes nothing (at most 8), so points between overlapping colliders
+/// resolve. Returns the largest normal correction applied (metres).
 double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector3d& previous,
                      Eigen::Vector3d& position);
 

@@ -49,6 +49,8 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   if (!options.cache_path.empty())
     cache = std::make_unique<Pc2Writer>(options.cache_path, model.num_vertices, 1.0, 1.0);
 
+  report.initial_penetration =
+      deepest_penetration(options.colliders, full_positions(model, state.positions, state.pinned));
   const Positions rest_pinned = pinned_rows(model, model.rest);
   Positions pinned_next = rest_pinned;
   for (int frame = 0; frame < options.frames; ++frame) {

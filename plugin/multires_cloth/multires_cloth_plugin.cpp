@@ -268,6 +268,11 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                          {QStringLiteral("objFiles"), obj_files}});
     if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
+    if (report.initial_penetration > 0.0)
+      emit log(LOGWARN, QStringLiteral("simulate: the cloth starts %1 mm inside a collider (or its thickness); "
+                                       "it is pushed out on the first step, which stretches it: move the "
+                                       "colliders or the garment so they start apart")
+                            .arg(1000.0 * report.initial_penetration, 0, 'f', 1));
     if (report.cancelled)
       emit log(LOGWARN, QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
                             .arg(report.frames).arg(settings.frames));
@@ -331,7 +336,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
-                      "{dynamics, collision, total}, maxStretch (strain), maxPenetration (m), nonFinite, cancelled, "
+                      "{dynamics, collision, total}, maxStretch (strain), maxPenetration (m), initialPenetration (m), nonFinite, cancelled, "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
                       "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN)."),

@@ -304,6 +304,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
                                                  {QStringLiteral("total"), report.ms_per_frame_total}}},
       {QStringLiteral("maxStretch"), report.max_stretch},
       {QStringLiteral("maxPenetration"), report.max_penetration},
+      {QStringLiteral("initialPenetration"), report.initial_penetration},
       {QStringLiteral("nonFinite"), report.non_finite},
       {QStringLiteral("cancelled"), report.cancelled},
       {QStringLiteral("output"), QString::fromStdString(report.cache_path)},

@@ -435,16 +435,28 @@ TEST(ResolvePoint, FrictionOnACurvedSurfaceReducesTangentialMotionByMuDn) {
   }
 }
 
-TEST(ResolvePoint, TwoSweepsForACorner) {
+TEST(ResolvePoint, SweepsAreCappedInASharpCorner) {
   // A 45-degree wedge: y >= 0 and x >= y. Pushed out of the floor, the point
-  // is pushed out of the wall back into the floor; each sweep halves that.
+  // is pushed out of the wall back into the floor; each sweep halves that,
+  // so it never settles and the cap of 8 sweeps ends it.
   const std::vector<Collider> wedge = {make(PlaneCollider{{0, 0, 0}, {0, 1, 0}}, 0.0, 0.0),
                                        make(PlaneCollider{{0, 0, 0}, {1, -1, 0}}, 0.0, 0.0)};
   Vector3d position(-0.1, -0.05, 0.0);
   const double correction = resolve_point(wedge, position, position);
-  // Sweep 1: (-0.1, 0) then (-0.05, -0.05); sweep 2: (-0.05, 0) then (-0.025, -0.025).
-  EXPECT_LT((position - Vector3d(-0.025, -0.025, 0.0)).norm(), 1e-15) << position.transpose();
+  // Sweep 1: (-0.1, 0) then (-0.05, -0.05); sweep 2: (-0.05, 0) then
+  // (-0.025, -0.025); ... sweep 8 ends at (-0.1, -0.1) / 2^8.
+  EXPECT_LT((position - Vector3d(-0.1, -0.1, 0.0) / 256.0).norm(), 1e-15) << position.transpose();
   EXPECT_NEAR(correction, 0.1 / std::sqrt(2.0), 1e-15) << "the largest single correction";
+}
+
+TEST(ResolvePoint, OverlappingSpheresSettle) {
+  // Two overlapping unit spheres; a point inside both near their lens is
+  // pushed out of one into the other. Sweeps continue until it is outside both.
+  const std::vector<Collider> body = {make(SphereCollider{{-0.5, 0, 0}, 1.0}, 0.0, 0.0),
+                                      make(SphereCollider{{0.5, 0, 0}, 1.0}, 0.0, 0.0)};
+  Vector3d position(0.0, 0.3, 0.0);
+  resolve_point(body, position, position);
+  EXPECT_LE(penetration(body, position), 1e-12) << position.transpose();
 }
 
 TEST(Penetration, IsTheDeepestIntrusionIntoTheThicknessBand) {

@@ -30,7 +30,7 @@ const report = multirescloth.simulate(grid, {frames: frames, substeps: substeps,
 // Every field, with its type.
 const types = {
   frames: "number", steps: "number", timeStep: "number", precomputeMs: "number", msPerFrame: "object",
-  maxStretch: "number", maxPenetration: "number", nonFinite: "boolean", cancelled: "boolean", output: "string",
+  maxStretch: "number", maxPenetration: "number", initialPenetration: "number", nonFinite: "boolean", cancelled: "boolean", output: "string",
   vertices: "number", freeVertices: "number", pinnedVertices: "number", hangingVertices: "number",
   springs: "object", perFrameMs: "array", operation: "string", source: "number", material: "string",
   objFiles: "array",
