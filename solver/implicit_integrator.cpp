@@ -243,14 +243,14 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
 }
 
 double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Positions& q,
-                                              const std::vector<Collider>& colliders) const {
-  if (colliders.empty()) return 0.0;
+                                              const CollisionScene& scene) const {
+  if (scene.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
       Eigen::Vector3d x = q.row(f).transpose();
-      largest = std::max(largest, resolve_point(colliders, q_previous.row(f).transpose(), x));
+      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x));
       q.row(f) = x.transpose();
     }
     // A T-node can be inside while its parents are outside (the collider is
@@ -258,7 +258,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     for (int v : m.hanging_vertices) {
       const Eigen::Vector3d x = position_of(v, q);
       Eigen::Vector3d target = x;
-      const double correction = resolve_point(colliders, x, target);
+      const double correction = scene.resolve(x, target);
       if (correction <= 0.0) continue;
       largest = std::max(largest, correction);
       const Eigen::Vector3d delta = target - x;
@@ -272,7 +272,12 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   return largest;
 }
 
-StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next, const std::vector<Collider>& colliders) {
+StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next,
+                                    const std::vector<Collider>& colliders) {
+  return step(state, pinned_next, AnalyticScene(colliders));
+}
+
+StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next, const CollisionScene& scene) {
   if (!model_) throw Error("ImplicitIntegrator::step called before precompute");
   const DynamicsModel& m = *model_;
   if (pinned_next.rows() != static_cast<Eigen::Index>(m.pinned_vertices.size()))
@@ -308,7 +313,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     report.dynamics_ms += ms_since(limit_start);
     const auto collide_start = Clock::now();
     const Positions& reference = round == 0 ? q_previous : Positions(q);
-    report.max_correction = std::max(report.max_correction, resolve_collisions(reference, q, colliders));
+    report.max_correction = std::max(report.max_correction, resolve_collisions(reference, q, scene));
     report.collision_ms += ms_since(collide_start);
   }
 

@@ -25,7 +25,7 @@
 // approximation of implicit Euler (energy is lost in stiff directions,
 // which also makes it stable at any time step); stretch is bounded by the
 // strain limit rather than by convergence.
-#include "colliders.h"
+#include "collision_scene.h"
 #include "dynamics_model.h"
 #include "sparse_ldlt3.h"
 
@@ -68,7 +68,10 @@ class ImplicitIntegrator {
   void precompute(const DynamicsModel& model, const IntegratorOptions& options);
 
   /// Advances `state` by one time step to time + h, with the pinned vertices
-  /// moving to `pinned_next` (#pinned x 3) and the given colliders.
+  /// moving to `pinned_next` (#pinned x 3), colliding with `scene` as posed
+  /// for the end of the step.
+  StepReport step(ClothState& state, const Positions& pinned_next, const CollisionScene& scene);
+  /// The same with a fixed set of analytic colliders.
   StepReport step(ClothState& state, const Positions& pinned_next, const std::vector<Collider>& colliders);
 
   const IntegratorOptions& options() const { return options_; }
@@ -77,7 +80,7 @@ class ImplicitIntegrator {
  private:
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   void limit_strain(Positions& q) const;
-  double resolve_collisions(const Positions& q_previous, Positions& q, const std::vector<Collider>& colliders) const;
+  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
 
   const DynamicsModel* model_ = nullptr;

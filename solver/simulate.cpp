@@ -18,11 +18,10 @@ void check(const SimulationOptions& o) {
   validate_colliders(o.colliders);
 }
 
-double deepest_penetration(const std::vector<Collider>& colliders, const Positions& x) {
+double deepest_penetration(const CollisionScene& scene, const Positions& x) {
   double deepest = 0.0;
-  if (colliders.empty()) return deepest;
-  for (Eigen::Index v = 0; v < x.rows(); ++v)
-    deepest = std::max(deepest, penetration(colliders, x.row(v).transpose()));
+  if (scene.empty()) return deepest;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) deepest = std::max(deepest, scene.penetration(x.row(v).transpose()));
   return deepest;
 }
 
@@ -30,8 +29,12 @@ double deepest_penetration(const std::vector<Collider>& colliders, const Positio
 
 SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
                           const PinTrajectory& pins, const SimulationProgress& progress,
-                          std::vector<Positions>* frames_out) {
+                          std::vector<Positions>* frames_out, const MovingBodies& bodies) {
   check(options);
+  const AnalyticScene fixed(options.colliders);
+  CompositeScene scene;
+  scene.add(&fixed);
+  if (bodies.scene) scene.add(bodies.scene);
   SimulationReport report;
   IntegratorOptions io;
   io.time_step = 1.0 / (options.fps * options.substeps);
@@ -49,8 +52,8 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   if (!options.cache_path.empty())
     cache = std::make_unique<Pc2Writer>(options.cache_path, model.num_vertices, 1.0, 1.0);
 
-  report.initial_penetration =
-      deepest_penetration(options.colliders, full_positions(model, state.positions, state.pinned));
+  if (bodies.pose) bodies.pose(state.time);
+  report.initial_penetration = deepest_penetration(scene, full_positions(model, state.positions, state.pinned));
   const Positions rest_pinned = pinned_rows(model, model.rest);
   Positions pinned_next = rest_pinned;
   for (int frame = 0; frame < options.frames; ++frame) {
@@ -58,7 +61,8 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     for (int sub = 0; sub < options.substeps; ++sub) {
       pinned_next = rest_pinned;
       if (pins) pins(state.time + io.time_step, pinned_next);
-      const StepReport step = integrator.step(state, pinned_next, options.colliders);
+      if (bodies.pose) bodies.pose(state.time + io.time_step);
+      const StepReport step = integrator.step(state, pinned_next, scene);
       timing.dynamics_ms += step.dynamics_ms;
       timing.collision_ms += step.collision_ms;
       ++report.steps;
@@ -70,7 +74,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
     report.max_stretch = std::max(report.max_stretch, max_stretch(model, x));
-    report.max_penetration = std::max(report.max_penetration, deepest_penetration(options.colliders, x));
+    report.max_penetration = std::max(report.max_penetration, deepest_penetration(scene, x));
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);

@@ -1,7 +1,7 @@
 #pragma once
 // Runs a dynamics model over frames: substeps, moving pins, colliders,
 // recording to a PC2 cache, timings, progress and cancellation.
-#include "colliders.h"
+#include "collision_scene.h"
 #include "dynamics_model.h"
 #include "implicit_integrator.h"
 
@@ -28,6 +28,14 @@ using PinTrajectory = std::function<void(double time, Positions& pinned)>;
 
 /// Called after every output frame with frames done and total; return false to cancel.
 using SimulationProgress = std::function<bool(int frames_done, int frames_total)>;
+
+/// Moving bodies: `pose(time)` is called before every step with the time
+/// the step ends at, and must leave `scene` posed for that time. The scene
+/// is collided with in addition to SimulationOptions::colliders.
+struct MovingBodies {
+  std::function<void(double time)> pose;
+  const CollisionScene* scene = nullptr;
+};
 
 struct FrameTiming {
   double dynamics_ms = 0.0;
@@ -58,6 +66,6 @@ struct SimulationReport {
 /// `frames_out`, if given, receives the full positions of every output frame.
 SimulationReport simulate(const DynamicsModel& model, ClothState& initial, const SimulationOptions& options,
                           const PinTrajectory& pins = {}, const SimulationProgress& progress = {},
-                          std::vector<Positions>* frames_out = nullptr);
+                          std::vector<Positions>* frames_out = nullptr, const MovingBodies& bodies = {});
 
 }  // namespace mrcloth

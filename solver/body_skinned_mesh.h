@@ -1,0 +1,63 @@
+#pragma once
+// A skinned body mesh driven by a BVH skeleton: the MakeHuman base mesh with
+// its CMU rig and weights, linear-blend skinned, and a collision scene over
+// its triangles (closest point, inside/outside) that is refit every step.
+#include "collision_scene.h"
+#include "skeleton.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+/// A body mesh bound to a skeleton's rest pose.
+struct SkinnedBody {
+  Eigen::MatrixX3d rest_vertices;                       ///< #V x 3, metres, in the skeleton's rest (T-pose) space
+  std::vector<Eigen::Vector3i> triangles;               ///< the body's quads split into triangles
+  std::vector<std::vector<std::pair<int, double>>> weights;  ///< per vertex (skeleton joint, weight), weights sum to 1
+};
+
+struct MakeHumanOptions {
+  std::string base_obj;        ///< bodies/makehuman/base.obj (decimetres; group "body" is the body)
+  std::string skeleton_file;   ///< rigs/cmu_mb.mhskel (JSON)
+  std::string weights_file;    ///< rigs/default_weights.mhw (JSON)
+};
+
+/// Loads the MakeHuman body and binds it to `skeleton` (a CMU skeleton in
+/// metres, rest pose = T-pose): a CMU bone's weight is the sum of its
+/// mhskel `reference` bones' weights; every bone gets a rest correction
+/// rotation taking its mesh (A-pose) direction to the skeleton's rest
+/// direction, applied once, so the bound rest mesh is in T-pose. Names the
+/// file and the problem on failure (InputError).
+SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton);
+
+/// Linear-blend skinning: vertices of the body in `pose` (#V x 3). In the
+/// skeleton's rest pose this reproduces rest_vertices to round-off.
+Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose);
+
+/// Collision with a moving triangle mesh: a bounding-volume hierarchy built
+/// once over the triangles and refit when the vertices move; closest point
+/// and inside/outside (angle-weighted pseudo-normals, the mesh must be
+/// closed) for points within `thickness` plus a margin of the surface.
+class MeshBody : public CollisionScene {
+ public:
+  MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i> triangles, double thickness = 0.004,
+           double friction = 0.3);
+  ~MeshBody() override;
+  /// New vertex positions (same count), then refit.
+  void update(const Eigen::MatrixX3d& vertices);
+  double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override;
+  double penetration(const Eigen::Vector3d& p) const override;
+  bool empty() const override { return false; }
+  /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.
+  SurfaceQuery query(const Eigen::Vector3d& p) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrcloth

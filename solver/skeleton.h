@@ -1,0 +1,77 @@
+#pragma once
+// Skeletons and motions (BVH), and forward kinematics. Lengths in metres
+// after the reader's scale; rotations are Euler angles in degrees in the
+// file, applied in the file's channel order (BVH convention: the channel
+// listed first is the outermost rotation, R = R_first * R_second * R_third).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+enum class Channel { x_position, y_position, z_position, x_rotation, y_rotation, z_rotation };
+
+struct Joint {
+  std::string name;                 ///< unique; an End Site is named "<parent>_end"
+  int parent = -1;                  ///< index of the parent joint, -1 for a root
+  Eigen::Vector3d offset{0, 0, 0};  ///< rest offset from the parent, metres
+  std::vector<Channel> channels;    ///< in file order; empty for an End Site
+  int first_channel = 0;            ///< column of its first channel in Motion::frames
+  bool end_site = false;
+};
+
+/// Joints in file order: a parent always precedes its children.
+struct Skeleton {
+  std::vector<Joint> joints;
+  /// Index of the joint with this name, -1 if none.
+  int find(const std::string& name) const;
+  /// Number of channels over all joints.
+  int channel_count() const;
+};
+
+struct Motion {
+  Skeleton skeleton;
+  double frame_time = 1.0 / 120.0;  ///< seconds per frame, > 0
+  Eigen::MatrixXd frames;           ///< #frames x channel_count, positions in metres, angles in degrees
+  double duration() const { return frames.rows() > 1 ? (frames.rows() - 1) * frame_time : 0.0; }
+};
+
+struct BvhReadOptions {
+  double scale = 1.0;             ///< metres per file unit (CMU: 0.056444; centimetres: 0.01)
+  bool skip_first_frame = false;  ///< drop frame 0 (every CMU clip starts with an added T-pose)
+};
+
+/// Reads a BVH file (any channel order and subset per joint, End Sites,
+/// the MOTION block). Throws InputError "<file>:<line>: <problem>; expected
+/// <what>" for unbalanced braces, a channel count that does not match the
+/// data, non-numeric values, truncated motion, or a frame time <= 0.
+Motion read_bvh(const std::string& path, const BvhReadOptions& options = {});
+
+/// Writes a motion as BVH (offsets and positions divided by `scale`), atomically.
+void write_bvh(const std::string& path, const Motion& motion, double scale = 1.0);
+
+/// Global transform of every joint (index as in the skeleton).
+struct Pose {
+  std::vector<Eigen::Isometry3d> global;
+  Eigen::Vector3d position(int joint) const { return global[joint].translation(); }
+};
+
+/// The rest pose: every channel 0 (for CMU: the T-pose).
+Pose rest_pose(const Skeleton& skeleton);
+
+/// The pose of frame f exactly.
+Pose frame_pose(const Motion& motion, int frame);
+
+/// The pose at a time in seconds (frame 0 at t = 0), clamped to the clip:
+/// root positions interpolated linearly, every joint's local rotation by
+/// quaternion slerp between the two nearest frames.
+Pose pose_at(const Motion& motion, double time);
+
+/// Blends two poses of the same skeleton joint by joint (slerp on local
+/// rotations, lerp on root translation) with weight t in [0, 1]; for
+/// pre-rolls from the rest pose to a first frame.
+Pose blend_poses(const Skeleton& skeleton, const Pose& a, const Pose& b, double t);
+
+}  // namespace mrcloth
