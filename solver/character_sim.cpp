@@ -1,0 +1,106 @@
+#include "character_sim.h"
+
+#include "mesh_ops/errors.h"
+
+#include <cmath>
+
+namespace mrcloth {
+namespace {
+
+// Zero velocity at both ends, so the body neither jerks into the pre-roll
+// nor into the motion.
+double smoothstep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+void check(const CharacterRunOptions& o, const Motion& motion) {
+  if (o.frames < 1) throw ArgumentError("frames must be >= 1, got " + std::to_string(o.frames));
+  if (!(o.fps > 0.0)) throw ArgumentError("fps must be > 0");
+  if (!(o.step_rate >= o.fps)) throw ArgumentError("the step rate must be at least the output fps");
+  if (!(o.preroll_seconds >= 0.0)) throw ArgumentError("pre-roll must be >= 0 seconds");
+  if (!(o.motion_start >= 0.0)) throw ArgumentError("motion start must be >= 0 seconds");
+  if (motion.skeleton.find(o.pelvis_joint) < 0)
+    throw ArgumentError("the motion's skeleton has no joint '" + o.pelvis_joint + "' to pin the waist to");
+}
+
+}  // namespace
+
+SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness, double friction)
+    : body_(std::move(body)),
+      skeleton_(skeleton),
+      mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)) {}
+
+void SkinnedPosedBody::set_pose(const Pose& pose) { mesh_->update(skin(body_, skeleton_, pose)); }
+
+Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
+  if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
+  const Pose rest = rest_pose(motion.skeleton);
+  const Pose first = pose_at(motion, options.motion_start);
+  return blend_poses(motion.skeleton, rest, first, smoothstep(time / options.preroll_seconds));
+}
+
+CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
+                                         PosedBody& body, const CharacterRunOptions& options,
+                                         const SimulationProgress& progress, std::vector<Positions>* frames_out) {
+  check(options, motion);
+  const int pelvis = motion.skeleton.find(options.pelvis_joint);
+  const Eigen::Isometry3d pelvis_rest_inverse = rest_pose(motion.skeleton).global[pelvis].inverse();
+  const Positions rest_pinned = pinned_rows(model, model.rest);
+
+  // Poses are needed by both the pins and the body at the same times; cache
+  // the last one so each step computes FK once.
+  double cached_time = -1.0;
+  Pose cached;
+  const auto pose_at_time = [&](double time) -> const Pose& {
+    if (time != cached_time) {
+      cached = character_pose(motion, time, options);
+      cached_time = time;
+    }
+    return cached;
+  };
+  const PinTrajectory pins = [&](double time, Positions& pinned) {
+    const Eigen::Isometry3d follow = pose_at_time(time).global[pelvis] * pelvis_rest_inverse;
+    for (Eigen::Index k = 0; k < pinned.rows(); ++k)
+      pinned.row(k) = (follow * Eigen::Vector3d(rest_pinned.row(k).transpose())).transpose();
+  };
+  MovingBodies bodies;
+  bodies.scene = &body.scene();
+  bodies.pose = [&](double time) { body.set_pose(pose_at_time(time)); };
+
+  SimulationOptions sim = options.simulation;
+  sim.fps = options.fps;
+  sim.substeps = std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
+  CharacterRunReport report;
+
+  const int preroll_frames = static_cast<int>(std::lround(options.preroll_seconds * options.fps));
+  if (preroll_frames > 0) {
+    SimulationOptions warmup = sim;
+    warmup.frames = preroll_frames;
+    warmup.cache_path.clear();
+    report.preroll = simulate(model, state, warmup, pins, {}, nullptr, bodies);
+    if (report.preroll.non_finite) {
+      report.motion.non_finite = true;
+      return report;
+    }
+  }
+  sim.frames = options.frames;
+  std::vector<Positions> local_frames;
+  std::vector<Positions>* frames = frames_out ? frames_out : &local_frames;
+  const std::size_t first = frames->size();
+  report.motion = simulate(model, state, sim, pins, progress, frames, bodies);
+
+  // The waist error is measured on what was recorded, against the targets
+  // the pins were given: it is exact by construction, and this checks it.
+  for (std::size_t f = first; f < frames->size(); ++f) {
+    const double time = options.preroll_seconds + static_cast<double>(f - first + 1) / options.fps;
+    Positions target = rest_pinned;
+    pins(time, target);
+    for (std::size_t k = 0; k < model.pinned_vertices.size(); ++k)
+      report.max_waist_error =
+          std::max(report.max_waist_error, ((*frames)[f].row(model.pinned_vertices[k]) - target.row(k)).norm());
+  }
+  return report;
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,78 @@
+#pragma once
+// A garment on a moving character: the waist pinned to the pelvis, a body
+// that collides (capsules or a skinned mesh), a pre-roll from the rest pose
+// to the first motion frame, then the motion, recorded frame by frame.
+#include "body_capsules.h"
+#include "body_skinned_mesh.h"
+#include "simulate.h"
+#include "skeleton.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+/// A collision body that follows a skeleton's pose.
+class PosedBody {
+ public:
+  virtual ~PosedBody() = default;
+  virtual void set_pose(const Pose& pose) = 0;
+  virtual const CollisionScene& scene() const = 0;
+};
+
+/// Capsules along the bones (CapsuleRig), posed by FK.
+class CapsulePosedBody : public PosedBody {
+ public:
+  CapsulePosedBody(CapsuleRig rig, const Skeleton& skeleton) : body_(std::move(rig), skeleton) {}
+  void set_pose(const Pose& pose) override { body_.pose(pose); }
+  const CollisionScene& scene() const override { return body_; }
+
+ private:
+  CapsuleBody body_;
+};
+
+/// A skinned triangle mesh, re-skinned and refit for every pose.
+class SkinnedPosedBody : public PosedBody {
+ public:
+  SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3);
+  void set_pose(const Pose& pose) override;
+  const CollisionScene& scene() const override { return *mesh_; }
+
+ private:
+  SkinnedBody body_;
+  const Skeleton& skeleton_;
+  std::unique_ptr<MeshBody> mesh_;
+};
+
+struct CharacterRunOptions {
+  int frames = 60;                   ///< output frames of the motion (after the pre-roll), >= 1
+  double fps = 30.0;                 ///< output frames per second
+  double step_rate = 120.0;          ///< time steps per second (the mocap rate); rounded to a multiple of fps
+  double preroll_seconds = 1.0;      ///< rest pose -> first motion frame, not recorded; >= 0
+  double motion_start = 0.0;         ///< seconds into the clip where the recording starts
+  std::string pelvis_joint = "Hips"; ///< the joint whose frame the pinned waist follows
+  SimulationOptions simulation;      ///< iterations, sweeps, gravity, extra colliders; frames/fps/substeps are set from the above
+};
+
+struct CharacterRunReport {
+  SimulationReport preroll;          ///< the pre-roll (no cache)
+  SimulationReport motion;           ///< the recorded motion (cache, timings per frame)
+  double max_waist_error = 0.0;      ///< largest distance of a pinned vertex from its target at an output frame, metres
+};
+
+/// The pose of the character at simulation time `time`: during the pre-roll
+/// a smooth blend from the rest pose to the clip's pose at motion_start, then
+/// the clip from motion_start.
+Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options);
+
+/// Runs the pre-roll and the motion. The model's pinned vertices follow the
+/// pelvis joint rigidly from their rest positions (the garment is modelled on
+/// the body in its rest pose). `state` starts at rest and is advanced.
+/// The cache (options.simulation.cache_path) holds the motion frames only.
+CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
+                                         PosedBody& body, const CharacterRunOptions& options,
+                                         const SimulationProgress& progress = {},
+                                         std::vector<Positions>* frames_out = nullptr);
+
+}  // namespace mrcloth
