@@ -1,1 +1,348 @@
-// placeholder until implemented
+#include "body_capsules.h"
+
+#include "mesh_ops/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <locale>
+#include <sstream>
+#include <utility>
+
+namespace mrcloth {
+namespace {
+
+using Eigen::Vector3d;
+
+/// The height the default radii were chosen for (a standing woman), metres.
+constexpr double kReferenceHeight = 1.65;
+
+/// Bones shorter than this fraction of the figure's height are zero-length
+/// (CMU: Hips -> LHipJoint, Spine1 -> Neck, ... have offset 0 exactly).
+constexpr double kZeroLengthFraction = 1e-6;
+
+/// A bone of a name without a default gets this fraction of its length as
+/// radius, within [kUnknownMin, kUnknownMax] (metres at the reference height).
+constexpr double kUnknownRadiusPerLength = 0.15;
+constexpr double kUnknownMin = 0.01;
+constexpr double kUnknownMax = 0.15;
+
+/// Vertices needed at one end of a bone to fit that end's radius.
+constexpr std::size_t kMinFitSamples = 4;
+constexpr double kFitPercentile = 0.90;
+
+/// Default radii (head, tail) in metres for a 1.65 m woman, by CMU joint
+/// name; a capsule runs from the named joint to each child. (0, 0): no
+/// capsule (hands, fingers, toes). The values are chosen so that the default
+/// garments modelled on that figure start outside the body:
+///  - the skirt's waist ellipse at y = 1.02 is 0.258 x 0.184 m, so the lower
+///    back narrows to 0.08 at the waist (a round section must fit the depth);
+///  - its hip ellipse is 0.344 m wide with the hip joints at x = +-0.09, so
+///    the pelvis (Hips -> each UpLeg, a bent capsule between the hip joints
+///    through the hips centre) and the top of the thighs are 0.075, not the
+///    0.085 of a round thigh, or they would poke through the skirt's sides.
+struct DefaultRadii {
+  const char* name;
+  double head, tail;
+};
+constexpr DefaultRadii kDefaults[] = {
+    {"Hips", 0.090, 0.075},  // pelvis; in CMU every Hips bone is zero-length -> a sphere
+    {"LHipJoint", 0.090, 0.075},
+    {"RHipJoint", 0.090, 0.075},
+    {"LeftUpLeg", 0.075, 0.050},
+    {"RightUpLeg", 0.075, 0.050},
+    {"LeftLeg", 0.050, 0.035},
+    {"RightLeg", 0.050, 0.035},
+    {"LeftFoot", 0.040, 0.030},
+    {"RightFoot", 0.040, 0.030},
+    {"LeftToeBase", 0.0, 0.0},
+    {"RightToeBase", 0.0, 0.0},
+    {"LowerBack", 0.095, 0.080},
+    {"Spine", 0.095, 0.120},
+    {"Spine1", 0.120, 0.120},  // CMU: all its bones are zero-length -> a chest sphere
+    {"Neck", 0.090, 0.055},    // CMU's Neck bone runs from the chest to the neck base
+    {"Neck1", 0.050, 0.050},
+    {"Head", 0.085, 0.065},
+    {"LeftShoulder", 0.070, 0.050},
+    {"RightShoulder", 0.070, 0.050},
+    {"LeftArm", 0.045, 0.035},
+    {"RightArm", 0.045, 0.035},
+    {"LeftForeArm", 0.035, 0.030},
+    {"RightForeArm", 0.035, 0.030},
+    {"LeftHand", 0.0, 0.0},
+    {"RightHand", 0.0, 0.0},
+    {"LeftFingerBase", 0.0, 0.0},
+    {"RightFingerBase", 0.0, 0.0},
+    {"LeftHandIndex1", 0.0, 0.0},
+    {"RightHandIndex1", 0.0, 0.0},
+    {"LThumb", 0.0, 0.0},
+    {"RThumb", 0.0, 0.0},
+};
+
+const DefaultRadii* find_default(const std::string& name) {
+  for (const DefaultRadii& d : kDefaults)
+    if (name == d.name) return &d;
+  return nullptr;
+}
+
+std::string text(double value) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << value;
+  return out.str();
+}
+
+/// Height of the figure in its rest pose: the top of the head (the highest
+/// of "Head" and its descendants, i.e. its End Site; the highest joint when
+/// there is no Head) minus the lowest joint (toe or foot). 0 if degenerate.
+double skeleton_height(const Skeleton& skeleton, const Pose& rest) {
+  const int n = static_cast<int>(skeleton.joints.size());
+  if (n == 0) return 0.0;
+  double low = std::numeric_limits<double>::infinity(), top = -low, head_top = -low;
+  const int head = skeleton.find("Head");
+  std::vector<bool> under_head(n, false);
+  for (int j = 0; j < n; ++j) {
+    const int parent = skeleton.joints[j].parent;
+    under_head[j] = j == head || (parent >= 0 && under_head[parent]);
+    const double y = rest.position(j).y();
+    low = std::min(low, y);
+    top = std::max(top, y);
+    if (under_head[j]) head_top = std::max(head_top, y);
+  }
+  const double height = (head >= 0 ? head_top : top) - low;
+  return std::isfinite(height) && height > 0.0 ? height : 0.0;
+}
+
+void check_skeleton(const Skeleton& skeleton, const char* caller) {
+  const int n = static_cast<int>(skeleton.joints.size());
+  for (int j = 0; j < n; ++j) {
+    const int parent = skeleton.joints[j].parent;
+    if (parent >= j || parent < -1)
+      throw ArgumentError(std::string(caller) + ": joint " + std::to_string(j) + " (" + skeleton.joints[j].name +
+                          ") has parent " + std::to_string(parent) + "; expected a parent listed before it, or -1");
+  }
+}
+
+void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
+  const auto fail = [&](std::size_t i, const std::string& problem) {
+    throw ArgumentError(std::string(caller) + ": capsule " + std::to_string(i) + ": " + problem);
+  };
+  for (std::size_t i = 0; i < rig.bones.size(); ++i) {
+    const BoneCapsule& bone = rig.bones[i];
+    if (bone.joint < 0 || bone.joint >= joint_count || bone.child < 0 || bone.child >= joint_count)
+      fail(i, "joints " + std::to_string(bone.joint) + " -> " + std::to_string(bone.child) +
+                  " are not both in the skeleton's " + std::to_string(joint_count) + " joints");
+    if (!(std::isfinite(bone.radius_head) && std::isfinite(bone.radius_tail) && bone.radius_head >= 0.0 &&
+          bone.radius_tail >= 0.0 && bone.radius_head + bone.radius_tail > 0.0))
+      fail(i, "radii must be finite, >= 0 and not both 0 (got " + text(bone.radius_head) + ", " +
+                  text(bone.radius_tail) + ")");
+  }
+  if (!(std::isfinite(rig.thickness) && rig.thickness >= 0.0))
+    throw ArgumentError(std::string(caller) + ": thickness must be a finite number >= 0 (got " + text(rig.thickness) +
+                        ")");
+  if (!(std::isfinite(rig.friction) && rig.friction >= 0.0))
+    throw ArgumentError(std::string(caller) + ": friction must be a finite number >= 0 (got " + text(rig.friction) + ")");
+}
+
+/// The collider of one bone in a pose.
+Collider bone_collider(const CapsuleRig& rig, const BoneCapsule& bone, const Pose& pose) {
+  CapsuleCollider capsule;
+  capsule.a = pose.position(bone.joint);
+  capsule.b = pose.position(bone.child);
+  capsule.radius_a = bone.radius_head;
+  capsule.radius_b = bone.radius_tail;
+  return Collider{capsule, rig.thickness, rig.friction};
+}
+
+/// Distance from p to segment [a, b] and the parameter t in [0, 1] of the
+/// closest point (t = 0 for a zero-length segment).
+std::pair<double, double> segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
+  const Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return {(p - (a + t * ab)).norm(), t};
+}
+
+/// Nearest-rank percentile of unsorted values (non-empty).
+double percentile(std::vector<double> values, double fraction) {
+  const std::size_t n = values.size();
+  std::size_t rank = static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(n)));
+  rank = std::clamp<std::size_t>(rank, 1, n) - 1;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank), values.end());
+  return values[rank];
+}
+
+}  // namespace
+
+CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& options) {
+  check_skeleton(skeleton, "make_capsule_rig");
+  for (const auto& [name, radii] : options.radii) {
+    if (skeleton.find(name) < 0)
+      throw ArgumentError("make_capsule_rig: radius override for \"" + name + "\", which is not a joint of the skeleton");
+    if (!(std::isfinite(radii.first) && std::isfinite(radii.second) && radii.first >= 0.0 && radii.second >= 0.0))
+      throw ArgumentError("make_capsule_rig: radius override for \"" + name + "\" must be finite and >= 0 (got " +
+                          text(radii.first) + ", " + text(radii.second) + ")");
+  }
+
+  CapsuleRig rig;
+  rig.thickness = options.thickness;
+  rig.friction = options.friction;
+  const int n = static_cast<int>(skeleton.joints.size());
+  if (n == 0) {
+    check_rig(rig, n, "make_capsule_rig");
+    return rig;
+  }
+
+  const Pose rest = rest_pose(skeleton);
+  const double height = skeleton_height(skeleton, rest);
+  const double scale = height > 0.0 ? height / kReferenceHeight : 1.0;
+  const double zero_length = kZeroLengthFraction * (height > 0.0 ? height : kReferenceHeight);
+
+  std::vector<std::vector<int>> children(n);
+  for (int j = 0; j < n; ++j)
+    if (skeleton.joints[j].parent >= 0) children[skeleton.joints[j].parent].push_back(j);
+
+  for (int j = 0; j < n; ++j) {
+    const Joint& joint = skeleton.joints[j];
+    if (joint.end_site || children[j].empty()) continue;  // a bone needs a far end
+    const DefaultRadii* known = find_default(joint.name);
+    const auto override_it = options.radii.find(joint.name);
+    const bool overridden = override_it != options.radii.end();
+
+    std::vector<int> long_children;
+    for (int c : children[j])
+      if ((rest.position(c) - rest.position(j)).norm() > zero_length) long_children.push_back(c);
+
+    const auto radii_for = [&](int child) -> std::pair<double, double> {
+      if (overridden) return override_it->second;
+      if (known) return {known->head * scale, known->tail * scale};
+      const double length = (rest.position(child) - rest.position(j)).norm();
+      const double r = std::clamp(kUnknownRadiusPerLength * length, kUnknownMin * scale, kUnknownMax * scale);
+      return {r, r};
+    };
+
+    if (!long_children.empty()) {
+      for (int c : long_children) {
+        const auto [head, tail] = radii_for(c);
+        if (head > 0.0 || tail > 0.0) rig.bones.push_back({j, c, head, tail});
+      }
+    } else if (overridden || known) {
+      // Every bone of this joint is zero-length: a sphere at the joint, as
+      // large as the larger radius, so the region (CMU's chest at Spine1,
+      // the pelvis at Hips) stays covered. Unknown names get none: their
+      // length-proportional radius would be 0.
+      const auto [head, tail] = radii_for(children[j].front());
+      const double r = std::max(head, tail);
+      if (r > 0.0) rig.bones.push_back({j, children[j].front(), r, r});
+    }
+  }
+  check_rig(rig, n, "make_capsule_rig");
+  return rig;
+}
+
+void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::MatrixX3d& rest_vertices,
+                       const std::vector<std::vector<std::pair<int, double>>>& bone_weights) {
+  const int n = static_cast<int>(skeleton.joints.size());
+  check_skeleton(skeleton, "fit_capsule_radii");
+  check_rig(rig, n, "fit_capsule_radii");
+  if (static_cast<std::size_t>(rest_vertices.rows()) != bone_weights.size())
+    throw ArgumentError("fit_capsule_radii: " + std::to_string(rest_vertices.rows()) + " vertices but " +
+                        std::to_string(bone_weights.size()) + " weight lists; expected one list per vertex");
+  if (rig.bones.empty()) return;
+  const Pose rest = rest_pose(skeleton);
+
+  std::vector<std::vector<int>> bones_of(n);  // capsules by their head joint
+  for (std::size_t b = 0; b < rig.bones.size(); ++b) bones_of[rig.bones[b].joint].push_back(static_cast<int>(b));
+
+  // Each vertex goes to the nearest capsule axis among the capsules of its
+  // dominant joint, at the end of that axis it is closer to.
+  std::vector<std::vector<double>> head_samples(rig.bones.size()), tail_samples(rig.bones.size());
+  for (Eigen::Index v = 0; v < rest_vertices.rows(); ++v) {
+    const auto& weights = bone_weights[static_cast<std::size_t>(v)];
+    int dominant = -1;
+    double best_weight = -std::numeric_limits<double>::infinity();
+    for (const auto& [joint, weight] : weights) {
+      if (joint < 0 || joint >= n)
+        throw ArgumentError("fit_capsule_radii: vertex " + std::to_string(v) + " is weighted to joint " +
+                            std::to_string(joint) + "; the skeleton has " + std::to_string(n) + " joints");
+      if (weight > best_weight) {
+        best_weight = weight;
+        dominant = joint;
+      }
+    }
+    if (dominant < 0 || bones_of[dominant].empty()) continue;
+    const Vector3d p = rest_vertices.row(v).transpose();
+    if (!p.allFinite())
+      throw ArgumentError("fit_capsule_radii: vertex " + std::to_string(v) + " has a non-finite coordinate");
+    int nearest = -1;
+    double nearest_distance = std::numeric_limits<double>::infinity(), nearest_t = 0.0;
+    for (int b : bones_of[dominant]) {
+      const BoneCapsule& bone = rig.bones[b];
+      const auto [distance, t] = segment_distance(p, rest.position(bone.joint), rest.position(bone.child));
+      if (distance < nearest_distance) {
+        nearest = b;
+        nearest_distance = distance;
+        nearest_t = t;
+      }
+    }
+    (nearest_t <= 0.5 ? head_samples : tail_samples)[nearest].push_back(nearest_distance);
+  }
+
+  for (std::size_t b = 0; b < rig.bones.size(); ++b) {
+    BoneCapsule& bone = rig.bones[b];
+    const bool head_ok = head_samples[b].size() >= kMinFitSamples;
+    const bool tail_ok = tail_samples[b].size() >= kMinFitSamples;
+    if (!head_ok && !tail_ok) continue;  // too few vertices: keep the current radii
+    const double head = head_ok ? percentile(head_samples[b], kFitPercentile) : 0.0;
+    const double tail = tail_ok ? percentile(tail_samples[b], kFitPercentile) : 0.0;
+    // A zero-length (sphere) bone puts every vertex at t = 0, so its head
+    // radius serves both ends.
+    bone.radius_head = head_ok ? head : tail;
+    bone.radius_tail = tail_ok ? tail : head;
+    if (!(bone.radius_head + bone.radius_tail > 0.0)) bone.radius_head = bone.radius_tail = 1e-6;
+  }
+}
+
+std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose) {
+  const int joints = static_cast<int>(pose.global.size());
+  for (std::size_t i = 0; i < rig.bones.size(); ++i) {
+    const BoneCapsule& bone = rig.bones[i];
+    if (bone.joint < 0 || bone.joint >= joints || bone.child < 0 || bone.child >= joints)
+      throw ArgumentError("posed_capsules: capsule " + std::to_string(i) + " joins joints " +
+                          std::to_string(bone.joint) + " -> " + std::to_string(bone.child) + " but the pose has " +
+                          std::to_string(joints) + " joints");
+  }
+  std::vector<Collider> colliders;
+  colliders.reserve(rig.bones.size());
+  for (const BoneCapsule& bone : rig.bones) colliders.push_back(bone_collider(rig, bone, pose));
+  return colliders;
+}
+
+CapsuleBody::CapsuleBody(CapsuleRig rig, const Skeleton& skeleton) : rig_(std::move(rig)) {
+  check_skeleton(skeleton, "CapsuleBody");
+  check_rig(rig_, static_cast<int>(skeleton.joints.size()), "CapsuleBody");
+  colliders_ = posed_capsules(rig_, rest_pose(skeleton));
+}
+
+void CapsuleBody::pose(const Pose& pose) {
+  const int joints = static_cast<int>(pose.global.size());
+  for (std::size_t i = 0; i < rig_.bones.size(); ++i) {
+    const BoneCapsule& bone = rig_.bones[i];
+    if (bone.joint >= joints || bone.child >= joints)
+      throw ArgumentError("CapsuleBody::pose: the pose has " + std::to_string(joints) + " joints; capsule " +
+                          std::to_string(i) + " needs joints " + std::to_string(bone.joint) + " and " +
+                          std::to_string(bone.child));
+    // Only the end points move: update in place, no allocation per step.
+    auto& capsule = std::get<CapsuleCollider>(colliders_[i].shape);
+    capsule.a = pose.position(bone.joint);
+    capsule.b = pose.position(bone.child);
+  }
+}
+
+double CapsuleBody::resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const {
+  return resolve_point(colliders_, previous, position);
+}
+
+double CapsuleBody::penetration(const Eigen::Vector3d& p) const { return mrcloth::penetration(colliders_, p); }
+
+}  // namespace mrcloth

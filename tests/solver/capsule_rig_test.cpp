@@ -1,0 +1,455 @@
+// The capsule body: default radii by CMU name and by height, zero-length
+// bones, posing by FK, distances against the exact capsule query, and the
+// radius fit on a synthetic body.
+#include "solver/body_capsules.h"
+
+#include "mesh_ops/errors.h"
+#include "solver/colliders.h"
+#include "solver/skeleton.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mrcloth {
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Builds skeletons joint by joint: root channels XYZ position + ZYX
+/// rotation, every other joint ZYX rotation, End Sites none (as CMU).
+struct SkeletonBuilder {
+  Skeleton skeleton;
+  int add(const std::string& name, int parent, const Vector3d& offset, bool end_site = false) {
+    Joint joint;
+    joint.name = name;
+    joint.parent = parent;
+    joint.offset = offset;
+    joint.end_site = end_site;
+    joint.first_channel = skeleton.channel_count();
+    if (!end_site) {
+      if (parent < 0)
+        joint.channels = {Channel::x_position, Channel::y_position, Channel::z_position};
+      joint.channels.insert(joint.channels.end(), {Channel::z_rotation, Channel::y_rotation, Channel::x_rotation});
+    }
+    skeleton.joints.push_back(joint);
+    return static_cast<int>(skeleton.joints.size()) - 1;
+  }
+};
+
+/// A CMU-structured figure exactly 1.65 m tall in its rest pose (head End
+/// Site at y = 1.65 - 0.94 above the Hips, toe End Site 0.94 below), with
+/// CMU's zero-length bones (Hips -> LHipJoint, RHipJoint, LowerBack;
+/// Spine1 -> Neck, LeftShoulder, RightShoulder; Hand -> FingerBase, Thumb),
+/// every length multiplied by `scale`.
+Skeleton cmu_like(double scale = 1.0) {
+  SkeletonBuilder b;
+  const auto v = [scale](double x, double y, double z) { return Vector3d(scale * x, scale * y, scale * z); };
+  const int hips = b.add("Hips", -1, v(0, 0, 0));
+  for (int s = 0; s < 2; ++s) {
+    const double x = s == 0 ? 1.0 : -1.0;
+    const std::string lr = s == 0 ? "Left" : "Right";
+    const int hip = b.add(s == 0 ? "LHipJoint" : "RHipJoint", hips, v(0, 0, 0));
+    const int up = b.add(lr + "UpLeg", hip, v(x * 0.09, -0.075, 0));
+    const int leg = b.add(lr + "Leg", up, v(x * -0.007, -0.395, 0));
+    const int foot = b.add(lr + "Foot", leg, v(x * -0.008, -0.395, 0));
+    const int toe = b.add(lr + "ToeBase", foot, v(0, -0.05, 0.13));
+    b.add(lr + "ToeBase_end", toe, v(0, -0.025, 0.06), true);
+  }
+  const int lower = b.add("LowerBack", hips, v(0, 0, 0));
+  const int spine = b.add("Spine", lower, v(0, 0.12, 0));
+  const int spine1 = b.add("Spine1", spine, v(0, 0.16, 0));
+  const int neck = b.add("Neck", spine1, v(0, 0, 0));
+  const int neck1 = b.add("Neck1", neck, v(0, 0.19, 0));
+  const int head = b.add("Head", neck1, v(0, 0.09, 0));
+  b.add("Head_end", head, v(0, 0.15, 0), true);
+  for (int s = 0; s < 2; ++s) {
+    const double x = s == 0 ? 1.0 : -1.0;
+    const std::string lr = s == 0 ? "Left" : "Right";
+    const int shoulder = b.add(lr + "Shoulder", spine1, v(0, 0, 0));
+    const int arm = b.add(lr + "Arm", shoulder, v(x * 0.17, 0.15, 0));
+    const int fore = b.add(lr + "ForeArm", arm, v(x * 0.28, 0, 0));
+    const int hand = b.add(lr + "Hand", fore, v(x * 0.23, 0, 0));
+    const int finger = b.add(lr + "FingerBase", hand, v(0, 0, 0));
+    const int index = b.add(lr + "HandIndex1", finger, v(x * 0.08, 0, 0));
+    b.add(lr + "HandIndex1_end", index, v(x * 0.065, 0, 0), true);
+    const int thumb = b.add(s == 0 ? "LThumb" : "RThumb", hand, v(0, 0, 0));
+    b.add(std::string(s == 0 ? "LThumb" : "RThumb") + "_end", thumb, v(x * 0.045, 0, x * 0.045), true);
+  }
+  return b.skeleton;
+}
+
+/// The capsules whose head joint has this name.
+std::vector<BoneCapsule> bones_named(const CapsuleRig& rig, const Skeleton& skeleton, const std::string& name) {
+  std::vector<BoneCapsule> out;
+  for (const BoneCapsule& bone : rig.bones)
+    if (skeleton.joints[bone.joint].name == name) out.push_back(bone);
+  return out;
+}
+
+const CapsuleCollider& capsule_of(const Collider& collider) { return std::get<CapsuleCollider>(collider.shape); }
+
+TEST(CapsuleRig, DefaultRadiiByCmuName) {
+  const Skeleton skeleton = cmu_like();
+  const CapsuleRig rig = make_capsule_rig(skeleton);
+  struct Expected {
+    const char* name;
+    const char* child;
+    double head, tail;
+  };
+  // The defaults of a 1.65 m figure (this one is exactly 1.65 m: scale 1).
+  for (const Expected& e : {Expected{"LeftUpLeg", "LeftLeg", 0.075, 0.050}, Expected{"RightUpLeg", "RightLeg", 0.075, 0.050},
+                            Expected{"LeftLeg", "LeftFoot", 0.050, 0.035}, Expected{"LeftFoot", "LeftToeBase", 0.040, 0.030},
+                            Expected{"LowerBack", "Spine", 0.095, 0.080}, Expected{"Spine", "Spine1", 0.095, 0.120},
+                            Expected{"Neck", "Neck1", 0.090, 0.055}, Expected{"Neck1", "Head", 0.050, 0.050},
+                            Expected{"Head", "Head_end", 0.085, 0.065}, Expected{"LeftArm", "LeftForeArm", 0.045, 0.035},
+                            Expected{"RightForeArm", "RightHand", 0.035, 0.030},
+                            Expected{"LHipJoint", "LeftUpLeg", 0.090, 0.075}}) {
+    const auto bones = bones_named(rig, skeleton, e.name);
+    ASSERT_EQ(bones.size(), 1u) << e.name;
+    EXPECT_EQ(skeleton.joints[bones[0].child].name, e.child) << e.name;
+    EXPECT_NEAR(bones[0].radius_head, e.head, 1e-12) << e.name;
+    EXPECT_NEAR(bones[0].radius_tail, e.tail, 1e-12) << e.name;
+  }
+  // Hands, fingers and toes get none.
+  for (const char* none : {"LeftHand", "RightHand", "LeftFingerBase", "LeftHandIndex1", "LThumb", "RThumb",
+                           "LeftToeBase", "RightToeBase"})
+    EXPECT_TRUE(bones_named(rig, skeleton, none).empty()) << none;
+  EXPECT_DOUBLE_EQ(rig.thickness, CapsuleRigOptions{}.thickness);
+  EXPECT_DOUBLE_EQ(rig.friction, CapsuleRigOptions{}.friction);
+  EXPECT_NO_THROW(validate_colliders(posed_capsules(rig, rest_pose(skeleton))));
+}
+
+TEST(CapsuleRig, RadiiScaleWithTheSkeletonsHeight) {
+  const Skeleton small = cmu_like(1.0), big = cmu_like(2.0), cmu_units = cmu_like(1.0 / 0.056444);
+  const CapsuleRig a = make_capsule_rig(small), b = make_capsule_rig(big), c = make_capsule_rig(cmu_units);
+  ASSERT_EQ(a.bones.size(), b.bones.size());
+  ASSERT_EQ(a.bones.size(), c.bones.size());
+  for (std::size_t i = 0; i < a.bones.size(); ++i) {
+    EXPECT_EQ(a.bones[i].joint, b.bones[i].joint);
+    EXPECT_EQ(a.bones[i].child, b.bones[i].child);
+    EXPECT_NEAR(b.bones[i].radius_head, 2.0 * a.bones[i].radius_head, 1e-12) << "capsule " << i;
+    EXPECT_NEAR(b.bones[i].radius_tail, 2.0 * a.bones[i].radius_tail, 1e-12) << "capsule " << i;
+    EXPECT_NEAR(c.bones[i].radius_head * 0.056444, a.bones[i].radius_head, 1e-12) << "capsule " << i;
+  }
+}
+
+TEST(CapsuleRig, ZeroLengthBonesAreSkippedOrBecomeSpheres) {
+  const Skeleton skeleton = cmu_like();
+  const CapsuleRig rig = make_capsule_rig(skeleton);
+  const Pose rest = rest_pose(skeleton);
+  for (const BoneCapsule& bone : rig.bones) {
+    const double length = (rest.position(bone.child) - rest.position(bone.joint)).norm();
+    if (length > 0.0) continue;
+    // Only a joint whose every bone is zero-length keeps one: a sphere.
+    for (const Joint& joint : skeleton.joints) {
+      if (joint.parent == bone.joint) {
+        EXPECT_EQ(joint.offset.norm(), 0.0) << skeleton.joints[bone.joint].name << " has a real bone, yet a sphere";
+      }
+    }
+    EXPECT_EQ(bone.radius_head, bone.radius_tail) << skeleton.joints[bone.joint].name;
+  }
+  // CMU's Hips and Spine1 have only zero-length bones: pelvis and chest spheres.
+  const auto hips = bones_named(rig, skeleton, "Hips");
+  ASSERT_EQ(hips.size(), 1u);
+  EXPECT_NEAR(hips[0].radius_head, 0.090, 1e-12);
+  const auto chest = bones_named(rig, skeleton, "Spine1");
+  ASSERT_EQ(chest.size(), 1u);
+  EXPECT_NEAR(chest[0].radius_head, 0.120, 1e-12);
+  // The pelvis is covered from hip joint to hip joint: the LHipJoint and
+  // RHipJoint capsules meet at the Hips.
+  const Vector3d left = rest.position(skeleton.find("LeftUpLeg")), right = rest.position(skeleton.find("RightUpLeg"));
+  CapsuleBody body(rig, skeleton);
+  for (int i = 0; i <= 10; ++i) {
+    const Vector3d p = left + (right - left) * (i / 10.0);
+    EXPECT_GT(body.penetration(p), 0.02) << "the pelvis is not covered at " << p.transpose();
+  }
+  // Colliders stay valid (no NaN from a zero-length axis).
+  const auto colliders = posed_capsules(rig, rest);
+  EXPECT_NO_THROW(validate_colliders(colliders));
+  for (const Collider& c : colliders) EXPECT_TRUE(std::isfinite(query_surface(c, Vector3d(0.3, 1.0, 0.2)).distance));
+}
+
+TEST(CapsuleRig, UnknownNamesGetRadiiProportionalToLength) {
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  const int mid = b.add("mid", root, Vector3d(0, 0.4, 0));
+  const int tip = b.add("tip", mid, Vector3d(0, 1.25, 0));
+  b.add("tip_end", tip, Vector3d(0, 0.01, 0), true);
+  // Height 1.66 m: scale 1.66 / 1.65 for the clamps.
+  const CapsuleRig rig = make_capsule_rig(b.skeleton);
+  ASSERT_EQ(rig.bones.size(), 3u);
+  const double scale = 1.66 / 1.65;
+  EXPECT_NEAR(rig.bones[0].radius_head, 0.15 * 0.4, 1e-12);
+  EXPECT_NEAR(rig.bones[0].radius_tail, 0.15 * 0.4, 1e-12);
+  EXPECT_NEAR(rig.bones[1].radius_head, 0.15 * scale, 1e-12) << "clamped to 0.15 m at 1.65 m";
+  EXPECT_NEAR(rig.bones[2].radius_head, 0.01 * scale, 1e-12) << "clamped to 0.01 m at 1.65 m";
+}
+
+TEST(CapsuleRig, OverridesReplaceAddAndRemoveCapsules) {
+  const Skeleton skeleton = cmu_like();
+  CapsuleRigOptions options;
+  options.thickness = 0.01;
+  options.friction = 0.5;
+  options.radii["LeftUpLeg"] = {0.1, 0.06};
+  options.radii["LeftHand"] = {0.03, 0.02};  // none by default: now one per real bone
+  options.radii["RightUpLeg"] = {0.0, 0.0};  // removed
+  const CapsuleRig rig = make_capsule_rig(skeleton, options);
+  EXPECT_DOUBLE_EQ(rig.thickness, 0.01);
+  EXPECT_DOUBLE_EQ(rig.friction, 0.5);
+  const auto thigh = bones_named(rig, skeleton, "LeftUpLeg");
+  ASSERT_EQ(thigh.size(), 1u);
+  EXPECT_DOUBLE_EQ(thigh[0].radius_head, 0.1);
+  EXPECT_DOUBLE_EQ(thigh[0].radius_tail, 0.06);
+  const auto hand = bones_named(rig, skeleton, "LeftHand");
+  ASSERT_EQ(hand.size(), 1u) << "LeftHand -> LeftFingerBase and -> LThumb are zero-length: one sphere";
+  EXPECT_DOUBLE_EQ(hand[0].radius_head, 0.03);
+  EXPECT_TRUE(bones_named(rig, skeleton, "RightUpLeg").empty());
+
+  CapsuleRigOptions typo;
+  typo.radii["LeftUpperLeg"] = {0.1, 0.1};
+  EXPECT_THROW(make_capsule_rig(skeleton, typo), ArgumentError);
+  CapsuleRigOptions negative;
+  negative.radii["Head"] = {-0.1, 0.1};
+  EXPECT_THROW(make_capsule_rig(skeleton, negative), ArgumentError);
+  CapsuleRigOptions thickness;
+  thickness.thickness = -0.001;
+  EXPECT_THROW(make_capsule_rig(skeleton, thickness), ArgumentError);
+}
+
+/// A motion of the CMU-like skeleton with random joint angles.
+Motion random_motion(const Skeleton& skeleton, int frames, unsigned seed) {
+  Motion motion;
+  motion.skeleton = skeleton;
+  motion.frames = Eigen::MatrixXd::Zero(frames, skeleton.channel_count());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> angle(-60.0, 60.0), shift(-0.5, 0.5);
+  for (int f = 0; f < frames; ++f) {
+    for (Eigen::Index c = 0; c < motion.frames.cols(); ++c) motion.frames(f, c) = angle(rng);
+    motion.frames(f, 0) = shift(rng);
+    motion.frames(f, 1) = 0.94 + shift(rng);
+    motion.frames(f, 2) = shift(rng);
+  }
+  return motion;
+}
+
+TEST(CapsuleRig, PosedCapsulesFollowForwardKinematics) {
+  const Skeleton skeleton = cmu_like();
+  const CapsuleRig rig = make_capsule_rig(skeleton);
+  const Motion motion = random_motion(skeleton, 5, 7);
+  CapsuleBody body(rig, skeleton);
+  for (int f = 0; f < 5; ++f) {
+    const Pose pose = frame_pose(motion, f);
+    const auto colliders = posed_capsules(rig, pose);
+    ASSERT_EQ(colliders.size(), rig.bones.size());
+    body.pose(pose);
+    ASSERT_EQ(body.colliders().size(), rig.bones.size());
+    for (std::size_t i = 0; i < rig.bones.size(); ++i) {
+      const BoneCapsule& bone = rig.bones[i];
+      const CapsuleCollider& c = capsule_of(colliders[i]);
+      EXPECT_LT((c.a - pose.position(bone.joint)).norm(), 1e-12) << "frame " << f << " capsule " << i;
+      EXPECT_LT((c.b - pose.position(bone.child)).norm(), 1e-12) << "frame " << f << " capsule " << i;
+      EXPECT_EQ(c.radius_a, bone.radius_head);
+      EXPECT_EQ(c.radius_b, bone.radius_tail);
+      EXPECT_EQ(colliders[i].thickness, rig.thickness);
+      EXPECT_EQ(colliders[i].friction, rig.friction);
+      const CapsuleCollider& d = capsule_of(body.colliders()[i]);
+      EXPECT_EQ(d.a, c.a);
+      EXPECT_EQ(d.b, c.b);
+    }
+    // Bones keep their rest lengths under any rotation.
+    const Pose rest = rest_pose(skeleton);
+    for (const BoneCapsule& bone : rig.bones)
+      EXPECT_NEAR((pose.position(bone.child) - pose.position(bone.joint)).norm(),
+                  (rest.position(bone.child) - rest.position(bone.joint)).norm(), 1e-12);
+  }
+  EXPECT_THROW(body.pose(Pose{}), ArgumentError) << "a pose of another skeleton";
+}
+
+TEST(CapsuleBody, PenetrationIsTheDeepestExactCapsuleQuery) {
+  const Skeleton skeleton = cmu_like();
+  CapsuleRigOptions options;
+  options.thickness = 0.006;
+  const CapsuleRig rig = make_capsule_rig(skeleton, options);
+  const Motion motion = random_motion(skeleton, 3, 11);
+  CapsuleBody body(rig, skeleton);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int inside = 0, unsettled = 0;
+  for (int f = 0; f < 3; ++f) {
+    const Pose pose = frame_pose(motion, f);
+    body.pose(pose);
+    // The oracle builds each capsule from the joint positions itself and
+    // asks the exact cone-sphere query; the body must agree everywhere.
+    for (int k = 0; k < 2000; ++k) {
+      const Vector3d centre = pose.position(0);
+      const Vector3d p = centre + Vector3d(0.5 * unit(rng), 0.9 * unit(rng), 0.5 * unit(rng));
+      double deepest = 0.0;
+      for (const BoneCapsule& bone : rig.bones) {
+        Collider c{CapsuleCollider{pose.position(bone.joint), pose.position(bone.child), bone.radius_head, bone.radius_tail},
+                   0.006, rig.friction};
+        deepest = std::max(deepest, 0.006 - query_surface(c, p).distance);
+      }
+      inside += deepest > 0.006;
+      ASSERT_NEAR(body.penetration(p), deepest, 1e-12) << "frame " << f << " point " << p.transpose();
+      // resolve() pushes the point out (settling between overlapping
+      // capsules within its sweep limit) and never deeper.
+      Vector3d q = p;
+      body.resolve(p, q);
+      const double after = body.penetration(q);
+      EXPECT_LE(after, deepest + 1e-12);
+      unsettled += after > 1e-3;
+    }
+  }
+  EXPECT_GT(inside, 100) << "the samples must probe the inside too";
+  EXPECT_LT(unsettled, 60) << "of 6000 points, resolve() left this many more than 1 mm inside";
+}
+
+TEST(CapsuleBody, HandComputedDistancesOfOneTaperedCapsule) {
+  // One bone from (0, 0, 0) to (0, 1, 0) with radii 0.1 -> 0.05 (overridden).
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  b.add("root_end", root, Vector3d(0, 1, 0), true);
+  CapsuleRigOptions options;
+  options.thickness = 0.0;
+  options.radii["root"] = {0.1, 0.05};
+  CapsuleBody body(make_capsule_rig(b.skeleton, options), b.skeleton);
+  ASSERT_EQ(body.colliders().size(), 1u);
+  // Beyond the ends the surface is the end spheres.
+  EXPECT_NEAR(body.penetration(Vector3d(0, -0.05, 0)), 0.05, 1e-12);
+  EXPECT_NEAR(body.penetration(Vector3d(0, 1.02, 0)), 0.03, 1e-12);
+  EXPECT_NEAR(body.penetration(Vector3d(0.06, -0.06, 0)), 0.1 - std::hypot(0.06, 0.06), 1e-12);
+  // Along the side the surface is the cone tangent to both spheres: with
+  // s = (ra - rb) / L = 0.05 and c = sqrt(1 - s^2), a point at height t and
+  // distance h from the axis is s t + c h - ra from it. The axis point at
+  // mid-height is 0.1 - 0.025 = 0.075 deep, not 0.075 / c: the cone's
+  // normal tilts towards the thin end.
+  const double s = 0.05, c = std::sqrt(1.0 - s * s);
+  EXPECT_NEAR(body.penetration(Vector3d(0, 0.5, 0)), 0.1 - s * 0.5, 1e-12);
+  EXPECT_NEAR(body.penetration(Vector3d(0.03, 0.5, -0.04)), 0.1 - s * 0.5 - c * 0.05, 1e-12);
+  EXPECT_EQ(body.penetration(Vector3d(0.3, 0.5, 0)), 0.0);
+  EXPECT_NEAR(query_surface(body.colliders()[0], Vector3d(0.3, 0.5, 0)).distance, s * 0.5 + c * 0.3 - 0.1, 1e-12);
+  // The thickness adds a layer: a point 3 mm outside is 1 mm too close at 4 mm.
+  options.thickness = 0.004;
+  CapsuleBody thick(make_capsule_rig(b.skeleton, options), b.skeleton);
+  EXPECT_NEAR(thick.penetration(Vector3d(0, -0.103, 0)), 0.001, 1e-12);
+  const Vector3d previous(0, -0.103, 0);
+  Vector3d p = previous;
+  EXPECT_NEAR(thick.resolve(previous, p), 0.001, 1e-12);
+  EXPECT_NEAR(p.y(), -0.104, 1e-12);
+  EXPECT_FALSE(thick.empty());
+}
+
+/// A cylinder of `radius` around the segment from a to b: rings of points
+/// (the side of a body mesh), all weighted to `joint`.
+void add_cylinder(Eigen::MatrixX3d& vertices, std::vector<std::vector<std::pair<int, double>>>& weights,
+                  const Vector3d& a, const Vector3d& b, double radius, int joint) {
+  const Vector3d axis = (b - a).normalized();
+  const Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  const int rings = 21, around = 24;
+  const Eigen::Index first = vertices.rows();
+  vertices.conservativeResize(first + rings * around, 3);
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < around; ++k) {
+      const double angle = 2.0 * kPi * (k + 0.5 * (r % 2)) / around;
+      const Vector3d p = a + (b - a) * (r / (rings - 1.0)) + radius * (std::cos(angle) * e1 + std::sin(angle) * e2);
+      vertices.row(first + r * around + k) = p.transpose();
+      weights.push_back({{joint, 0.8}, {0, 0.2}});
+    }
+}
+
+TEST(CapsuleRig, FitRecoversACylindersRadius) {
+  // Root, a tilted bone from "upper" to "lower", and an End Site.
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  const int upper = b.add("upper", root, Vector3d(0.1, 1.0, 0.0));
+  const int lower = b.add("lower", upper, Vector3d(0.05, -0.4, 0.1));
+  b.add("lower_end", lower, Vector3d(0.0, -0.3, 0.0), true);
+  CapsuleRig rig = make_capsule_rig(b.skeleton);
+  const Pose rest = rest_pose(b.skeleton);
+
+  Eigen::MatrixX3d vertices(0, 3);
+  std::vector<std::vector<std::pair<int, double>>> weights;
+  add_cylinder(vertices, weights, rest.position(upper), rest.position(lower), 0.07, upper);
+  add_cylinder(vertices, weights, rest.position(lower), rest.position(lower + 1), 0.045, lower);
+  // A few outliers (5 %, three times as far) must not move a 90th percentile.
+  const Eigen::Index clean = vertices.rows();
+  for (Eigen::Index v = 0; v < clean; v += 20) {
+    const Vector3d p = vertices.row(v).transpose();
+    const int joint = weights[v][0].first;
+    const Vector3d a = rest.position(joint);
+    const Vector3d axis = (rest.position(joint + 1) - a).normalized();
+    const Vector3d radial = (p - a) - (p - a).dot(axis) * axis;
+    vertices.conservativeResize(vertices.rows() + 1, 3);
+    vertices.row(vertices.rows() - 1) = (p + 2.0 * radial).transpose();
+    weights.push_back(weights[v]);
+  }
+  // Vertices dominated by a joint without capsules are ignored.
+  vertices.conservativeResize(vertices.rows() + 1, 3);
+  vertices.row(vertices.rows() - 1) = Eigen::RowVector3d(5, 5, 5);
+  weights.push_back({{root, 0.1}, {upper, 0.05}, {lower + 1, 0.85}});
+
+  fit_capsule_radii(rig, b.skeleton, vertices, weights);
+  bool saw_upper = false, saw_lower = false;
+  for (const BoneCapsule& bone : rig.bones) {
+    if (bone.joint == upper) {
+      saw_upper = true;
+      EXPECT_NEAR(bone.radius_head, 0.07, 0.0007);
+      EXPECT_NEAR(bone.radius_tail, 0.07, 0.0007);
+    } else if (bone.joint == lower) {
+      saw_lower = true;
+      EXPECT_NEAR(bone.radius_head, 0.045, 0.00045);
+      EXPECT_NEAR(bone.radius_tail, 0.045, 0.00045);
+    }
+  }
+  EXPECT_TRUE(saw_upper && saw_lower);
+
+  weights.pop_back();
+  EXPECT_THROW(fit_capsule_radii(rig, b.skeleton, vertices, weights), ArgumentError) << "one weight list per vertex";
+}
+
+TEST(CapsuleRig, FitKeepsRadiiWithoutVertices) {
+  const Skeleton skeleton = cmu_like();
+  CapsuleRig rig = make_capsule_rig(skeleton);
+  const CapsuleRig before = rig;
+  fit_capsule_radii(rig, skeleton, Eigen::MatrixX3d(0, 3), {});
+  for (std::size_t i = 0; i < rig.bones.size(); ++i) {
+    EXPECT_EQ(rig.bones[i].radius_head, before.bones[i].radius_head);
+    EXPECT_EQ(rig.bones[i].radius_tail, before.bones[i].radius_tail);
+  }
+}
+
+TEST(CapsuleRig, CmuWalkSkeleton) {
+  const std::string path = std::string(MRCLOTH_SHARED_DATA) + "/motions/cmu_mb/07_06.bvh";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  BvhReadOptions read;
+  read.scale = 0.056444;
+  read.skip_first_frame = true;
+  const Motion motion = read_bvh(path, read);
+  const CapsuleRig rig = make_capsule_rig(motion.skeleton);
+  for (const char* name : {"LeftUpLeg", "RightUpLeg", "LeftLeg", "RightLeg", "LeftFoot", "LowerBack", "Spine",
+                           "Spine1", "Neck", "Head", "LeftArm", "RightForeArm", "LHipJoint", "RHipJoint"})
+    EXPECT_FALSE(bones_named(rig, motion.skeleton, name).empty()) << name;
+  for (const char* name : {"LeftHand", "LeftToeBase", "LThumb"})
+    EXPECT_TRUE(bones_named(rig, motion.skeleton, name).empty()) << name;
+  CapsuleBody body(rig, motion.skeleton);
+  for (int f = 0; f < motion.frames.rows(); f += 50) {
+    body.pose(frame_pose(motion, f));
+    EXPECT_NO_THROW(validate_colliders(body.colliders())) << "frame " << f;
+    // The hips are inside the body, a point a metre in front is not.
+    const Vector3d hips = frame_pose(motion, f).position(0);
+    EXPECT_GT(body.penetration(hips), 0.0);
+    EXPECT_EQ(body.penetration(hips + Vector3d(0, 0, 1)), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace mrcloth
