@@ -33,11 +33,28 @@ SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, d
 
 void SkinnedPosedBody::set_pose(const Pose& pose) { mesh_->update(skin(body_, skeleton_, pose)); }
 
-Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
-  if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
+Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = rest_pose(motion.skeleton);
   const Pose first = pose_at(motion, options.motion_start);
-  return blend_poses(motion.skeleton, rest, first, smoothstep(time / options.preroll_seconds));
+  Pose pose = rest;
+  // Every root of the skeleton moves with its own first-frame position.
+  for (std::size_t j = 0; j < motion.skeleton.joints.size(); ++j) {
+    int root = static_cast<int>(j);
+    while (motion.skeleton.joints[root].parent >= 0) root = motion.skeleton.joints[root].parent;
+    pose.global[j].pretranslate(first.position(root) - rest.position(root));
+  }
+  return pose;
+}
+
+Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& options,
+                              const Eigen::Vector3d& authored_root) {
+  return reference_pose(motion, options).position(0) - authored_root;
+}
+
+Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
+  if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
+  const Pose first = pose_at(motion, options.motion_start);
+  return blend_poses(motion.skeleton, reference_pose(motion, options), first, smoothstep(time / options.preroll_seconds));
 }
 
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
@@ -45,7 +62,7 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
                                          const SimulationProgress& progress, std::vector<Positions>* frames_out) {
   check(options, motion);
   const int pelvis = motion.skeleton.find(options.pelvis_joint);
-  const Eigen::Isometry3d pelvis_rest_inverse = rest_pose(motion.skeleton).global[pelvis].inverse();
+  const Eigen::Isometry3d pelvis_rest_inverse = reference_pose(motion, options).global[pelvis].inverse();
   const Positions rest_pinned = pinned_rows(model, model.rest);
 
   // Poses are needed by both the pins and the body at the same times; cache

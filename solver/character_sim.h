@@ -61,14 +61,27 @@ struct CharacterRunReport {
   double max_waist_error = 0.0;      ///< largest distance of a pinned vertex from its target at an output frame, metres
 };
 
+/// The reference pose: the skeleton's rest pose (for CMU, the T-pose) moved
+/// so its root stands where the clip's root is at motion_start. Garments are
+/// simulated from their rest shape in this pose, and the pinned waist keeps
+/// its place relative to the pelvis as posed here.
+Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
+
+/// Where a garment authored around a body whose root was at `authored_root`
+/// (in the skeleton's space: the rest root for garments modelled on a body
+/// bound to the rest pose, the first frame's root for garments modelled on a
+/// T-pose first frame) must be translated to sit on the reference pose.
+Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& options,
+                              const Eigen::Vector3d& authored_root);
+
 /// The pose of the character at simulation time `time`: during the pre-roll
-/// a smooth blend from the rest pose to the clip's pose at motion_start, then
-/// the clip from motion_start.
+/// a smooth blend from the reference pose to the clip's pose at
+/// motion_start, then the clip from motion_start.
 Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options);
 
-/// Runs the pre-roll and the motion. The model's pinned vertices follow the
-/// pelvis joint rigidly from their rest positions (the garment is modelled on
-/// the body in its rest pose). `state` starts at rest and is advanced.
+/// Runs the pre-roll and the motion. The model's rest shape must sit on the
+/// reference pose (see garment_shift); its pinned vertices follow the pelvis
+/// joint rigidly from there. `state` starts at rest and is advanced.
 /// The cache (options.simulation.cache_path) holds the motion frames only.
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
                                          PosedBody& body, const CharacterRunOptions& options,
