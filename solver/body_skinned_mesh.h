@@ -18,6 +18,15 @@ struct SkinnedBody {
   Eigen::MatrixX3d rest_vertices;                       ///< #V x 3, metres, in the skeleton's rest (T-pose) space
   std::vector<Eigen::Vector3i> triangles;               ///< the body's quads split into triangles
   std::vector<std::vector<std::pair<int, double>>> weights;  ///< per vertex (skeleton joint, weight), weights sum to 1
+  /// Per skeleton joint, the point its bone turns about in rest space
+  /// (metres): the body keeps its own proportions, so these are the mesh's
+  /// joints after the rest correction, not the skeleton's. Empty: skin()
+  /// uses the skeleton's rest joint positions.
+  std::vector<Eigen::Vector3d> joint_rest;
+  /// base.obj coordinates x 0.1 + obj_offset = the input (A-pose) mesh in
+  /// the skeleton's rest space, before the rest correction; garments
+  /// modelled on base.obj map the same way. Metres.
+  Eigen::Vector3d obj_offset{0, 0, 0};
 };
 
 struct MakeHumanOptions {
@@ -28,26 +37,36 @@ struct MakeHumanOptions {
 
 /// Loads the MakeHuman body and binds it to `skeleton` (a CMU skeleton in
 /// metres, rest pose = T-pose): a CMU bone's weight is the sum of its
-/// mhskel `reference` bones' weights; every bone gets a rest correction
-/// rotation taking its mesh (A-pose) direction to the skeleton's rest
-/// direction, applied once, so the bound rest mesh is in T-pose. Names the
-/// file and the problem on failure (InputError).
+/// mhskel `weights_reference` bones' weights (`reference` when it has none);
+/// default bones no CMU bone lists go to the CMU bone whose weights overlap
+/// theirs most. The mesh is translated so its hip joints' midpoint meets the
+/// skeleton's, and every bone with a direction in the skeleton gets a rest
+/// correction rotation taking its mesh (A-pose) direction to the skeleton's
+/// rest direction, applied once, so the bound rest mesh is in T-pose with
+/// the mesh's own bone lengths. Names the file and the problem on failure
+/// (InputError).
 SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton);
 
-/// Linear-blend skinning: vertices of the body in `pose` (#V x 3). In the
-/// skeleton's rest pose this reproduces rest_vertices to round-off.
+/// Linear-blend skinning: vertices of the body in `pose` (#V x 3). Each
+/// bone takes the rotation of its skeleton joint relative to the rest pose,
+/// about its joint_rest point carried along the body's own bone chain from
+/// the skeleton's root. In the skeleton's rest pose this reproduces
+/// rest_vertices to round-off.
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose);
 
 /// Collision with a moving triangle mesh: a bounding-volume hierarchy built
 /// once over the triangles and refit when the vertices move; closest point
 /// and inside/outside (angle-weighted pseudo-normals, the mesh must be
-/// closed) for points within `thickness` plus a margin of the surface.
+/// closed) for points within `thickness` plus a margin of the surface, and
+/// for points deeper inside. resolve() is resolve_point's response, with
+/// friction acting on the motion relative to the surface (the surface's
+/// displacement between the last two update() calls).
 class MeshBody : public CollisionScene {
  public:
   MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i> triangles, double thickness = 0.004,
            double friction = 0.3);
   ~MeshBody() override;
-  /// New vertex positions (same count), then refit.
+  /// New vertex positions (same count), then refit; call once per step.
   void update(const Eigen::MatrixX3d& vertices);
   double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override;
   double penetration(const Eigen::Vector3d& p) const override;

@@ -1,1 +1,5 @@
-# body_tests
+# body_tests: the skinned MakeHuman body (loading, binding, skinning), its
+# collision scene (BVH closest point, pseudo-normal sign, resolve, friction)
+# and the JSON reader it loads with.
+mrcloth_add_gtest(body_test ${CMAKE_CURRENT_LIST_DIR}/skinned_body_test.cpp ${CMAKE_CURRENT_LIST_DIR}/json_lite_test.cpp LIBS mrcloth::solver)
+mrcloth_add_gtest(capsule_rig_test ${CMAKE_CURRENT_LIST_DIR}/capsule_rig_test.cpp LIBS mrcloth::solver)

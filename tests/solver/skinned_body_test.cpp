@@ -1,0 +1,681 @@
+// The skinned MakeHuman body (loading, rest correction, skinning) on the real
+// data, and MeshBody (BVH closest point, pseudo-normal sign, resolve,
+// friction) against brute force on meshes built here and on the body.
+#include "solver/body_skinned_mesh.h"
+
+#include "mesh_ops/errors.h"
+#include "solver/colliders.h"
+#include "test_meshes.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+namespace {
+
+namespace fs = std::filesystem;
+using Eigen::Vector3d;
+using Eigen::Vector3i;
+
+constexpr double kCmuScale = 0.056444;
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- independent brute force -----------------------------------------------
+
+double segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
+  const Vector3d ab = b - a;
+  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+/// Distance to a triangle, written differently from the library's Voronoi
+/// region walk: the plane distance when the projection falls inside (by the
+/// signs of three edge tests), else the nearest of the three edges.
+double triangle_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d n = (b - a).cross(c - a);
+  if (n.squaredNorm() > 0) {
+    const Vector3d unit = n.normalized();
+    const Vector3d q = p - unit * unit.dot(p - a);
+    const bool inside = (b - a).cross(q - a).dot(n) >= 0 && (c - b).cross(q - b).dot(n) >= 0 && (a - c).cross(q - c).dot(n) >= 0;
+    if (inside) return std::abs(unit.dot(p - a));
+  }
+  return std::min({segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
+}
+
+struct Mesh {
+  Eigen::MatrixX3d vertices;
+  std::vector<Vector3i> triangles;
+  Vector3d vertex(int i) const { return vertices.row(i).transpose(); }
+};
+
+double brute_distance(const Mesh& mesh, const Vector3d& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vector3i& t : mesh.triangles) best = std::min(best, triangle_distance(p, mesh.vertex(t(0)), mesh.vertex(t(1)), mesh.vertex(t(2))));
+  return best;
+}
+
+/// Generalised winding number (sum of signed solid angles / 4 pi, Van
+/// Oosterom and Strackee): about 1 inside a closed outward mesh, 0 outside.
+double winding_number(const Mesh& mesh, const Vector3d& p) {
+  double total = 0.0;
+  for (const Vector3i& t : mesh.triangles) {
+    const Vector3d a = mesh.vertex(t(0)) - p, b = mesh.vertex(t(1)) - p, c = mesh.vertex(t(2)) - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    total += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+  }
+  return total / (4.0 * kPi);
+}
+
+// ---- meshes ------------------------------------------------------------------
+
+/// An icosahedron subdivided `levels` times, projected on the unit sphere.
+Mesh icosphere(int levels) {
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                             {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (Vector3d& p : v) p.normalize();
+  std::vector<Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                             {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> midpoint;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto found = midpoint.find(key);
+      if (found != midpoint.end()) return found->second;
+      v.push_back((v[static_cast<std::size_t>(a)] + v[static_cast<std::size_t>(b)]).normalized());
+      return midpoint[key] = static_cast<int>(v.size()) - 1;
+    };
+    std::vector<Vector3i> next;
+    for (const Vector3i& t : f) {
+      const int ab = mid(t(0), t(1)), bc = mid(t(1), t(2)), ca = mid(t(2), t(0));
+      next.emplace_back(t(0), ab, ca);
+      next.emplace_back(t(1), bc, ab);
+      next.emplace_back(t(2), ca, bc);
+      next.emplace_back(ab, bc, ca);
+    }
+    f = next;
+  }
+  Mesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  mesh.triangles = f;
+  return mesh;
+}
+
+/// The cube [-1, 1]^3 with n x n quads per face, each split in two: sharp
+/// edges and corners, where edge and vertex pseudo-normals decide the sign.
+Mesh subdivided_cube(int n) {
+  std::map<std::array<int, 3>, int> index;
+  std::vector<Vector3d> v;
+  auto vertex = [&](std::array<int, 3> lattice) {
+    const auto found = index.find(lattice);
+    if (found != index.end()) return found->second;
+    v.emplace_back(2.0 * lattice[0] / n - 1.0, 2.0 * lattice[1] / n - 1.0, 2.0 * lattice[2] / n - 1.0);
+    return index[lattice] = static_cast<int>(v.size()) - 1;
+  };
+  std::vector<Vector3i> f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // (u, w, axis) is right-handed
+    for (int side = 0; side < 2; ++side) {
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> l{};
+            l[static_cast<std::size_t>(axis)] = side * n;
+            l[static_cast<std::size_t>(u)] = i + di;
+            l[static_cast<std::size_t>(w)] = j + dj;
+            return vertex(l);
+          };
+          const int a = at(0, 0), b = at(1, 0), c = at(1, 1), d = at(0, 1);
+          // Counter-clockwise seen from outside: +axis side uses (u, w) order.
+          if (side == 1) {
+            f.emplace_back(a, b, c);
+            f.emplace_back(a, c, d);
+          } else {
+            f.emplace_back(a, c, b);
+            f.emplace_back(a, d, c);
+          }
+        }
+      }
+    }
+  }
+  Mesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  mesh.triangles = f;
+  return mesh;
+}
+
+Vector3d random_in_box(std::mt19937& rng, const Vector3d& lo, const Vector3d& hi) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  return lo + Vector3d(unit(rng), unit(rng), unit(rng)).cwiseProduct(hi - lo);
+}
+
+Vector3d random_unit(std::mt19937& rng) {
+  std::normal_distribution<double> gauss;
+  for (;;) {
+    const Vector3d v(gauss(rng), gauss(rng), gauss(rng));
+    if (v.norm() > 1e-3) return v.normalized();
+  }
+}
+
+/// Points near and inside a mesh: uniform in its padded box, plus surface
+/// points (triangle samples, vertices, edge midpoints) pushed along random
+/// directions by up to `spread`.
+std::vector<Vector3d> sample_points(const Mesh& mesh, std::mt19937& rng, int count, double spread) {
+  const Vector3d lo = mesh.vertices.colwise().minCoeff().transpose(), hi = mesh.vertices.colwise().maxCoeff().transpose();
+  const Vector3d pad = Vector3d::Constant(spread);
+  std::vector<Vector3d> points;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(mesh.triangles.size()) - 1);
+  for (int i = 0; i < count; ++i) {
+    if (i % 4 == 0) {
+      points.push_back(random_in_box(rng, lo - pad, hi + pad));
+      continue;
+    }
+    const Vector3i& t = mesh.triangles[static_cast<std::size_t>(pick(rng))];
+    Vector3d s;
+    if (i % 4 == 1) {
+      double r1 = unit(rng), r2 = unit(rng);
+      if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
+      s = mesh.vertex(t(0)) + r1 * (mesh.vertex(t(1)) - mesh.vertex(t(0))) + r2 * (mesh.vertex(t(2)) - mesh.vertex(t(0)));
+    } else if (i % 4 == 2) {
+      s = mesh.vertex(t(i % 3));
+    } else {
+      s = 0.5 * (mesh.vertex(t(0)) + mesh.vertex(t(1)));
+    }
+    points.push_back(s + spread * unit(rng) * random_unit(rng));
+  }
+  return points;
+}
+
+/// query() against brute force: |d| to 1e-12 and the sign of the winding
+/// number (points within 1e-9 of the surface have no reliable sign).
+void expect_matches_brute_force(const MeshBody& body, const Mesh& mesh, const std::vector<Vector3d>& points,
+                                const std::string& label) {
+  int inside = 0, outside = 0;
+  for (const Vector3d& p : points) {
+    const SurfaceQuery q = body.query(p);
+    const double expected = brute_distance(mesh, p);
+    ASSERT_NEAR(std::abs(q.distance), expected, 1e-12) << label << " at (" << p.transpose() << ")";
+    if (expected < 1e-9) continue;
+    const bool is_inside = winding_number(mesh, p) > 0.5;
+    ASSERT_EQ(q.distance < 0, is_inside) << label << " at (" << p.transpose() << "), distance " << q.distance;
+    ASSERT_NEAR(q.normal.norm(), 1.0, 1e-12);
+    // The normal is the distance's gradient: one step along it gains the step.
+    (is_inside ? inside : outside)++;
+  }
+  EXPECT_GT(inside, static_cast<int>(points.size()) / 10) << label << ": too few points inside to mean anything";
+  EXPECT_GT(outside, static_cast<int>(points.size()) / 10) << label;
+}
+
+Eigen::MatrixX3d transformed(const Mesh& mesh, const Eigen::Matrix3d& a, const Vector3d& t) {
+  Eigen::MatrixX3d out(mesh.vertices.rows(), 3);
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) out.row(i) = (a * mesh.vertex(static_cast<int>(i)) + t).transpose();
+  return out;
+}
+
+// ---- MeshBody on meshes built here -------------------------------------------
+
+TEST(MeshBody, SignedDistanceMatchesBruteForceOnSphereAndCube) {
+  std::mt19937 rng(7);
+  for (const auto& [name, mesh] : {std::pair<std::string, Mesh>{"icosphere", icosphere(3)}, {"cube", subdivided_cube(5)}}) {
+    const MeshBody body(mesh.vertices, mesh.triangles, 0.01, 0.3);
+    // Far points (beyond any margin) and deep ones, not just near ones.
+    expect_matches_brute_force(body, mesh, sample_points(mesh, rng, 1200, 0.3), name);
+    expect_matches_brute_force(body, mesh, sample_points(mesh, rng, 400, 1.5), name + " far");
+  }
+}
+
+TEST(MeshBody, StaysExactAfterUpdate) {
+  std::mt19937 rng(11);
+  Mesh sphere = icosphere(3);
+  const MeshBody check(sphere.vertices, sphere.triangles);
+  MeshBody body(sphere.vertices, sphere.triangles, 0.01, 0.3);
+  // A wobbly, non-convex star shape: concave creases where edge and vertex
+  // pseudo-normals matter, and triangles far from where the tree was built.
+  Mesh wobbly = sphere;
+  for (Eigen::Index i = 0; i < wobbly.vertices.rows(); ++i) {
+    const Vector3d p = sphere.vertex(static_cast<int>(i));
+    const double r = 1.0 + 0.35 * std::sin(3.0 * p.x()) * std::sin(4.0 * p.y()) * std::cos(2.0 * p.z());
+    wobbly.vertices.row(i) = (r * p + Vector3d(0.4, -0.2, 2.0)).transpose();
+  }
+  body.update(wobbly.vertices);
+  expect_matches_brute_force(body, wobbly, sample_points(wobbly, rng, 1200, 0.3), "wobbly sphere");
+
+  Mesh cube = subdivided_cube(4);
+  MeshBody moving(cube.vertices, cube.triangles, 0.01, 0.3);
+  const Eigen::Matrix3d a = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix() *
+                            Vector3d(1.6, 0.7, 1.1).asDiagonal();
+  Mesh sheared = cube;
+  sheared.vertices = transformed(cube, a, Vector3d(-3, 1, 0.5));
+  moving.update(sheared.vertices);
+  expect_matches_brute_force(moving, sheared, sample_points(sheared, rng, 1200, 0.4), "moved cube");
+}
+
+TEST(MeshBody, ResolveLeavesNoPointWithinThickness) {
+  std::mt19937 rng(3);
+  const double thickness = 0.02;
+  for (const auto& [name, mesh] : {std::pair<std::string, Mesh>{"icosphere", icosphere(3)}, {"cube", subdivided_cube(5)}}) {
+    const MeshBody body(mesh.vertices, mesh.triangles, thickness, 0.3);
+    int pushed = 0;
+    for (const Vector3d& p : sample_points(mesh, rng, 1500, 0.5)) {
+      Vector3d position = p;
+      const double before = body.penetration(p);
+      const double correction = body.resolve(p + Vector3d(0.01, -0.02, 0.005), position);
+      EXPECT_GE(body.query(position).distance, thickness - 1e-12) << name << " from (" << p.transpose() << ")";
+      EXPECT_LE(body.penetration(position), 1e-12);
+      if (before == 0.0) {
+        EXPECT_EQ(correction, 0.0);
+        EXPECT_EQ(position, p) << "a clear point is left alone";
+      } else {
+        ++pushed;
+        EXPECT_NEAR(correction, before, 1e-12) << "the first push is the penetration depth (convex mesh)";
+      }
+    }
+    EXPECT_GT(pushed, 300) << name;
+  }
+}
+
+TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
+  const Mesh sphere = icosphere(3);
+  const MeshBody body(sphere.vertices, sphere.triangles, 0.01, 0.0);
+  // Outside, beyond thickness + margin, inside and outside the root box.
+  EXPECT_EQ(body.penetration(Vector3d(0.9, 0.9, 0.9)), 0.0);
+  EXPECT_EQ(body.penetration(Vector3d(5, 0, 0)), 0.0);
+  Vector3d outside(0.0, 3.0, 0.0);
+  EXPECT_EQ(body.resolve(outside, outside), 0.0);
+  // The centre is ~1 deep, far beyond any margin: still inside.
+  const double depth = body.query(Vector3d::Zero()).distance;
+  EXPECT_LT(depth, -0.9);
+  EXPECT_NEAR(body.penetration(Vector3d::Zero()), 0.01 - depth, 1e-15);
+  Vector3d centre(0.05, 0.02, -0.03);
+  const double correction = body.resolve(centre, centre);
+  EXPECT_GT(correction, 0.9);
+  EXPECT_NEAR(body.query(centre).distance, 0.01, 1e-12);
+}
+
+TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
+  // A point pushed out of the cube's top face (interior of a face: the
+  // surface is the plane y = 1 there) must move exactly as against a plane
+  // collider with the same thickness and friction.
+  const Mesh cube = subdivided_cube(4);
+  const double thickness = 0.004, mu = 0.5;
+  const MeshBody body(cube.vertices, cube.triangles, thickness, mu);
+  const std::vector<Collider> plane = {Collider{PlaneCollider{Vector3d(0, 1, 0), Vector3d(0, 1, 0)}, thickness, mu}};
+  const Vector3d previous(0.1, 1.01, 0.2);
+  for (const Vector3d& step : {Vector3d(0.001, -0.02, 0.0005), Vector3d(0.03, -0.02, -0.01), Vector3d(0.0, -0.05, 0.0),
+                               Vector3d(-0.2, -0.003, 0.1)}) {
+    Vector3d mesh_position = previous + step, plane_position = previous + step;
+    const double mesh_correction = body.resolve(previous, mesh_position);
+    const double plane_correction = resolve_point(plane, previous, plane_position);
+    EXPECT_NEAR(mesh_correction, plane_correction, 1e-12);
+    EXPECT_LT((mesh_position - plane_position).norm(), 1e-12) << "step (" << step.transpose() << ")";
+  }
+  // Static friction: a small slide is removed entirely; a large one is
+  // reduced by exactly mu times the push.
+  Vector3d sticks = previous + Vector3d(0.001, -0.02, 0.0);
+  body.resolve(previous, sticks);
+  EXPECT_NEAR(sticks.x(), previous.x(), 1e-12);
+  EXPECT_NEAR(sticks.y(), 1.0 + thickness, 1e-12);
+  Vector3d slides = previous + Vector3d(0.05, -0.02, 0.0);
+  const double push = body.resolve(previous, slides);
+  EXPECT_NEAR(slides.x(), previous.x() + 0.05 - mu * push, 1e-12);
+}
+
+TEST(MeshBody, FrictionCarriesPointsWithTheMovingSurface) {
+  // The cube slides along +x by 1 cm; a point resting in contact on its top
+  // face, not moving itself, is dragged along up to the friction limit.
+  const Mesh cube = subdivided_cube(4);
+  const double thickness = 0.004;
+  MeshBody body(cube.vertices, cube.triangles, thickness, 1.0);
+  Mesh moved = cube;
+  moved.vertices = transformed(cube, Eigen::Matrix3d::Identity(), Vector3d(0.01, 0.0, 0.0));
+  body.update(moved.vertices);
+  const Vector3d resting(0.2, 1.0 + thickness - 0.02, 0.1);  // 2 cm in: grip 2 cm >= 1 cm slide
+  Vector3d position = resting;
+  body.resolve(resting, position);
+  EXPECT_NEAR(position.x(), resting.x() + 0.01, 1e-12) << "static friction: moves with the surface";
+  EXPECT_NEAR(position.y(), 1.0 + thickness, 1e-12);
+  Vector3d light = Vector3d(0.2, 1.0 + thickness - 0.004, 0.1);  // grip 4 mm < 1 cm slide
+  Vector3d light_position = light;
+  body.resolve(light, light_position);
+  EXPECT_NEAR(light_position.x(), light.x() + 0.004, 1e-12) << "kinetic: dragged by mu times the push";
+}
+
+TEST(MeshBody, RefusesBadMeshesAndUpdates) {
+  const Mesh cube = subdivided_cube(2);
+  std::vector<Vector3i> open = cube.triangles;
+  open.pop_back();
+  EXPECT_THROW(MeshBody(cube.vertices, open), ArgumentError);
+  std::vector<Vector3i> inverted = cube.triangles;
+  for (Vector3i& t : inverted) std::swap(t(1), t(2));
+  EXPECT_THROW(MeshBody(cube.vertices, inverted), ArgumentError);
+  std::vector<Vector3i> out_of_range = cube.triangles;
+  out_of_range[0](0) = 1000;
+  EXPECT_THROW(MeshBody(cube.vertices, out_of_range), ArgumentError);
+  EXPECT_THROW(MeshBody(cube.vertices, cube.triangles, -0.1), ArgumentError);
+  MeshBody body(cube.vertices, cube.triangles);
+  EXPECT_THROW(body.update(cube.vertices.topRows(5)), ArgumentError);
+}
+
+// ---- the MakeHuman body ----------------------------------------------------------
+
+bool have_body() {
+  return fs::exists(test::shared_data("bodies/makehuman/base.obj")) &&
+         fs::exists(test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel")) &&
+         fs::exists(test::shared_data("bodies/makehuman/rigs/default_weights.mhw")) &&
+         fs::exists(test::shared_data("motions/cmu_mb/07_06.bvh"));
+}
+
+#define SKIP_WITHOUT_BODY()                                                                                 \
+  if (!have_body())                                                                                         \
+  GTEST_SKIP() << "shared data absent under " << test::shared_data("")                                     \
+               << " (set MRCLOTH_SHARED_DATA to the folder with bodies/makehuman and motions/cmu_mb)"
+
+/// The body's vertices as in base.obj (the first 13380 'v' lines), in metres
+/// and moved by the body's obj_offset: the input mesh, before correction.
+Eigen::MatrixX3d input_mesh(const SkinnedBody& body) {
+  std::ifstream in(test::shared_data("bodies/makehuman/base.obj"));
+  Eigen::MatrixX3d out(body.rest_vertices.rows(), 3);
+  std::string line;
+  Eigen::Index row = 0;
+  while (row < out.rows() && std::getline(in, line)) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream words(line.substr(2));
+    words.imbue(std::locale::classic());
+    Vector3d v;
+    words >> v.x() >> v.y() >> v.z();
+    out.row(row++) = (0.1 * v + body.obj_offset).transpose();
+  }
+  return out;
+}
+
+class SkinnedBodyTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (!have_body()) return;
+    motion_ = new Motion(read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, false}));
+    MakeHumanOptions files;
+    files.base_obj = test::shared_data("bodies/makehuman/base.obj");
+    files.skeleton_file = test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel");
+    files.weights_file = test::shared_data("bodies/makehuman/rigs/default_weights.mhw");
+    body_ = new SkinnedBody(load_makehuman_body(files, motion_->skeleton));
+  }
+  static void TearDownTestSuite() {
+    delete body_;
+    delete motion_;
+    body_ = nullptr;
+    motion_ = nullptr;
+  }
+  static const Skeleton& skeleton() { return motion_->skeleton; }
+  static int joint(const std::string& name) {
+    const int j = skeleton().find(name);
+    EXPECT_GE(j, 0) << name;
+    return j;
+  }
+  /// Body vertices whose largest weight is on `joint` and at least `at_least`.
+  static std::vector<Eigen::Index> dominated_by(int j, double at_least) {
+    std::vector<Eigen::Index> out;
+    for (std::size_t v = 0; v < body_->weights.size(); ++v)
+      for (const auto& [jj, w] : body_->weights[v])
+        if (jj == j && w >= at_least) out.push_back(static_cast<Eigen::Index>(v));
+    return out;
+  }
+  static Motion* motion_;
+  static SkinnedBody* body_;
+};
+Motion* SkinnedBodyTest::motion_ = nullptr;
+SkinnedBody* SkinnedBodyTest::body_ = nullptr;
+
+TEST_F(SkinnedBodyTest, LoadsTheBodyGroupWithNormalisedWeights) {
+  SKIP_WITHOUT_BODY();
+  const SkinnedBody& body = *body_;
+  ASSERT_EQ(body.rest_vertices.rows(), 13380) << "group body is vertices 0-13379";
+  ASSERT_EQ(body.triangles.size(), 26756u) << "13378 quads, two triangles each";
+  std::vector<int> used(13380, 0);
+  for (const Vector3i& t : body.triangles)
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_GE(t(k), 0);
+      ASSERT_LT(t(k), 13380);
+      used[static_cast<std::size_t>(t(k))] = 1;
+    }
+  EXPECT_EQ(std::count(used.begin(), used.end(), 1), 13380) << "every body vertex is used by a triangle";
+  EXPECT_TRUE(body.rest_vertices.allFinite());
+  ASSERT_EQ(body.weights.size(), 13380u);
+  ASSERT_EQ(body.joint_rest.size(), skeleton().joints.size());
+  int multi = 0;
+  for (std::size_t v = 0; v < body.weights.size(); ++v) {
+    double sum = 0.0;
+    ASSERT_FALSE(body.weights[v].empty()) << "vertex " << v;
+    for (const auto& [j, w] : body.weights[v]) {
+      ASSERT_GE(j, 0);
+      ASSERT_LT(j, static_cast<int>(skeleton().joints.size()));
+      ASSERT_FALSE(skeleton().joints[static_cast<std::size_t>(j)].end_site);
+      ASSERT_GT(w, 0.0);
+      sum += w;
+    }
+    ASSERT_NEAR(sum, 1.0, 1e-12) << "vertex " << v;
+    multi += body.weights[v].size() > 1;
+  }
+  EXPECT_GT(multi, 5000) << "weights blend across joints";
+  // Face and hands are carried by the head and hand bones, not left at the hips.
+  const int hips = joint("Hips");
+  int on_hips = 0;
+  for (const auto& list : body.weights) on_hips += list.size() == 1 && list[0].first == hips;
+  EXPECT_EQ(on_hips, 0) << "every vertex has weights of its own: none falls back to Hips alone";
+  EXPECT_GT(dominated_by(joint("Head"), 0.99).size(), 2000u) << "the face moves with the head";
+  EXPECT_GT(dominated_by(joint("LeftHandIndex1"), 0.5).size(), 100u) << "fingers are bound to the finger bone";
+}
+
+TEST_F(SkinnedBodyTest, RestPoseReproducesRestVertices) {
+  SKIP_WITHOUT_BODY();
+  const Eigen::MatrixX3d posed = skin(*body_, skeleton(), rest_pose(skeleton()));
+  ASSERT_EQ(posed.rows(), body_->rest_vertices.rows());
+  EXPECT_LE((posed - body_->rest_vertices).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST_F(SkinnedBodyTest, BonesAreTurnedRigidlyOntoTheSkeletonsRestDirections) {
+  SKIP_WITHOUT_BODY();
+  const Pose rest = rest_pose(skeleton());
+  // The body's bone chain runs along the skeleton's rest directions (with
+  // the mesh's own lengths).
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"LeftUpLeg", "LeftLeg"}, {"LeftLeg", "LeftFoot"}, {"RightUpLeg", "RightLeg"}, {"RightLeg", "RightFoot"},
+           {"LeftArm", "LeftForeArm"}, {"LeftForeArm", "LeftHand"}, {"RightArm", "RightForeArm"}, {"Spine", "Spine1"}}) {
+    const Vector3d body_bone = body_->joint_rest[static_cast<std::size_t>(joint(to))] - body_->joint_rest[static_cast<std::size_t>(joint(from))];
+    const Vector3d skeleton_bone = rest.position(joint(to)) - rest.position(joint(from));
+    EXPECT_LT(body_bone.normalized().cross(skeleton_bone.normalized()).norm(), 1e-9) << from << " -> " << to;
+    EXPECT_GT(body_bone.dot(skeleton_bone), 0.0) << from << " -> " << to;
+    EXPECT_NEAR(body_bone.norm(), skeleton_bone.norm(), 0.35 * skeleton_bone.norm()) << "similar proportions " << from;
+  }
+  // Vertices bound to one bone alone move rigidly: distances among them keep.
+  const Eigen::MatrixX3d input = input_mesh(*body_);
+  for (const std::string name : {"LeftLeg", "LeftForeArm", "Head"}) {
+    const std::vector<Eigen::Index> rigid = dominated_by(joint(name), 1.0 - 1e-12);
+    ASSERT_GT(rigid.size(), 10u) << name;
+    for (std::size_t i = 0; i + 1 < rigid.size(); i += 7) {
+      const Eigen::Index a = rigid[i], b = rigid[(i * 13 + 5) % rigid.size()];
+      EXPECT_NEAR((body_->rest_vertices.row(a) - body_->rest_vertices.row(b)).norm(), (input.row(a) - input.row(b)).norm(), 1e-12)
+          << name;
+    }
+  }
+}
+
+/// The rotation angle (degrees) that takes the input mesh's vertices rigidly
+/// bound to `name` to their rest position (from three of them).
+double correction_angle(const Eigen::MatrixX3d& input, const SkinnedBody& body, const std::vector<Eigen::Index>& rigid) {
+  auto frame = [&](const Eigen::MatrixX3d& x) {
+    const Vector3d a = x.row(rigid.front()).transpose();
+    const Vector3d b = x.row(rigid[rigid.size() / 2]).transpose();
+    const Vector3d c = x.row(rigid.back()).transpose();
+    const Vector3d e1 = (b - a).normalized();
+    const Vector3d e2 = (c - a - e1 * e1.dot(c - a)).normalized();
+    Eigen::Matrix3d f;
+    f << e1, e2, e1.cross(e2);
+    return f;
+  };
+  const Eigen::Matrix3d r = frame(body.rest_vertices) * frame(input).transpose();
+  return std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / kPi;
+}
+
+TEST_F(SkinnedBodyTest, ArmsRiseToHorizontalLegsTurnLittle) {
+  SKIP_WITHOUT_BODY();
+  const Eigen::MatrixX3d input = input_mesh(*body_);
+  for (const std::string side : {"Left", "Right"}) {
+    const std::string hand_name = side + "Hand";
+    const Vector3d shoulder = body_->joint_rest[static_cast<std::size_t>(joint(side + "Arm"))];
+    const std::vector<Eigen::Index> hand = dominated_by(joint(hand_name), 0.5);
+    ASSERT_GT(hand.size(), 20u);
+    double rest_y = 0.0, input_y = 0.0;
+    for (Eigen::Index v : hand) {
+      rest_y += body_->rest_vertices(v, 1) / static_cast<double>(hand.size());
+      input_y += input(v, 1) / static_cast<double>(hand.size());
+    }
+    EXPECT_NEAR(rest_y, shoulder.y(), 0.05) << hand_name << ": the hand is at shoulder height in T-pose";
+    EXPECT_LT(input_y, shoulder.y() - 0.25) << hand_name << ": in the input A-pose it hangs well below";
+  }
+  // The A-pose arm turns by about 50 degrees; the legs by much less (the
+  // CMU rest pose spreads the legs 20 degrees and the mesh stands with its
+  // feet apart, so not zero).
+  const double forearm = correction_angle(input, *body_, dominated_by(joint("LeftForeArm"), 1.0 - 1e-12));
+  const double shin = correction_angle(input, *body_, dominated_by(joint("LeftLeg"), 1.0 - 1e-12));
+  const double thigh = correction_angle(input, *body_, dominated_by(joint("LeftUpLeg"), 1.0 - 1e-12));
+  EXPECT_GT(forearm, 40.0);
+  EXPECT_LT(shin, 25.0);
+  EXPECT_LT(thigh, 25.0);
+  // Frame 0 of a CMU clip is its own T-pose with the legs brought together:
+  // there the body's legs stand close to the input mesh's.
+  const Pose t_pose = frame_pose(*motion_, 0);
+  const Eigen::MatrixX3d posed = skin(*body_, skeleton(), t_pose);
+  const Vector3d root_shift = t_pose.position(0) - rest_pose(skeleton()).position(0);
+  double shin_worst = 0.0;
+  for (Eigen::Index v : dominated_by(joint("LeftLeg"), 0.9))
+    shin_worst = std::max(shin_worst, (posed.row(v).transpose() - root_shift - input.row(v).transpose()).norm());
+  EXPECT_LT(shin_worst, 0.15) << "left shin at frame 0 vs the input mesh";
+  std::cout << "[ info ] correction angles: forearm " << forearm << " deg, thigh " << thigh << " deg, shin " << shin
+            << " deg; frame-0 shin vs input mesh: " << shin_worst << " m\n";
+}
+
+TEST_F(SkinnedBodyTest, WalkFramesAreFiniteWithFeetOnTheGround) {
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  std::vector<int> feet;
+  for (std::size_t j = 0; j < walk.skeleton.joints.size(); ++j) {
+    const std::string& name = walk.skeleton.joints[j].name;
+    if (name.find("Foot") != std::string::npos || name.find("Toe") != std::string::npos) feet.push_back(static_cast<int>(j));
+  }
+  ASSERT_GE(feet.size(), 4u);
+  for (int frame : {0, 60, 120, 200, 300, static_cast<int>(walk.frames.rows()) - 1}) {
+    const Pose pose = frame_pose(walk, frame);
+    const Eigen::MatrixX3d x = skin(*body_, walk.skeleton, pose);
+    ASSERT_TRUE(x.allFinite()) << "frame " << frame;
+    double feet_low = std::numeric_limits<double>::infinity();
+    for (int j : feet) feet_low = std::min(feet_low, pose.position(j).y());
+    EXPECT_NEAR(x.col(1).minCoeff(), feet_low, 0.10) << "frame " << frame;
+    // Rigid bones stay rigid through the motion.
+    const std::vector<Eigen::Index> shin = dominated_by(joint("LeftLeg"), 1.0 - 1e-12);
+    EXPECT_NEAR((x.row(shin.front()) - x.row(shin.back())).norm(),
+                (body_->rest_vertices.row(shin.front()) - body_->rest_vertices.row(shin.back())).norm(), 1e-12);
+  }
+}
+
+/// The largest weight's joint of each vertex.
+std::vector<int> dominant_joints(const SkinnedBody& body) {
+  std::vector<int> out;
+  for (const auto& list : body.weights) {
+    out.push_back(std::max_element(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.second < b.second; })->first);
+  }
+  return out;
+}
+
+TEST_F(SkinnedBodyTest, MeshBodyOnTheBodyMatchesBruteForce) {
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  const std::vector<int> dominant = dominant_joints(*body_);
+  auto part_of = [&](std::size_t v, std::initializer_list<const char*> parts) {
+    const std::string& name = skeleton().joints[static_cast<std::size_t>(dominant[v])].name;
+    for (const char* part : parts)
+      if (name.find(part) != std::string::npos) return true;
+    return false;
+  };
+  Mesh mesh{body_->rest_vertices, body_->triangles};
+  MeshBody body(mesh.vertices, mesh.triangles, 0.004, 0.3);
+  std::mt19937 rng(5);
+  // The sample leaves out, with 10 cm around them: the hands, feet and head,
+  // whose fingers, toes, lips and ears lie closer together than twice the
+  // thickness (no place is clear of both sides); and when walking, the arms,
+  // which the skinning folds into the chest's sides at the armpits (the
+  // surface crosses itself there and inside has no single meaning).
+  auto check = [&](const std::string& label, std::initializer_list<const char*> left_out) {
+    std::vector<int> excluded(dominant.size(), 0);
+    for (std::size_t v = 0; v < dominant.size(); ++v) excluded[v] = part_of(v, left_out);
+    Mesh region;
+    region.vertices = mesh.vertices;
+    for (const Vector3i& t : mesh.triangles)
+      if (!excluded[static_cast<std::size_t>(t(0))] && !excluded[static_cast<std::size_t>(t(1))] && !excluded[static_cast<std::size_t>(t(2))])
+        region.triangles.push_back(t);
+    auto clear = [&](const Vector3d& p) {
+      for (std::size_t v = 0; v < excluded.size(); ++v)
+        if (excluded[v] && (mesh.vertex(static_cast<int>(v)) - p).norm() < 0.1) return false;
+      return true;
+    };
+    std::vector<Vector3d> points;
+    for (const Vector3d& p : sample_points(region, rng, 240, 0.08))
+      if (clear(p)) points.push_back(p);
+    // Deep inside, beyond the search margin: 9 cm in from trunk vertices.
+    std::vector<Vector3d> normal(dominant.size(), Vector3d::Zero());
+    for (const Vector3i& t : mesh.triangles) {
+      const Vector3d n = (mesh.vertex(t(1)) - mesh.vertex(t(0))).cross(mesh.vertex(t(2)) - mesh.vertex(t(0)));
+      for (int k = 0; k < 3; ++k) normal[static_cast<std::size_t>(t(k))] += n;
+    }
+    int deep = 0;
+    for (std::size_t v = 0; v < dominant.size(); v += 97) {
+      if (!part_of(v, {"Hips", "LowerBack", "Spine"})) continue;
+      const Vector3d p = mesh.vertex(static_cast<int>(v)) - 0.09 * normal[v].normalized();
+      if (brute_distance(mesh, p) < 0.06 || winding_number(mesh, p) < 0.5 || !clear(p)) continue;
+      ++deep;
+      EXPECT_GT(body.penetration(p), 0.06) << label << ": found although beyond the search margin";
+      points.push_back(p);
+    }
+    EXPECT_GE(deep, 5) << label;
+    ASSERT_GT(points.size(), 100u) << label;
+    expect_matches_brute_force(body, mesh, points, label);
+    // Resolved points end clear of the surface by the thickness, except in
+    // the crotch's crease, narrower there than twice the thickness: pushes
+    // from its two sides alternate and leave the point short, not inside.
+    int short_of_thickness = 0;
+    for (const Vector3d& p : points) {
+      Vector3d q = p;
+      body.resolve(p, q);
+      const double d = body.query(q).distance;
+      ASSERT_GE(d, 0.0) << label << " from (" << p.transpose() << ")";
+      short_of_thickness += d < 0.004 - 1e-12;
+    }
+    EXPECT_LE(short_of_thickness, static_cast<int>(points.size()) / 100) << label;
+  };
+  check("T-pose body", {"Hand", "Thumb", "Finger", "Foot", "Toe", "Head"});
+  // One step of the walk, as in a simulation (friction sees the surface's
+  // motion over the step).
+  body.update(skin(*body_, walk.skeleton, frame_pose(walk, 149)));
+  mesh.vertices = skin(*body_, walk.skeleton, frame_pose(walk, 150));
+  body.update(mesh.vertices);
+  check("walking body", {"Hand", "Thumb", "Finger", "Foot", "Toe", "Head", "Arm", "Shoulder"});
+}
+
+}  // namespace
+}  // namespace mrcloth
