@@ -15,8 +15,12 @@
 #include "solver/point_cache.h"
 #include "solver/simulate.h"
 
+#include <QDir>
+#include <QFileInfo>
+
 #include <QElapsedTimer>
 
+#include <cmath>
 #include <memory>
 
 namespace mrcloth {
@@ -222,6 +226,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
   return guarded("simulate", [&] {
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const SimulationRequest request = parseSimulationOptions(options, *input.mesh);
+    if (request.character) return simulateOnCharacter(QStringLiteral("simulate"), input, request);
     const DynamicsModel model = build_dynamics(*input.mesh, request.dynamics);
     ClothState state = rest_state(model);
 
@@ -294,6 +299,143 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
   });
 }
 
+QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
+  return guarded("recordInstance", [&] {
+    const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
+    const SimulationRequest request = parseSimulationOptions(options, *input.mesh, SimulationCall::recordInstance);
+    return simulateOnCharacter(QStringLiteral("recordInstance"), input, request);
+  });
+}
+
+QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
+                                                     const SimulationRequest& request) {
+  const CharacterRequest& wanted = *request.character;
+  const bool record = slot == QLatin1String("recordInstance");
+  const LoadedCharacter character = loadCharacter(wanted);
+  const Motion& motion = *character.motion;
+
+  // The garment in the skeleton's rest space; the object itself is untouched.
+  std::shared_ptr<QuadMesh> placed;
+  const QuadMesh* garment = input.mesh.get();
+  if (!character.placement.isApprox(Eigen::Isometry3d::Identity())) {
+    placed = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
+    for (const auto vertex : placed->all_vertices()) {
+      const auto& p = placed->point(vertex);
+      const Eigen::Vector3d moved = character.placement * Eigen::Vector3d(p[0], p[1], p[2]);
+      placed->set_point(vertex, OpenMesh::Vec3d(moved.x(), moved.y(), moved.z()));
+    }
+    garment = placed.get();
+  }
+  const DynamicsModel model = build_dynamics(*garment, request.dynamics);
+  ClothState state = rest_state(model);
+  const CharacterRunOptions run = characterRunOptions(wanted, request.simulation);
+
+  // Warnings a script author can act on before waiting for the run.
+  const int pelvis = motion.skeleton.find(run.pelvis_joint);
+  if (!model.pinned_vertices.empty()) {
+    Eigen::Vector3d waist = Eigen::Vector3d::Zero();
+    for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
+    waist /= static_cast<double>(model.pinned_vertices.size());
+    const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
+    if (distance > 0.3)
+      emit log(LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: the garment "
+                                       "is probably not placed on the character (option 'place': \"makehuman\" for "
+                                       "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
+                            .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint)));
+  }
+  const double end_time = run.motion_start + run.frames / run.fps;
+  if (end_time > motion.duration() + 0.5 / run.fps)
+    emit log(LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
+                                     "frames hold its final pose")
+                          .arg(slot).arg(motion.duration(), 0, 'f', 2).arg(run.frames).arg(run.motion_start)
+                          .arg(end_time, 0, 'f', 2));
+
+  const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  std::vector<Positions> frames;  // kept only for an OBJ sequence
+  CharacterRunReport report;
+  {
+    JobScope job(*this, slot,
+                 QStringLiteral("simulation of %1 on %2 (%3, %4 body): %5 vertices, pre-roll %6 s, then %7 frames at %8 fps x %9 "
+                                "substeps, %10, waist %11")
+                     .arg(describeObject(input), QFileInfo(wanted.motionPath).fileName(), wanted.motionUnits,
+                          bodyTypeName(wanted.body))
+                     .arg(model.num_vertices).arg(wanted.prerollSeconds).arg(run.frames).arg(run.fps).arg(substeps)
+                     .arg(QString::fromStdString(request.dynamics.material.name), request.pinsText),
+                 run.frames);
+    const SimulationProgress progress = [&](int frames_done, int) {
+      job.progress(frames_done);
+      return !cancelRequested();
+    };
+    report = simulate_on_character(model, state, motion, *character.body, run, progress,
+                                   request.objSequence.isEmpty() ? nullptr : &frames);
+  }
+  const SimulationReport& motion_report = report.motion;
+  const bool complete = !motion_report.cancelled && !motion_report.non_finite;
+
+  // Like the PC2 cache, the other outputs exist only for a complete run.
+  QStringList obj_files;
+  if (complete && !request.objSequence.isEmpty())
+    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, activeFaces(*garment)))
+      obj_files << QString::fromStdString(file);
+  QString rest_mesh;
+  if (complete && record) {
+    const QFileInfo cache(QString::fromStdString(motion_report.cache_path));
+    rest_mesh = cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
+    export_surface(*garment, rest_mesh.toStdString());
+  }
+  int result = 0;
+  if (complete && request.updateObject) {
+    auto simulated = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
+    const Positions last = full_positions(model, state.positions, state.pinned);
+    for (const auto vertex : simulated->vertices()) {
+      const auto row = last.row(vertex.idx());
+      simulated->set_point(vertex, OpenMesh::Vec3d(row(0), row(1), row(2)));
+    }
+    result = store().add(simulated, QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
+  }
+
+  last_report_ = simulationReportMap(motion_report, model);
+  last_report_.insert(characterReportMap(report, wanted, character, run));
+  last_report_.insert({{QStringLiteral("operation"), slot},
+                       {QStringLiteral("source"), input.id},
+                       {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
+                       {QStringLiteral("objFiles"), obj_files}});
+  if (record) last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
+  if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
+
+  if (report.preroll.initial_penetration > 0.0)
+    emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
+                                     "thickness); it is pushed out on the first step: check option 'place'")
+                          .arg(slot).arg(1000.0 * report.preroll.initial_penetration, 0, 'f', 1));
+  if (motion_report.cancelled)
+    emit log(LOGWARN, QStringLiteral("%1: cancelled after %2 of %3 frames; nothing was written")
+                          .arg(slot).arg(motion_report.frames).arg(run.frames));
+  else if (motion_report.non_finite)
+    emit log(LOGWARN, QStringLiteral("%1: the simulation became non-finite (NaN or infinity) %2; nothing was written "
+                                     "(try a higher stepRate, a longer preroll or a softer material)")
+                          .arg(slot)
+                          .arg(report.preroll.non_finite ? QStringLiteral("during the pre-roll")
+                                                         : QStringLiteral("in frame %1 of %2")
+                                                               .arg(motion_report.frames + 1).arg(run.frames)));
+  else
+    emit log(LOGINFO, QStringLiteral("%1: object %2 on %3: pre-roll %4 frames, %5 frames, %6 ms/frame (dynamics %7, "
+                                     "collision %8), max stretch %9 %, max penetration %10 mm, max waist error %11 "
+                                     "m%12%13")
+                          .arg(slot).arg(input.id).arg(QFileInfo(wanted.motionPath).fileName())
+                          .arg(report.preroll.frames).arg(motion_report.frames)
+                          .arg(motion_report.ms_per_frame_total, 0, 'f', 2)
+                          .arg(motion_report.ms_per_frame_dynamics, 0, 'f', 2)
+                          .arg(motion_report.ms_per_frame_collision, 0, 'f', 2)
+                          .arg(100.0 * motion_report.max_stretch, 0, 'f', 2)
+                          .arg(1000.0 * motion_report.max_penetration, 0, 'f', 3)
+                          .arg(report.max_waist_error, 0, 'g', 3)
+                          .arg(motion_report.cache_path.empty()
+                                   ? QString()
+                                   : QStringLiteral(" -> ") + QString::fromStdString(motion_report.cache_path))
+                          .arg(rest_mesh.isEmpty() ? QString() : QStringLiteral(" + ") + rest_mesh));
+  return last_report_;
+}
+
 QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id (from core.loadObject or a refinement)");
   return {
@@ -339,21 +481,49 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "{dynamics, collision, total}, maxStretch (strain), maxPenetration (m), initialPenetration (m), nonFinite, cancelled, "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
-                      "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN)."),
+                      "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN). "
+                      "With `motion` the garment is worn by a character: its waist follows the pelvis (Hips), a "
+                      "body collides, a pre-roll (not recorded) blends the T-pose into the clip's pose at `start`, "
+                      "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
+                      "frames, steps, msPerFrame, maxStretch, maxPenetration, initialPenetration, nonFinite}, "
+                      "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
+                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate. The rest pose is "
+                      "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
+                      "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
         QStringLiteral(
             "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
-            "iterations: int >= 1 = 4 (per step), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
+            "iterations: int >= 1 = 2 (per step), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
             "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
-            "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 1 (stiffness x "
+            "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 2 (stiffness x "
             "2^(alpha (level - 1))), gravity: [x, y, z] m/s^2 = [0, -9.81, 0], pins: vertex ids or a boundary "
             "loop \"top\" | \"bottom\" | \"loop:N\" (or an array mixing both) = none, colliders: [{type: "
             "\"plane\", point = [0, 0, 0], normal = [0, 1, 0]} | {type: \"sphere\", center, radius} | {type: "
             "\"capsule\", a, b, radius or radiusA and radiusB}, each with thickness (m) = 0.002 and friction = "
             "0.3], output: PC2 file (its folder must exist) = none, objSequence: OBJ file prefix "
             "(<prefix>_0000.obj ...) = none, updateObject: bool = false (store the last frame as a new "
-            "object)}; lengths in m")}},
+            "object)}; lengths in m. On a character (all of these need `motion`; `substeps` is refused): "
+            "motion: BVH file or {path, units: \"m\" | \"cmu\" (0.056444 m, CMU files) | \"dm\" | \"cm\" | "
+            "\"mm\" | \"inch\" = \"m\" or scale: metres per unit, skipFirst: bool = true (drop frame 0, "
+            "CMU's added T-pose), start: s = 0}, skipFirst (also at the top level), body: \"capsules\" "
+            "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
+            "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "
+            "that body), thickness (m) = 0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
+            "only, 0 removes that joint's capsules)}, place: \"none\" (the garment is "
+            "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
+            "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
+            "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
+            "steps per second >= fps = 120")}},
+      {QStringLiteral("recordInstance(int id, object options) -> object"),
+       QStringLiteral("Records the instance motion of the paper: simulate with `motion` (required) and `output` "
+                      "(required, the PC2 cache), 200 frames by default, and also writes the rest mesh the cache "
+                      "plays on (placed as the run placed it, every vertex in cache order) beside the cache: same "
+                      "name, .obj; for Blender's Mesh Cache modifier import it keeping the vertex order. Returns "
+                      "simulate's report plus restMesh (the OBJ path). Nothing is written unless the run "
+                      "completes."),
+       {QStringLiteral("id"), QStringLiteral("options")},
+       {id_text, QStringLiteral("simulate's options with motion and output required and frames = 200")}},
   };
 }
 

@@ -18,6 +18,9 @@
 
 namespace mrcloth {
 
+struct StoredObject;
+struct SimulationRequest;
+
 class MultiresClothPlugin : public QObject,
                             public BaseInterface,
                             public LoggingInterface,
@@ -57,11 +60,14 @@ class MultiresClothPlugin : public QObject,
   QVariantMap lastReport();
   void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
   QVariantMap simulate(QVariant id, QVariant options = QVariant());
+  QVariantMap recordInstance(QVariant id, QVariant options = QVariant());
 
  private:
   ObjectStore& store() const;
   template <class Body>
   auto guarded(const char* slot, Body&& body) -> decltype(body());
+  /// simulate or recordInstance with `motion`: the garment on a character.
+  QVariantMap simulateOnCharacter(const QString& slot, const StoredObject& input, const SimulationRequest& request);
 
   ObjectStore* store_ = nullptr;
   QVariantMap last_report_;

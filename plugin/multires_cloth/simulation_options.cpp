@@ -1,5 +1,7 @@
 #include "simulation_options.h"
 
+#include "option_fields.h"
+
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 #include "plugin/core/script_values.h"
@@ -14,78 +16,11 @@
 namespace mrcloth {
 namespace {
 
-[[noreturn]] void fail(const QString& message) { throw ArgumentError(message.toStdString()); }
-
-QString optionLabel(const QString& key) { return QStringLiteral("option '%1'").arg(key); }
-
-bool isNumber(const QVariant& value) {
-  switch (value.typeId()) {
-    case QMetaType::Int: case QMetaType::UInt: case QMetaType::LongLong: case QMetaType::ULongLong:
-    case QMetaType::Double: case QMetaType::Float: case QMetaType::Short: case QMetaType::UShort:
-    case QMetaType::Long: case QMetaType::ULong:
-      return true;
-    default:
-      return false;
-  }
-}
-
-bool isObjectLike(const QVariant& value) {
-  return value.typeId() == QMetaType::QVariantMap || value.typeId() == QMetaType::QVariantList ||
-         qstrcmp(value.metaType().name(), "QJSValue") == 0;
-}
-
-/// One options object, the top level or a nested one ("material",
-/// "colliders[1]"). Errors name the full key: "option 'colliders[1].radius'
-/// must be a number > 0, got the number -1".
-class Fields {
- public:
-  Fields(const QVariant& value, const QString& path, const QStringList& accepted)
-      : path_(path),
-        accepted_(accepted),
-        options_(value, path.isEmpty() ? QStringLiteral("simulate options") : optionLabel(path), accepted) {}
-
-  QString label(const QString& key) const { return optionLabel(path_.isEmpty() ? key : path_ + '.' + key); }
-  bool has(const QString& key) const { return options_.has(key); }
-
-  QVariant required(const QString& key) const {
-    if (!has(key))
-      fail(QStringLiteral("missing %1 (accepted: %2)").arg(label(key), accepted_.join(QStringLiteral(", "))));
-    return options_.required(key);
-  }
-  double number(const QString& key, double fallback) const {
-    return has(key) ? script::toNumber(required(key), label(key)) : fallback;
-  }
-  /// A number >= minimum (or > minimum when `strict`).
-  double numberFrom(const QString& key, double fallback, double minimum, bool strict) const {
-    if (!has(key)) return fallback;
-    const double value = script::toNumber(required(key), label(key));
-    if (strict ? !(value > minimum) : !(value >= minimum))
-      fail(QStringLiteral("%1 must be a number %2 %3, got %4")
-               .arg(label(key), strict ? QStringLiteral(">") : QStringLiteral(">="))
-               .arg(minimum)
-               .arg(script::describeValue(required(key))));
-    return value;
-  }
-  int integerAtLeast(const QString& key, int fallback, int minimum) const {
-    return has(key) ? script::toIntAtLeast(required(key), label(key), minimum) : fallback;
-  }
-  bool boolean(const QString& key, bool fallback) const {
-    return has(key) ? script::toBool(required(key), label(key)) : fallback;
-  }
-  QString string(const QString& key) const { return has(key) ? script::toString(required(key), label(key)) : QString(); }
-  Eigen::Vector3d vec3(const QString& key) const {
-    const std::array<double, 3> v = script::toVec3(required(key), label(key));
-    return {v[0], v[1], v[2]};
-  }
-  Eigen::Vector3d vec3(const QString& key, const Eigen::Vector3d& fallback) const {
-    return has(key) ? vec3(key) : fallback;
-  }
-
- private:
-  QString path_;
-  QStringList accepted_;
-  script::Options options_;
-};
+using options::Fields;
+using options::fail;
+using options::isNumber;
+using options::isObjectLike;
+using options::optionLabel;
 
 QStringList presetNames() {
   QStringList names;
@@ -195,9 +130,10 @@ std::vector<int> loopVertices(const QuadMesh& mesh, const QString& name, const Q
   }
 }
 
-/// Pins: a loop name, or an array whose elements are vertex ids or loop names.
-std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, QString& text) {
-  const QString label = optionLabel(QStringLiteral("pins"));
+/// Pins (or the waist, `key`): a loop name, or an array whose elements are
+/// vertex ids or loop names.
+std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, const QString& key, QString& text) {
+  const QString label = optionLabel(key);
   const QString expected = QStringLiteral("a boundary loop name (\"top\", \"bottom\", \"loop:N\")");
   if (value.typeId() == QMetaType::QString) {
     const QString name = script::toString(value, label);
@@ -213,7 +149,7 @@ std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, QString&
   QStringList names;
   int ids = 0;
   for (qsizetype i = 0; i < list.size(); ++i) {
-    const QString element = QStringLiteral("option 'pins[%1]'").arg(i);
+    const QString element = QStringLiteral("option '%1[%2]'").arg(key).arg(i);
     if (list[i].typeId() == QMetaType::QString) {
       const QString name = script::toString(list[i], element);
       const std::vector<int> loop = loopVertices(mesh, name, element);
@@ -248,35 +184,68 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 }  // namespace
 
 QStringList simulationOptionKeys() {
-  return {QStringLiteral("frames"),   QStringLiteral("fps"),         QStringLiteral("substeps"),
-          QStringLiteral("iterations"), QStringLiteral("material"),  QStringLiteral("alpha"),
-          QStringLiteral("alphaBend"), QStringLiteral("gravity"),    QStringLiteral("pins"),
-          QStringLiteral("colliders"), QStringLiteral("output"),     QStringLiteral("objSequence"),
-          QStringLiteral("updateObject")};
+  return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
+                     QStringLiteral("iterations"), QStringLiteral("material"),   QStringLiteral("alpha"),
+                     QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
+                     QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
+                     QStringLiteral("updateObject")} +
+         characterOptionKeys();
 }
 
-SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh) {
-  const Fields fields(options, QString(), simulationOptionKeys());
+SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh, SimulationCall call) {
+  const bool record = call == SimulationCall::recordInstance;
+  const Fields fields(options, QString(), simulationOptionKeys(),
+                      record ? QStringLiteral("recordInstance options") : QStringLiteral("simulate options"));
+  const bool character = fields.has(QStringLiteral("motion"));
+  if (record && !character)
+    fields.required(QStringLiteral("motion"));  // "missing option 'motion' (accepted: ...)"
+  if (!character) {
+    for (const QString& key : characterOptionKeys())
+      if (fields.has(key))
+        fail(QStringLiteral("%1 needs option 'motion' (a BVH file to move the garment with)").arg(optionLabel(key)));
+  } else if (fields.has(QStringLiteral("substeps"))) {
+    fail(QStringLiteral("option 'substeps' does not apply with option 'motion': give the time steps per second as "
+                        "option 'stepRate' (default 120)"));
+  }
+  if (record && !fields.has(QStringLiteral("output")))
+    fail(QStringLiteral("missing option 'output': recordInstance writes its PC2 cache there and the rest mesh beside "
+                        "it (same name, .obj)"));
+
   SimulationRequest request;
   SimulationOptions& sim = request.simulation;
-  sim.frames = fields.integerAtLeast(QStringLiteral("frames"), sim.frames, 1);
+  sim.frames = fields.integerAtLeast(QStringLiteral("frames"), record ? 200 : sim.frames, 1);
   sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
-  sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
+  if (!character) sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
-  sim.cache_path = checkedOutputPath(fields, QStringLiteral("output")).toStdString();
+  const QString output = checkedOutputPath(fields, QStringLiteral("output"));
+  if (record && QFileInfo(output).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
+    fail(QStringLiteral("option 'output' must be the PC2 cache (e.g. walk.pc2), not an .obj: the rest mesh is written "
+                        "beside it as <name>.obj, got \"%1\"").arg(output));
+  sim.cache_path = output.toStdString();
 
   DynamicsOptions& dynamics = request.dynamics;
   if (fields.has(QStringLiteral("material"))) dynamics.material = parseMaterial(fields.required(QStringLiteral("material")));
   dynamics.alpha = fields.number(QStringLiteral("alpha"), dynamics.alpha);
   dynamics.alpha_bend = fields.number(QStringLiteral("alphaBend"), dynamics.alpha_bend);
+
+  // The pins; on a character they are its waist, "top" unless given.
   request.pinsText = QStringLiteral("none");
-  if (fields.has(QStringLiteral("pins")))
-    dynamics.pinned = parsePins(fields.required(QStringLiteral("pins")), mesh, request.pinsText);
+  QString pins_key = QStringLiteral("pins");
+  if (character) {
+    if (fields.has(QStringLiteral("waist")) && fields.has(QStringLiteral("pins")))
+      fail(QStringLiteral("give the pinned waist as option 'waist' or option 'pins', not both"));
+    if (!fields.has(QStringLiteral("pins"))) pins_key = QStringLiteral("waist");
+  }
+  if (fields.has(pins_key))
+    dynamics.pinned = parsePins(fields.required(pins_key), mesh, pins_key, request.pinsText);
+  else if (character)
+    dynamics.pinned = parsePins(QStringLiteral("top"), mesh, pins_key, request.pinsText);
 
   request.objSequence = checkedOutputPath(fields, QStringLiteral("objSequence"));
   request.updateObject = fields.boolean(QStringLiteral("updateObject"), request.updateObject);
+  if (character) request.character = parseCharacterOptions(fields, sim.fps);
   return request;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
-// multirescloth.simulate's script side: the options object a script passes,
-// checked strictly and turned into solver settings, and the solver's report
-// turned into the object the script gets back. No simulation happens here.
+// multirescloth.simulate's (and recordInstance's) script side: the options
+// object a script passes, checked strictly and turned into solver settings,
+// and the solver's report turned into the object the script gets back. No
+// simulation happens here. The character options (motion, body, ...) are
+// read by character_options.h.
+#include "character_options.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/dynamics_model.h"
 #include "solver/simulate.h"
@@ -11,7 +14,13 @@
 #include <QVariant>
 #include <QVariantMap>
 
+#include <optional>
+
 namespace mrcloth {
+
+/// The slot whose options are parsed: recordInstance requires motion and
+/// output and records 200 frames by default.
+enum class SimulationCall { simulate, recordInstance };
 
 /// Everything one simulate call asks for.
 struct SimulationRequest {
@@ -20,9 +29,11 @@ struct SimulationRequest {
   QString pinsText;              ///< how the pins were given, for messages ("\"top\"", "4 vertex ids", "none")
   QString objSequence;           ///< OBJ sequence prefix; empty: none
   bool updateObject = false;     ///< store the last frame as a new object
+  std::optional<CharacterRequest> character;  ///< set when `motion` is given: a run on a character
 };
 
-/// The keys simulate's options object accepts, in the order the errors list them.
+/// The keys simulate's options object accepts, in the order the errors list
+/// them: the plain simulation's, then the character's (characterOptionKeys).
 QStringList simulationOptionKeys();
 
 /// Checks a script's options object against `mesh` (loop names in "pins" are
@@ -31,7 +42,12 @@ QStringList simulationOptionKeys();
 /// type or a value out of range, and OutputError when the folder of `output`
 /// or `objSequence` does not exist. Pinned ids are range-checked later, by
 /// build_dynamics, which also rejects hanging vertices.
-SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh);
+/// With `motion`, the character options are read too (see
+/// parseCharacterOptions), the waist ("waist" or "pins", not both) defaults
+/// to "top", and "substeps" is refused (the rate is "stepRate"); without it
+/// every character option is refused.
+SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh,
+                                         SimulationCall call = SimulationCall::simulate);
 
 /// The script's view of a finished (or cancelled) run: frames, steps,
 /// timeStep, precomputeMs, msPerFrame {dynamics, collision, total},

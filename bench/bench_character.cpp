@@ -1,0 +1,116 @@
+// Issue 4's benchmark: the shared MakeHuman skirt, unrefined (720 vertices)
+// and refined uniformly twice (11088), on CMU walk 07_06 with each body kind
+// (capsules along the bones, the skinned MakeHuman mesh): ms per output frame
+// split into dynamics and collision, one core. Prints a table.
+//
+// Usage: bench_character [--frames N] [--preroll S]
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/uniform_refine.h"
+#include "solver/character_sim.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+using namespace mrcloth;
+
+struct BenchOptions {
+  int frames = 60;         // output frames at 30 fps (2 s of walking)
+  double preroll = 0.5;    // seconds, not timed in the table
+};
+
+std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
+
+struct Row {
+  std::string garment, body;
+  std::size_t vertices = 0;
+  CharacterRunReport report;
+};
+
+Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d& offset, const Motion& motion,
+        PosedBody& body, const std::string& body_name, const BenchOptions& b) {
+  QuadMesh placed = copy_mesh(garment);
+  for (auto v : placed.vertices()) placed.point(v) += OpenMesh::Vec3d(offset.x(), offset.y(), offset.z());
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed, "top");
+  const DynamicsModel model = build_dynamics(placed, d);
+  ClothState state = rest_state(model);
+  CharacterRunOptions o;
+  o.frames = b.frames;
+  o.preroll_seconds = b.preroll;
+  Row row;
+  row.garment = name;
+  row.body = body_name;
+  row.vertices = placed.n_vertices();
+  row.report = simulate_on_character(model, state, motion, body, o);
+  return row;
+}
+
+void print(const Row& r) {
+  const SimulationReport& m = r.report.motion;
+  std::printf("| %-22s | %-8s | %8zu | %9.1f | %9.1f | %9.1f | %7.2f %% | %9.2e | %s |\n", r.garment.c_str(),
+              r.body.c_str(), r.vertices, m.ms_per_frame_dynamics, m.ms_per_frame_collision, m.ms_per_frame_total,
+              100.0 * m.max_stretch, m.max_penetration, m.non_finite ? "NaN!" : "ok");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BenchOptions b;
+  for (int a = 1; a + 1 < argc; a += 2) {
+    const std::string key = argv[a];
+    if (key == "--frames") b.frames = std::atoi(argv[a + 1]);
+    else if (key == "--preroll") b.preroll = std::atof(argv[a + 1]);
+    else {
+      std::fprintf(stderr, "unknown option %s\nusage: bench_character [--frames N] [--preroll S]\n", argv[a]);
+      return 2;
+    }
+  }
+  const std::string skirt_path = data("garments/makehuman/skirthelper.obj");
+  if (!std::filesystem::exists(skirt_path)) {
+    std::printf("shared data absent (%s): nothing to measure\n", skirt_path.c_str());
+    return 0;
+  }
+  BvhReadOptions bvh;
+  bvh.scale = 0.056444;  // CMU units to metres
+  bvh.skip_first_frame = true;
+  const Motion motion = read_bvh(data("motions/cmu_mb/07_06.bvh"), bvh);
+  MakeHumanOptions mh;
+  mh.base_obj = data("bodies/makehuman/base.obj");
+  mh.skeleton_file = data("bodies/makehuman/rigs/cmu_mb.mhskel");
+  mh.weights_file = data("bodies/makehuman/rigs/default_weights.mhw");
+  const SkinnedBody skinned = load_makehuman_body(mh, motion.skeleton);
+
+  CapsuleRig rig = make_capsule_rig(motion.skeleton);
+  fit_capsule_radii(rig, motion.skeleton, skinned.rest_vertices, skinned.weights);
+  CapsulePosedBody capsules(rig, motion.skeleton);
+  SkinnedPosedBody mesh(skinned, motion.skeleton);
+
+  const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
+  QuadMesh high = copy_mesh(coarse);
+  uniform_refine(high, 2);
+
+  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core\n\n", b.frames,
+              b.preroll);
+  std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices", "dyn ms/f",
+              "coll ms/f", "total", "stretch", "penetr. m");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
+              std::string(10, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str(),
+              std::string(11, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str());
+  // base.obj x 0.1 + obj_offset is the garment on the body bound to the rest
+  // pose; garment_shift moves it to where the clip starts.
+  CharacterRunOptions reference;
+  const Eigen::Vector3d offset =
+      skinned.obj_offset + garment_shift(motion, reference, rest_pose(motion.skeleton).position(0));
+  const QuadMesh* garments[] = {&coarse, &high};
+  for (const QuadMesh* g : garments) {
+    const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
+    print(run(name, *g, offset, motion, capsules, "capsules", b));
+    print(run(name, *g, offset, motion, mesh, "mesh", b));
+  }
+  return 0;
+}

@@ -1,0 +1,93 @@
+#pragma once
+// The character side of multirescloth.simulate and recordInstance: the
+// `motion`, `body`, `place`, `preroll`, `stepRate` and `skipFirst` options
+// checked strictly, then the BVH motion, the collision body and the garment
+// placement they ask for, loaded for solver/character_sim.h. The waist
+// (`waist` / `pins`) is parsed with the other pins in simulation_options.cpp.
+#include "option_fields.h"
+#include "solver/body_skinned_mesh.h"
+#include "solver/character_sim.h"
+#include "solver/skeleton.h"
+
+#include <Eigen/Geometry>
+
+#include <QString>
+#include <QStringList>
+#include <QVariantMap>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace mrcloth {
+
+enum class CharacterBodyType { capsules, mesh };
+
+/// Where the garment's rest positions are, relative to the skeleton's rest
+/// pose (which simulate_on_character needs them in).
+enum class GarmentPlacement {
+  none,        ///< already in the skeleton's rest space
+  makehuman,   ///< modelled on MakeHuman's base.obj (loaded in dm): + SkinnedBody::obj_offset
+  firstFrame,  ///< modelled on the clip's frame 0 (CMU's added T-pose, the embedded walks' T-pose)
+};
+
+struct CharacterRequest {
+  QString motionPath;
+  double motionScale = 1.0;     ///< metres per BVH unit
+  QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01")
+  bool skipFirst = true;        ///< drop frame 0 (CMU's added T-pose)
+  double motionStart = 0.0;     ///< seconds into the clip (after skipFirst)
+  CharacterBodyType body = CharacterBodyType::capsules;
+  bool hasMakeHuman = false;    ///< the three MakeHuman files were given
+  MakeHumanOptions makehuman;
+  double thickness = 0.004;     ///< body thickness, metres
+  double friction = 0.3;
+  /// Capsule radius overrides by joint name (head, tail), metres; 0 removes the capsule.
+  std::map<std::string, std::pair<double, double>> radii;
+  GarmentPlacement place = GarmentPlacement::none;
+  double prerollSeconds = 1.0;
+  double stepRate = 120.0;      ///< time steps per second
+};
+
+/// The top-level keys only a character run accepts (each needs `motion`).
+QStringList characterOptionKeys();
+
+/// Reads motion, body, place, preroll, stepRate and skipFirst from the top
+/// level of the options (`fields`); `fps` is the run's output rate (stepRate
+/// must be at least that). Input files must exist (InputError naming the
+/// option); errors name the option.
+CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
+
+/// A loaded character: the motion (kept at a fixed address: the posed body
+/// refers to its skeleton), the collision body, and the rigid transform
+/// taking the garment's rest positions into the skeleton's rest space.
+struct LoadedCharacter {
+  std::unique_ptr<Motion> motion;
+  std::unique_ptr<PosedBody> body;
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
+  int bodyVertices = 0;         ///< skinned mesh vertices (0 for capsules)
+  int bodyCapsules = 0;         ///< capsules (0 for a mesh)
+  bool fittedCapsules = false;  ///< capsule radii fitted to the MakeHuman body
+};
+
+/// Reads the BVH, builds the body, finds the placement. Errors name the
+/// option they come from ("option 'motion': <file>:<line>: ...").
+LoadedCharacter loadCharacter(const CharacterRequest& request);
+
+/// Settings for simulate_on_character from the request and the run's
+/// frames, fps and solver settings (iterations, gravity, colliders, cache).
+CharacterRunOptions characterRunOptions(const CharacterRequest& request, const SimulationOptions& simulation);
+
+QString bodyTypeName(CharacterBodyType type);
+QString placementName(GarmentPlacement place);
+
+/// What a character run adds to simulate's report: preroll {frames, steps,
+/// msPerFrame {dynamics, collision, total}, initialPenetration, maxPenetration,
+/// nonFinite}, maxWaistError, body, motion, motionUnits, motionStart,
+/// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz].
+QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
+                               const LoadedCharacter& character, const CharacterRunOptions& run);
+
+}  // namespace mrcloth

@@ -1,0 +1,74 @@
+// The embedded default skirt worn by the embedded mannequin walking
+// (resources/characters/walk_instance.bvh, metres), colliding with capsules
+// along its bones: simulate with `motion`, then recordInstance, which also
+// writes the rest mesh beside the cache. Arguments: <tests/data> <shared data> <tmp>.
+"use strict";
+const [, , tmpDir] = core.scriptArguments();
+
+function expectEqual(actual, expected, what) {
+  const got = JSON.stringify(actual), want = JSON.stringify(expected);
+  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
+}
+function expectAtMost(value, limit, what) {
+  if (!(value <= limit)) throw new Error(what + " " + value + " > " + limit);
+}
+
+core.makePath(tmpDir);
+const walk = core.resourcePath() + "/characters/walk_instance.bvh";
+if (!core.fileExists(walk)) throw new Error("the embedded character is missing: " + walk);
+const skirt = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj");
+const info = core.objectInfo(skirt);
+const frames = 10;
+
+// The skirt is modelled on the mannequin's T-pose, which is frame 0 of the
+// walk (dropped by skipFirst): place "firstFrame" moves it into the rest pose.
+// The body keeps the cloth 2 mm away (default 4 mm): the pinned waist follows
+// the pelvis rigidly while the spine bends, so it comes within ~1.2 mm of the
+// spine capsules, and maxPenetration counts pinned vertices too (it measures
+// against collider + thickness); with 4 mm it reports ~2.8 mm from the waist alone.
+const body = {type: "capsules", thickness: 0.002};
+const pc2 = tmpDir + "/walk_capsules.pc2";
+const report = multirescloth.simulate(skirt, {
+  motion: {path: walk, units: "m"}, body: body, place: "firstFrame", frames: frames, output: pc2});
+expectEqual([report.frames, report.nonFinite, report.cancelled], [frames, false, false], "run completed");
+expectEqual([report.body, report.motion, report.motionUnits, report.skipFirst, report.place],
+            ["capsules", walk, "m", true, "firstFrame"], "character fields");
+expectEqual([report.preroll.frames, report.preroll.steps, report.steps, report.stepRate],
+            [30, 120, frames * 4, 120], "1 s of pre-roll at 30 fps, 120 steps per second");
+expectEqual([report.vertices, report.pinnedVertices, report.hangingVertices], [info.vertices, 40, 0],
+            "the waist loop (40 vertices) is pinned");
+if (!(report.capsules > 10)) throw new Error("expected a capsule per bone, got " + report.capsules);
+expectAtMost(report.maxWaistError, 1e-9, "maxWaistError");
+expectAtMost(report.maxPenetration, 0.002, "maxPenetration");
+expectAtMost(report.preroll.initialPenetration, 0, "the placed skirt starting inside the body:");
+expectEqual(report.perFrameMs.length, frames, "timings per frame");
+if (!(report.perFrameMs.every(t => t.dynamics > 0 && t.collision >= 0)))
+  throw new Error("per-frame timings: " + JSON.stringify(report.perFrameMs));
+expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
+expectEqual(core.objectInfo(skirt).bbox, info.bbox, "the object is untouched");
+// The rest pose stands where the walk starts, close to the T-pose of frame 0
+// the skirt was modelled on: the placement is a small shift.
+if (!(Math.hypot(...report.placement) < 0.1)) throw new Error("placement " + JSON.stringify(report.placement));
+
+// recordInstance: the same run recorded for the analysis, with the rest
+// mesh the cache plays on.
+const out = tmpDir + "/instance.pc2", restObj = tmpDir + "/instance.obj";
+const recorded = multirescloth.recordInstance(skirt, {
+  motion: walk, body: body, place: "firstFrame", frames: frames, output: out});
+expectEqual([recorded.operation, recorded.frames, recorded.nonFinite, recorded.output, recorded.restMesh],
+            ["recordInstance", frames, false, out, restObj], "recordInstance report");
+expectEqual(core.fileSize(out), 32 + frames * info.vertices * 12, "recorded PC2 size");
+if (!core.filesEqual(out, pc2)) throw new Error("recordInstance and simulate with the same options differ");
+const rest = core.loadObject(restObj);
+const restInfo = core.objectInfo(rest);
+expectEqual([restInfo.vertices, restInfo.faces], [info.vertices, info.faces], "rest mesh matches the cache");
+for (let axis = 0; axis < 3; ++axis) {
+  const moved = restInfo.bbox.max[axis] - info.bbox.max[axis];
+  if (!(Math.abs(moved - report.placement[axis]) < 1e-5))
+    throw new Error("the rest mesh is not the placed garment: axis " + axis + " moved " + moved + " m, placement " +
+                    report.placement[axis]);
+}
+
+print("character capsules: " + frames + " frames, stretch " + report.maxStretch.toFixed(4) + ", penetration " +
+      report.maxPenetration.toExponential(2) + " m, waist error " + report.maxWaistError.toExponential(2) + " m, " +
+      report.msPerFrame.total.toFixed(2) + " ms/frame: ok");

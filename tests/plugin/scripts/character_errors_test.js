@@ -1,0 +1,110 @@
+// The character options of multirescloth.simulate and recordInstance: every
+// mistake is a catchable Error naming the option, and a failed call writes
+// nothing. Arguments: <tests/data> <shared data> <tmp>.
+"use strict";
+const [dataDir, , tmpDir] = core.scriptArguments();
+
+let checked = 0;
+function expectThrows(call, name, ...fragments) {
+  let error = null;
+  try {
+    call();
+  } catch (caught) {
+    error = caught;
+  }
+  if (error === null) throw new Error("expected " + name + " containing " + JSON.stringify(fragments) + ", nothing thrown");
+  if (!(error instanceof Error)) throw new Error("expected an Error object, got " + String(error));
+  if (error.name !== name) throw new Error("expected a " + name + ", got " + error.name + ": " + error.message);
+  for (const fragment of fragments)
+    if (!error.message.includes(fragment))
+      throw new Error("message '" + error.message + "' does not contain '" + fragment + "'");
+  ++checked;
+}
+
+core.makePath(tmpDir);
+const walk = core.resourcePath() + "/characters/walk_instance.bvh";
+if (!core.fileExists(walk)) throw new Error("the embedded character is missing: " + walk);
+const skirt = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj");
+const grid = core.loadObject(dataDir + "/grid3x3.obj");
+const sim = options => () => multirescloth.simulate(skirt, options);
+const record = options => () => multirescloth.recordInstance(skirt, options);
+const missing = tmpDir + "/no_such_motion.bvh";
+
+// The body.
+expectThrows(sim({motion: walk, body: "robot"}), "ArgumentError", "multirescloth.simulate: ",
+             "option 'body' must be one of \"capsules\", \"mesh\", got the string \"robot\"");
+expectThrows(sim({motion: walk, body: {type: "robot"}}), "ArgumentError",
+             "option 'body.type' must be one of \"capsules\", \"mesh\"");
+expectThrows(sim({motion: walk, body: "mesh"}), "ArgumentError", "option 'body': \"mesh\" needs the MakeHuman files",
+             "obj, skeleton, weights");
+expectThrows(sim({motion: walk, body: {type: "mesh"}}), "ArgumentError",
+             "option 'body': type \"mesh\" needs the MakeHuman files", "missing: obj, skeleton, weights");
+expectThrows(sim({motion: walk, body: {type: "mesh", obj: walk, skeleton: walk}}), "ArgumentError",
+             "option 'body'", "missing: weights");
+expectThrows(sim({motion: walk, body: {type: "capsules", obj: walk}}), "ArgumentError",
+             "option 'body': give all three MakeHuman files", "missing: skeleton, weights");
+expectThrows(sim({motion: walk, body: {type: "mesh", obj: missing, skeleton: walk, weights: walk}}), "InputError",
+             "option 'body.obj': ", "no_such_motion.bvh: no such file");
+expectThrows(sim({motion: walk, body: {radius: 1}}), "ArgumentError", "unknown option 'radius' in option 'body'",
+             "accepted: type, obj, skeleton, weights, thickness, friction");
+expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError", "option 'body.thickness' must be a number >= 0");
+expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must be \"capsules\", \"mesh\" or an object");
+
+// The motion.
+expectThrows(sim({motion: missing}), "InputError", "option 'motion': ", "no_such_motion.bvh: no such file");
+expectThrows(sim({motion: {path: missing, units: "cmu"}}), "InputError", "option 'motion.path': ", "no such file");
+expectThrows(sim({motion: dataDir + "/grid3x3.obj"}), "InputError", "option 'motion': ", "grid3x3.obj");
+expectThrows(sim({motion: {path: walk, units: "feet"}}), "ArgumentError",
+             "option 'motion.units' must be one of \"m\", \"cmu\", \"dm\", \"cm\", \"mm\", \"inch\", got the string \"feet\"");
+expectThrows(sim({motion: {path: walk, units: "m", scale: 1}}), "ArgumentError",
+             "option 'motion': give either 'units' or 'scale', not both");
+expectThrows(sim({motion: {path: walk, scale: 0}}), "ArgumentError", "option 'motion.scale' must be a number > 0");
+expectThrows(sim({motion: {units: "m"}}), "ArgumentError", "missing option 'motion.path'");
+expectThrows(sim({motion: {path: walk, start: -1}}), "ArgumentError", "option 'motion.start' must be a number >= 0");
+expectThrows(sim({motion: {path: walk, start: 1000}}), "ArgumentError",
+             "option 'motion.start' must be at most the clip's length");
+expectThrows(sim({motion: {path: walk, skipFirst: true}, skipFirst: true}), "ArgumentError",
+             "give 'skipFirst' either in option 'motion' or at the top level");
+expectThrows(sim({motion: {path: walk, fps: 30}}), "ArgumentError", "unknown option 'fps' in option 'motion'");
+expectThrows(sim({motion: 7}), "ArgumentError", "option 'motion' must be a BVH file path or an object");
+
+// The waist, the placement and the rates.
+expectThrows(sim({motion: walk, waist: "top", pins: "top"}), "ArgumentError",
+             "give the pinned waist as option 'waist' or option 'pins', not both");
+expectThrows(sim({motion: walk, waist: "loop:5"}), "ArgumentError", "option 'waist': ", "loop:5");
+expectThrows(sim({motion: walk, waist: ["top", {}]}), "ArgumentError", "option 'waist[1]' must be a vertex id");
+expectThrows(sim({motion: walk, place: "makehuman"}), "ArgumentError", "option 'place': \"makehuman\"",
+             "option 'body' must give the MakeHuman files");
+expectThrows(sim({motion: walk, place: "origin"}), "ArgumentError",
+             "option 'place' must be one of \"none\", \"makehuman\", \"firstFrame\"");
+expectThrows(sim({motion: walk, preroll: -0.5}), "ArgumentError", "option 'preroll' must be a number >= 0");
+expectThrows(sim({motion: walk, stepRate: 20}), "ArgumentError", "option 'stepRate' must be at least option 'fps'");
+expectThrows(sim({motion: walk, substeps: 4}), "ArgumentError", "option 'substeps' does not apply with option 'motion'",
+             "stepRate");
+
+// Character options without a motion.
+for (const [key, value] of [["body", "capsules"], ["place", "makehuman"], ["waist", "top"], ["preroll", 1],
+                            ["stepRate", 240], ["skipFirst", false]])
+  expectThrows(sim({[key]: value}), "ArgumentError", "option '" + key + "' needs option 'motion'");
+expectThrows(sim({motions: walk}), "ArgumentError", "unknown option 'motions'",
+             "updateObject, motion, body, place, waist, preroll, stepRate, skipFirst");
+
+// recordInstance: motion and output are required; the cache is not an OBJ.
+expectThrows(record({output: tmpDir + "/x.pc2"}), "ArgumentError", "multirescloth.recordInstance: ",
+             "missing option 'motion'");
+expectThrows(record({motion: walk}), "ArgumentError", "multirescloth.recordInstance: ", "missing option 'output'");
+expectThrows(record({motion: walk, output: tmpDir + "/x.obj"}), "ArgumentError", "option 'output' must be the PC2 cache");
+expectThrows(record({motion: walk, output: tmpDir + "/no_such_folder/x.pc2"}), "OutputError",
+             "option 'output': folder");
+expectThrows(record({motion: walk, frame: 3, output: tmpDir + "/x.pc2"}), "ArgumentError",
+             "unknown option 'frame' in recordInstance options");
+expectThrows(() => multirescloth.recordInstance(skirt), "ArgumentError", "missing option 'motion'");
+expectThrows(() => multirescloth.recordInstance(99, {}), "ArgumentError", "no object with id 99");
+// A grid has no waist to speak of, but its highest loop is pinned all the same;
+// a hanging-node or out-of-range waist id is refused by the model.
+expectThrows(() => multirescloth.recordInstance(grid, {motion: walk, waist: [99], output: tmpDir + "/grid.pc2"}),
+             "ArgumentError", "pinned vertex 99 is out of range");
+
+for (const file of ["x.pc2", "x.obj", "grid.pc2", "grid.obj"])
+  if (core.fileExists(tmpDir + "/" + file)) throw new Error("a failed call wrote " + file);
+print("character errors: ok (" + checked + " errors checked)");

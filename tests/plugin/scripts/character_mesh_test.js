@@ -1,0 +1,52 @@
+// The shared MakeHuman skirt helper (decimetres, modelled on base.obj) worn
+// by the skinned MakeHuman body walking the CMU instance clip 07_06 (CMU
+// units): body "mesh", place "makehuman", 0.5 s of pre-roll, then 1 s of
+// motion. Skipped (exit 77) when ../shared/data is absent.
+// Arguments: <tests/data> <shared data> <tmp>.
+"use strict";
+const [, sharedDir, tmpDir] = core.scriptArguments();
+const garment = sharedDir + "/garments/makehuman/skirthelper.obj";
+const clip = sharedDir + "/motions/cmu_mb/07_06.bvh";
+const makehuman = sharedDir + "/bodies/makehuman";
+for (const path of [garment, clip, makehuman + "/base.obj"])
+  if (!core.fileExists(path)) {
+    print("SKIP: " + path + " not found (the shared data folder is not beside the checkout)");
+    core.exitApplication(77);
+  }
+
+function expectEqual(actual, expected, what) {
+  const got = JSON.stringify(actual), want = JSON.stringify(expected);
+  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
+}
+
+core.makePath(tmpDir);
+const skirt = core.loadObject(garment, {units: "dm"});
+const info = core.objectInfo(skirt);
+const frames = 30, pc2 = tmpDir + "/skirthelper_07_06.pc2";
+const body = {type: "mesh", obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
+              weights: makehuman + "/rigs/default_weights.mhw"};
+const report = multirescloth.simulate(skirt, {
+  motion: {path: clip, units: "cmu"}, body: body, place: "makehuman", preroll: 0.5, frames: frames, output: pc2});
+
+const summary = "frames " + report.frames + ", preroll " + report.preroll.frames + " frames, maxStretch " +
+                report.maxStretch.toFixed(4) + ", maxPenetration " + (1000 * report.maxPenetration).toFixed(3) +
+                " mm, maxWaistError " + report.maxWaistError.toExponential(2) + " m, initialPenetration (rest) " +
+                (1000 * report.preroll.initialPenetration).toFixed(3) + " mm, preroll maxPenetration " +
+                (1000 * report.preroll.maxPenetration).toFixed(3) + " mm, " + report.msPerFrame.total.toFixed(1) +
+                " ms/frame (dynamics " + report.msPerFrame.dynamics.toFixed(1) + ", collision " +
+                report.msPerFrame.collision.toFixed(1) + "), body " + report.bodyVertices + " vertices";
+print("character mesh: " + summary);
+expectEqual([report.frames, report.nonFinite, report.cancelled, report.preroll.nonFinite], [frames, false, false, false],
+            "run completed");
+expectEqual([report.body, report.motionUnits, report.place, report.preroll.frames], ["mesh", "cmu", "makehuman", 15],
+            "character fields");
+if (!(report.pinnedVertices > 0)) throw new Error("no waist pinned");
+if (!(report.maxWaistError <= 1e-9)) throw new Error("maxWaistError " + report.maxWaistError + " > 1e-9 m");
+// Known limit (issue 4, open): the MakeHuman garments are modelled on the
+// A-pose and start up to 5 cm inside the CMU T-pose legs, and cloth caught
+// between limbs tears, so penetration and stretch are reported here, not
+// yet bounded. The run itself must stay finite with the waist exact.
+print("character mesh: maxPenetration " + report.maxPenetration + " m, maxStretch " + report.maxStretch +
+      " (not yet bounded; see the README's known limits)");
+expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
+print("character mesh: ok");
