@@ -61,7 +61,11 @@
 #include <string>
 #include <vector>
 
+#include "generated_file.h"
+
 namespace {
+
+using mrcloth::generators::write_atomically;
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -591,29 +595,6 @@ std::string bvh_text(const Rig& rig, const std::vector<Frame>& frames) {
     out << '\n';
   }
   return out.str();
-}
-
-/// Writes `text` to a temporary file beside `path` and renames it into
-/// place, so an interrupted run never leaves a truncated file behind.
-void write_atomically(const std::string& text, const std::filesystem::path& path) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error("cannot write " + temporary.string());
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw std::runtime_error("cannot rename " + temporary.string() + " to " + path.string());
-  }
 }
 
 /// The T-pose frame CMU puts first: every rotation 0, standing on the

@@ -26,7 +26,12 @@
 #include <string>
 #include <vector>
 
+#include "generated_file.h"
+
 namespace {
+
+using mrcloth::generators::write_atomically;
+using mrcloth::generators::format_coordinate;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -160,14 +165,6 @@ std::vector<std::array<int, 4>> skirt_quads(const SkirtOptions& o) {
 
 /// Fixed-point text, with -0 printed as 0 so the output never depends on
 /// the sign of a rounding residue.
-std::string format_coordinate(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6f", value);
-  std::string text = buffer;
-  if (text == "-0.000000") text = "0.000000";
-  return text;
-}
-
 std::string obj_text(const SkirtOptions& o) {
   const std::vector<Vertex> vertices = skirt_vertices(o);
   const auto quads = skirt_quads(o);
@@ -187,29 +184,6 @@ std::string obj_text(const SkirtOptions& o) {
   for (const auto& q : quads)
     out << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << '\n';
   return out.str();
-}
-
-/// Writes `text` to a temporary file beside `path` and renames it into
-/// place, so an interrupted run never leaves a truncated garment behind.
-void write_atomically(const std::string& text, const std::filesystem::path& path) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error("cannot write " + temporary.string());
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw std::runtime_error("cannot rename " + temporary.string() + " to " + path.string());
-  }
 }
 
 }  // namespace
