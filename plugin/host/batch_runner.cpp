@@ -17,11 +17,16 @@ namespace {
 struct StackFrame {
   QString function;
   QString line;
+  QString file;  ///< the script or an included file; falls back to the main script
 };
 
-StackFrame parseFrame(const QString& frame) {
-  StackFrame parsed{frame.section(QLatin1Char(':'), 0, 0), frame.section(QLatin1Char(':'), 1, 1)};
+StackFrame parseFrame(const QString& frame, const QString& fallback_file) {
+  StackFrame parsed{frame.section(QLatin1Char(':'), 0, 0), frame.section(QLatin1Char(':'), 1, 1),
+                    frame.section(QLatin1Char(':'), 3)};
   if (parsed.function.isEmpty() || parsed.function == QLatin1String("%entry")) parsed.function = QStringLiteral("<script>");
+  // QJSEngine reports files as URLs when it was given a path.
+  if (parsed.file.startsWith(QLatin1String("file://"))) parsed.file = parsed.file.mid(7);
+  if (parsed.file.isEmpty()) parsed.file = fallback_file;
   return parsed;
 }
 
@@ -49,16 +54,24 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   // An uncaught `throw 42` is not an Error object, but it leaves a stack.
   if (!result.isError() && stack.isEmpty()) return 0;
 
+  // The innermost frame names the file the error was thrown in, which is an
+  // included helper when a shared assertion fails.
   QString line = result.property(QStringLiteral("lineNumber")).toString();
-  if (!result.isError() || line.isEmpty() || line == QLatin1String("undefined"))
-    line = stack.isEmpty() ? QStringLiteral("?") : parseFrame(stack.first()).line;
+  QString where = path;
+  if (!stack.isEmpty()) {
+    const StackFrame innermost = parseFrame(stack.first(), path);
+    where = innermost.file;
+    if (!result.isError() || line.isEmpty() || line == QLatin1String("undefined")) line = innermost.line;
+  } else if (!result.isError() || line.isEmpty() || line == QLatin1String("undefined")) {
+    line = QStringLiteral("?");
+  }
   const QString message =
       result.isError() ? result.toString() : QStringLiteral("uncaught exception: %1").arg(result.toString());
-  log.raw(QStringLiteral("%1:%2: %3").arg(path, line, message));
+  log.raw(QStringLiteral("%1:%2: %3").arg(where, line, message));
   if (stack.size() > 1) {
     for (const QString& frame : stack) {
-      const StackFrame parsed = parseFrame(frame);
-      log.raw(QStringLiteral("    at %1 (%2:%3)").arg(parsed.function, path, parsed.line));
+      const StackFrame parsed = parseFrame(frame, path);
+      log.raw(QStringLiteral("    at %1 (%2:%3)").arg(parsed.function, parsed.file, parsed.line));
     }
   }
   return 1;

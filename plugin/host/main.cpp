@@ -88,6 +88,7 @@ int main(int argc, char* argv[]) {
   PluginRegistry plugins(log, store);
   plugins.loadFolder(command.pluginFolder.isEmpty() ? PluginRegistry::defaultFolder() : command.pluginFolder);
   ScriptCore core(store, log, command.scriptArguments);
+  core.setScriptPath(command.scriptPath);
 
   if (command.api) {
     printApi(core, plugins, log);

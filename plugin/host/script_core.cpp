@@ -15,6 +15,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QJSEngine>
+#include <QUrl>
 
 #include <algorithm>
 #include <limits>
@@ -203,6 +204,59 @@ bool ScriptCore::filesEqual(QVariant pathA, QVariant pathB) {
   });
 }
 
+void ScriptCore::setScriptPath(const QString& path) {
+  const QFileInfo info(path);
+  script_folder_ = info.absolutePath();
+  if (info.isFile()) included_.insert(info.canonicalFilePath());
+}
+
+bool ScriptCore::include(QVariant path) {
+  // An error inside the included file is rethrown after guarded(), with its
+  // own name and "core.include: <file>:<line>: " before its message.
+  QString failure_name, failure_message;
+  const bool evaluated = guarded("include", [&] {
+    const QString given = script::toString(path, QStringLiteral("path"));
+    const QDir base(script_folder_.isEmpty() ? QDir::currentPath() : script_folder_);
+    const QString file = QDir::cleanPath(base.absoluteFilePath(given));
+    const QString key = existingFile(file).canonicalFilePath();
+    // Include once: a file already included (or being included: a cycle) is skipped.
+    if (included_.contains(key)) return false;
+    QJSEngine* engine = qjsEngine(this);
+    if (!engine) throw std::logic_error("include needs a script engine");
+    QFile source(file);
+    if (!source.open(QIODevice::ReadOnly))
+      throw InputError(file.toStdString() + ": cannot open file (" + source.errorString().toStdString() + ")");
+    QString program = QString::fromUtf8(source.readAll());
+    if (program.startsWith(QLatin1String("#!"))) program.prepend(QLatin1String("//"));
+
+    included_.insert(key);
+    QStringList stack;
+    const QJSValue result = engine->evaluate(program, file, 1, &stack);
+    // exitApplication or Ctrl-C inside the file: the engine stays interrupted
+    // and stops the including script too.
+    if (engine->isInterrupted()) return true;
+    if (!result.isError() && stack.isEmpty()) return true;
+
+    included_.remove(key);  // a failed include may be retried, and fails again
+    // Stack frames read "function:line:column:file" (the file may contain ':').
+    const QString top = stack.isEmpty() ? QString() : stack.first();
+    QString where = result.isError() ? result.property(QStringLiteral("fileName")).toString() : QString();
+    QString line = result.isError() ? result.property(QStringLiteral("lineNumber")).toString() : QString();
+    if (where.isEmpty() || where == QLatin1String("undefined")) where = top.isEmpty() ? file : top.section(QLatin1Char(':'), 3);
+    if (const QUrl url(where); url.isLocalFile()) where = url.toLocalFile();  // errors carry file:// URLs
+    if (line.isEmpty() || line == QLatin1String("undefined"))
+      line = top.isEmpty() ? QStringLiteral("?") : top.section(QLatin1Char(':'), 1, 1);
+    failure_name = result.isError() ? result.property(QStringLiteral("name")).toString() : QStringLiteral("Error");
+    failure_message = QStringLiteral("core.include: %1:%2: %3")
+                          .arg(where, line,
+                               result.isError() ? result.toString()
+                                                : QStringLiteral("uncaught exception: %1").arg(result.toString()));
+    return false;
+  });
+  if (!failure_message.isEmpty()) throwScriptError(this, failure_name, failure_message);
+  return evaluated;
+}
+
 QList<SlotDescription> ScriptCore::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id");
   return {
@@ -273,6 +327,16 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Returns whether two files have exactly the same bytes (InputError if either is missing)."),
        {QStringLiteral("pathA"), QStringLiteral("pathB")},
        {QStringLiteral("first file"), QStringLiteral("second file")}},
+      {QStringLiteral("include(string path) -> bool"),
+       QStringLiteral("Evaluates a JavaScript file in the global scope, so its functions and `var`s become globals "
+                      "(top-level let/const stay private to the file). A relative path is relative to the "
+                      "folder of the script run by -b. Each file is included at most once: including a file "
+                      "already included, the running script itself or a file still being included (a cycle) does "
+                      "nothing and returns false; otherwise returns true. A missing file is an InputError; an "
+                      "error thrown while evaluating the file is rethrown with its name and the message "
+                      "\"core.include: <file>:<line>: <error>\"."),
+       {QStringLiteral("path")},
+       {QStringLiteral("JavaScript file, absolute or relative to the running script's folder")}},
   };
 }
 

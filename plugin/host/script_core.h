@@ -6,6 +6,7 @@
 
 #include <QJSValue>
 #include <QObject>
+#include <QSet>
 #include <QStringList>
 #include <QVariant>
 #include <QVariantList>
@@ -33,6 +34,11 @@ class ScriptCore : public QObject, public ScriptInterface {
   /// resources folder compiled in by CMake.
   static QString resourceFolder();
 
+  /// The script `mrcloth -b` runs: core.include resolves relative paths
+  /// against its folder (else against the working folder), and counts the
+  /// script itself as already included.
+  void setScriptPath(const QString& path);
+
   // The scripting API; see slotDescriptions() for the types a script passes.
  public slots:
   int loadObject(QVariant path, QVariant options = QVariant());
@@ -50,6 +56,7 @@ class ScriptCore : public QObject, public ScriptInterface {
   bool fileExists(QVariant path);
   double fileSize(QVariant path);
   bool filesEqual(QVariant pathA, QVariant pathB);
+  bool include(QVariant path);
 
  private:
   template <class Body>
@@ -58,6 +65,8 @@ class ScriptCore : public QObject, public ScriptInterface {
   ObjectStore& store_;
   HostLog& log_;
   QStringList script_arguments_;
+  QString script_folder_;
+  QSet<QString> included_;  ///< canonical paths of the main script and every file include evaluated
   bool exit_requested_ = false;
   int exit_code_ = 0;
 };

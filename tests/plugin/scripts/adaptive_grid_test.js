@@ -4,10 +4,7 @@
 "use strict";
 const [dataDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 function freshGrid() { return core.loadObject(dataDir + "/grid3x3.obj"); }
 const allVertices = Array.from({length: 16}, (_, vertex) => vertex);
 function counts(info) { return [info.vertices, info.faces, info.hangingNodes, info.facesPerLevel]; }

@@ -5,13 +5,7 @@
 "use strict";
 const [, , tmpDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
-function expectAtMost(value, limit, what) {
-  if (!(value <= limit)) throw new Error(what + " " + value + " > " + limit);
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const walk = core.resourcePath() + "/characters/walk_instance.bvh";

@@ -14,10 +14,7 @@ for (const path of [garment, clip, makehuman + "/base.obj"])
     core.exitApplication(77);
   }
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const skirt = core.loadObject(garment, {units: "dm"});

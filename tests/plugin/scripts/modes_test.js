@@ -3,10 +3,7 @@
 "use strict";
 const [dataDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 
 const grid = core.loadObject(dataDir + "/grid3x3.obj");
 expectEqual(multirescloth.getModes(grid), Array(16).fill(1), "default modes");

@@ -2,10 +2,7 @@
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 function summary(id) {
   const info = core.objectInfo(id);
   return [info.vertices, info.faces, info.hangingNodes, info.facesPerLevel, info.verticesPerLevel,

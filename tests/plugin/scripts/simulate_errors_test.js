@@ -4,26 +4,7 @@
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 
-let checked = 0;
-function expectThrows(call, name, ...fragments) {
-  let error = null;
-  try {
-    call();
-  } catch (caught) {
-    error = caught;
-  }
-  if (error === null) throw new Error("expected " + name + " containing " + JSON.stringify(fragments) + ", nothing thrown");
-  if (!(error instanceof Error)) throw new Error("expected an Error object, got " + String(error));
-  if (error.name !== name) throw new Error("expected a " + name + ", got " + error.name + ": " + error.message);
-  for (const fragment of fragments)
-    if (!error.message.includes(fragment))
-      throw new Error("message '" + error.message + "' does not contain '" + fragment + "'");
-  ++checked;
-}
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const grid = core.loadObject(dataDir + "/grid3x3.obj");

@@ -5,18 +5,7 @@
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
-function expectNear(actual, expected, tolerance, what) {
-  if (!(Math.abs(actual - expected) <= tolerance))
-    throw new Error(what + ": expected " + expected + " within " + tolerance + ", got " + actual);
-}
-function expectType(value, type, what) {
-  const actual = Array.isArray(value) ? "array" : value === null ? "null" : typeof value;
-  if (actual !== type) throw new Error(what + ": expected a " + type + ", got " + actual + " " + JSON.stringify(value));
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const grid = core.loadObject(dataDir + "/grid3x3.obj");

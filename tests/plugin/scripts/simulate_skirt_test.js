@@ -4,10 +4,7 @@
 "use strict";
 const [, , tmpDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const skirt = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj");

@@ -10,10 +10,7 @@ if (!core.fileExists(path)) {
   core.exitApplication(77);
 }
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
+core.include("test_asserts.js");
 
 core.makePath(tmpDir);
 const skirt = core.loadObject(path, {units: "dm"});

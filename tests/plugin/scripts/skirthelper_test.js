@@ -8,30 +8,23 @@ if (!core.fileExists(path)) {
   core.exitApplication(77);
 }
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
-function expectNear(actual, expected, relative, what) {
-  if (!(Math.abs(actual - expected) <= relative * Math.abs(expected)))
-    throw new Error(what + ": expected " + expected + " within " + relative + " relative, got " + actual);
-}
+core.include("test_asserts.js");
 function sum(list) { return list.reduce((a, b) => a + b, 0); }
 
 const skirt = core.loadObject(path, {units: "dm"});
 const coarse = core.objectInfo(skirt);
 expectEqual([coarse.vertices, coarse.faces, coarse.hangingNodes], [720, 684, 0], "coarse skirt helper");
-expectNear(coarse.totalMass, 0.15 * coarse.area, 1e-12, "coarse mass = 0.15 * area");
+expectNearRelative(coarse.totalMass, 0.15 * coarse.area, 1e-12, "coarse mass = 0.15 * area");
 // Decimetres became metres: the helper is about 0.6 m wide and 0.9 m tall.
-expectNear(coarse.bbox.max[0] - coarse.bbox.min[0], 0.6005, 1e-3, "width in metres");
-expectNear(coarse.bbox.max[1] - coarse.bbox.min[1], 0.91231, 1e-3, "height in metres");
+expectNearRelative(coarse.bbox.max[0] - coarse.bbox.min[0], 0.6005, 1e-3, "width in metres");
+expectNearRelative(coarse.bbox.max[1] - coarse.bbox.min[1], 0.91231, 1e-3, "height in metres");
 
 const high = multirescloth.refineUniform(skirt, 2);
 const fine = core.objectInfo(high);
 expectEqual([fine.vertices, fine.faces, fine.hangingNodes], [11088, 10944, 0], "uniform x2");
 expectEqual(fine.facesPerLevel, [0, 0, 0, 10944], "uniform x2 facesPerLevel");
-expectNear(fine.area, coarse.area, 1e-12, "area after uniform refinement");
-expectNear(fine.totalMass, 0.15 * fine.area, 1e-12, "fine mass = 0.15 * area");
+expectNearRelative(fine.area, coarse.area, 1e-12, "area after uniform refinement");
+expectNearRelative(fine.totalMass, 0.15 * fine.area, 1e-12, "fine mass = 0.15 * area");
 
 // Paint the front of the lower half and refine adaptively.
 const box = coarse.bbox, height = box.max[1] - box.min[1];
@@ -52,7 +45,7 @@ expectEqual(sum(info.verticesPerLevel), info.vertices, "verticesPerLevel sums to
 expectEqual(info.maxLevel, 3, "maxLevel reached");
 if (!(report.facesRefinedPerPass.length >= 1 && report.facesRefinedPerPass.every(count => count > 0)))
   throw new Error("facesRefinedPerPass " + JSON.stringify(report.facesRefinedPerPass));
-expectNear(info.totalMass, 0.15 * info.area, 1e-12, "multi-resolution mass = 0.15 * area");
-expectNear(info.area, coarse.area, 1e-12, "area after adaptive refinement");
+expectNearRelative(info.totalMass, 0.15 * info.area, 1e-12, "multi-resolution mass = 0.15 * area");
+expectNearRelative(info.area, coarse.area, 1e-12, "area after adaptive refinement");
 print("skirt helper: " + info.vertices + " vertices, " + info.faces + " faces, " + info.hangingNodes +
       " hanging nodes, faces per level " + JSON.stringify(info.facesPerLevel) + ": ok");

@@ -3,14 +3,7 @@
 "use strict";
 const [dataDir] = core.scriptArguments();
 
-function expectEqual(actual, expected, what) {
-  const got = JSON.stringify(actual), want = JSON.stringify(expected);
-  if (got !== want) throw new Error(what + ": expected " + want + ", got " + got);
-}
-function expectNear(actual, expected, relative, what) {
-  if (!(Math.abs(actual - expected) <= relative * Math.abs(expected)))
-    throw new Error(what + ": expected " + expected + " within " + relative + " relative, got " + actual);
-}
+core.include("test_asserts.js");
 
 const grid = core.loadObject(dataDir + "/grid3x3.obj");
 expectEqual(grid, 1, "first object id");
@@ -20,8 +13,8 @@ expectEqual(coarse.facesPerLevel, [0, 9], "coarse facesPerLevel");
 expectEqual(coarse.verticesPerLevel, [0, 16], "coarse verticesPerLevel");
 expectEqual(coarse.verticesPerMode, [0, 16], "every vertex starts in mode 1");
 expectEqual(coarse.bbox, {max: [3, 3, 0], min: [0, 0, 0]}, "bbox");
-expectNear(coarse.area, 9, 1e-12, "area of the 3 x 3 grid (m^2)");
-expectNear(coarse.totalMass, 0.15 * 9, 1e-12, "mass of the 3 x 3 grid (kg)");
+expectNearRelative(coarse.area, 9, 1e-12, "area of the 3 x 3 grid (m^2)");
+expectNearRelative(coarse.totalMass, 0.15 * 9, 1e-12, "mass of the 3 x 3 grid (kg)");
 
 // Each refinement is a new object; the input keeps its 16 vertices.
 const once = multirescloth.refineUniform(grid, 1);
@@ -44,8 +37,8 @@ if (!(report.milliseconds >= 0)) throw new Error("report milliseconds: " + repor
 
 // Refinement keeps the area and so the mass (to rounding).
 for (const info of [info1, info2]) {
-  expectNear(info.area, coarse.area, 1e-12, "area after refinement");
-  expectNear(info.totalMass, 0.15 * info.area, 1e-12, "mass = 0.15 kg/m^2 * area");
+  expectNearRelative(info.area, coarse.area, 1e-12, "area after refinement");
+  expectNearRelative(info.totalMass, 0.15 * info.area, 1e-12, "mass = 0.15 kg/m^2 * area");
 }
 
 // Refining an already refined copy composes: (grid x1) x1 == grid x2.
