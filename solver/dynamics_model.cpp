@@ -178,6 +178,15 @@ Positions pinned_rows(const DynamicsModel& model, const Positions& full) {
   return p;
 }
 
+QuadMesh mesh_at_positions(const QuadMesh& mesh, const Positions& x) {
+  if (x.rows() != static_cast<Eigen::Index>(mesh.n_vertices()))
+    throw ArgumentError("positions have " + std::to_string(x.rows()) + " rows; the mesh has " +
+                        std::to_string(mesh.n_vertices()) + " vertices");
+  QuadMesh moved = copy_mesh(mesh);
+  for (const auto v : moved.vertices()) moved.set_point(v, OpenMesh::Vec3d(x(v.idx(), 0), x(v.idx(), 1), x(v.idx(), 2)));
+  return moved;
+}
+
 double max_stretch(const DynamicsModel& model, const Positions& full) {
   double worst = 0.0;
   for (const Spring& s : model.springs) {

@@ -98,6 +98,10 @@ Positions free_rows(const DynamicsModel& model, const Positions& full);
 /// Pinned rows of full positions.
 Positions pinned_rows(const DynamicsModel& model, const Positions& full);
 
+/// A copy of `mesh` (hierarchy and layers included) with its points moved
+/// to full positions x (#V x 3, e.g. a simulated frame).
+QuadMesh mesh_at_positions(const QuadMesh& mesh, const Positions& x);
+
 /// Largest strain (|xi - xj| - rest) / rest over stretch springs (0 if none is stretched).
 double max_stretch(const DynamicsModel& model, const Positions& full);
 

@@ -257,12 +257,8 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
         obj_files << QString::fromStdString(file);
     int result = 0;
     if (complete && request.updateObject) {
-      auto simulated = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
-      const Positions last = full_positions(model, state.positions, state.pinned);
-      for (const auto vertex : simulated->vertices()) {
-        const auto row = last.row(vertex.idx());
-        simulated->set_point(vertex, OpenMesh::Vec3d(row(0), row(1), row(2)));
-      }
+      auto simulated = std::make_shared<QuadMesh>(
+          mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
       result = store().add(simulated, QStringLiteral("%1 simulated").arg(input.name));
     }
 
@@ -385,12 +381,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   }
   int result = 0;
   if (complete && request.updateObject) {
-    auto simulated = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
-    const Positions last = full_positions(model, state.positions, state.pinned);
-    for (const auto vertex : simulated->vertices()) {
-      const auto row = last.row(vertex.idx());
-      simulated->set_point(vertex, OpenMesh::Vec3d(row(0), row(1), row(2)));
-    }
+    auto simulated = std::make_shared<QuadMesh>(
+        mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
     result = store().add(simulated, QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
   }
 
