@@ -16,16 +16,6 @@ namespace {
   fail(QStringLiteral("%1 must be %2, got %3").arg(what, expected, describeValue(value)));
 }
 
-bool isNumber(const QVariant& value) {
-  switch (value.typeId()) {
-    case QMetaType::Int: case QMetaType::UInt: case QMetaType::LongLong: case QMetaType::ULongLong:
-    case QMetaType::Double: case QMetaType::Float: case QMetaType::Short: case QMetaType::UShort:
-    case QMetaType::Long: case QMetaType::ULong:
-      return true;
-    default:
-      return false;
-  }
-}
 
 // JS arrays and objects reach a QVariant parameter wrapped as QJSValue. QtQml
 // registers converters from QJSValue to QVariantMap/QVariantList (an array
@@ -61,6 +51,17 @@ Shape shapeOf(const QVariant& value, QVariantList* list = nullptr, QVariantMap* 
 }
 
 }  // namespace
+
+bool isNumber(const QVariant& value) {
+  switch (value.typeId()) {
+    case QMetaType::Int: case QMetaType::UInt: case QMetaType::LongLong: case QMetaType::ULongLong:
+    case QMetaType::Double: case QMetaType::Float: case QMetaType::Short: case QMetaType::UShort:
+    case QMetaType::Long: case QMetaType::ULong:
+      return true;
+    default:
+      return false;
+  }
+}
 
 QString describeValue(const QVariant& value) {
   if (!value.isValid()) return QStringLiteral("undefined");

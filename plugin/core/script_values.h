@@ -17,6 +17,9 @@ namespace mrcloth::script {
 /// `an array`, `an object`, `undefined`, `null`, `true`.
 QString describeValue(const QVariant& value);
 
+/// True for any numeric QVariant a script can pass (int, double, ...).
+bool isNumber(const QVariant& value);
+
 /// An integral number in int range.
 int toInt(const QVariant& value, const QString& what);
 /// toInt, and at least `minimum`.

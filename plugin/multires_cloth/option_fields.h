@@ -23,16 +23,7 @@ namespace mrcloth::options {
 
 inline QString optionLabel(const QString& key) { return QStringLiteral("option '%1'").arg(key); }
 
-inline bool isNumber(const QVariant& value) {
-  switch (value.typeId()) {
-    case QMetaType::Int: case QMetaType::UInt: case QMetaType::LongLong: case QMetaType::ULongLong:
-    case QMetaType::Double: case QMetaType::Float: case QMetaType::Short: case QMetaType::UShort:
-    case QMetaType::Long: case QMetaType::ULong:
-      return true;
-    default:
-      return false;
-  }
-}
+using script::isNumber;
 
 inline bool isObjectLike(const QVariant& value) {
   return value.typeId() == QMetaType::QVariantMap || value.typeId() == QMetaType::QVariantList ||
