@@ -33,16 +33,22 @@ fs::path temporary_path(const fs::path& target, const std::string& extension) {
 
 }  // namespace
 
-/// Runs `write` on a temporary file and renames it to `path` only when it
-/// succeeded; on any failure the temporary file is removed.
-void write_file_atomically(const std::string& path, const std::string& extension,
-                      const std::function<bool(const std::string&)>& write) {
+void require_writable_target(const std::string& path) {
   const fs::path target(path);
   const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
   if (!fs::is_directory(folder, error))
     throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' does not exist)"));
   if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
+}
+
+/// Runs `write` on a temporary file and renames it to `path` only when it
+/// succeeded; on any failure the temporary file is removed.
+void write_file_atomically(const std::string& path, const std::string& extension,
+                      const std::function<bool(const std::string&)>& write) {
+  require_writable_target(path);
+  const fs::path target(path);
+  std::error_code error;
   const fs::path temporary = temporary_path(target, extension);
   bool written = false;
   try {

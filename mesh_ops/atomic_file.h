@@ -5,6 +5,10 @@
 
 namespace mrcloth {
 
+/// Throws OutputError naming `path` unless its folder exists and `path`
+/// itself is not a folder: the checks every writer makes before any work.
+void require_writable_target(const std::string& path);
+
 /// Calls `write(temporary_path)` for a hidden temporary file beside `path`
 /// whose name ends in `extension` (writers that choose a format by extension
 /// need it), then renames it to `path`. If `write` returns false or throws,

@@ -262,12 +262,7 @@ Pc2Writer::Pc2Writer(const std::string& path, int num_points, double start_frame
     throw ArgumentError(with_path(path, "a PC2 cache needs num_points > 0 (got " + std::to_string(num_points) + ")"));
   if (!std::isfinite(start_frame) || !std::isfinite(sample_rate))
     throw ArgumentError(with_path(path, "start_frame and sample_rate must be finite"));
-  const fs::path target(path);
-  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code error;
-  if (!fs::is_directory(folder, error))
-    throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' does not exist)"));
-  if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
+  require_writable_target(path);
 
   impl.temporary = temporary_path_beside(path, ".pc2");
   impl.out.open(impl.temporary, std::ios::binary | std::ios::trunc);
