@@ -45,10 +45,13 @@
 #include <string>
 #include <vector>
 
+#include "ellipse.h"
 #include "generated_file.h"
 
 namespace {
 
+using mrcloth::generators::equal_arc_angles;
+using mrcloth::generators::ellipse_perimeter;
 using mrcloth::generators::write_atomically;
 using mrcloth::generators::format_coordinate;
 
@@ -97,32 +100,6 @@ void check_options(const TrouserOptions& o) {
   if (!(o.thigh_radius < o.leg_axis_top)) throw std::invalid_argument("the legs must not overlap at the crotch");
 }
 
-/// Perimeter of the ellipse with semi-axes a, b (Ramanujan's second approximation).
-double ellipse_perimeter(double a, double b) {
-  const double h = (a - b) * (a - b) / ((a + b) * (a + b));
-  return kPi * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
-}
-
-/// Ellipse parameter angles of `count` points equally spaced in arc length,
-/// starting at parameter 0 (as in make_default_skirt.cpp).
-std::vector<double> equal_arc_angles(double a, double b, int count) {
-  constexpr int kSamples = 4096;
-  std::vector<double> length(kSamples + 1, 0.0);
-  for (int i = 1; i <= kSamples; ++i) {
-    const double t0 = 2.0 * kPi * (i - 1) / kSamples;
-    const double t1 = 2.0 * kPi * i / kSamples;
-    length[i] = length[i - 1] + std::hypot(a * (std::sin(t1) - std::sin(t0)), b * (std::cos(t1) - std::cos(t0)));
-  }
-  std::vector<double> angles(count);
-  int i = 0;
-  for (int k = 0; k < count; ++k) {
-    const double target = length[kSamples] * k / count;
-    while (length[i + 1] < target) ++i;
-    const double f = (target - length[i]) / (length[i + 1] - length[i]);
-    angles[k] = 2.0 * kPi * (i + f) / kSamples;
-  }
-  return angles;
-}
 
 double smoothstep(double x) {
   x = std::clamp(x, 0.0, 1.0);
