@@ -988,7 +988,7 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices) {
   m.refit();
 }
 
-double MeshBody::resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const {
+double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const {
   const Impl& m = *impl_;
   Impl::Contact c;
   if (!m.contact(position, m.reach2, true, c)) return 0.0;
@@ -1000,7 +1000,12 @@ double MeshBody::resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& posit
   // update).
   const double correction = -gap;
   position += correction * c.normal;
-  const Vector3d step = position - previous - m.surface_motion(c);
+  if (!friction) {
+    double largest = correction;
+    m.project(position, m.thickness * m.thickness, largest);
+    return largest;
+  }
+  const Vector3d step = position - start - m.surface_motion(c);
   const Vector3d tangential = step - c.normal * c.normal.dot(step);
   const double slide = tangential.norm();
   const double grip = m.friction * correction;

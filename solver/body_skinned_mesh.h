@@ -68,7 +68,7 @@ class MeshBody : public CollisionScene {
   ~MeshBody() override;
   /// New vertex positions (same count), then refit; call once per step.
   void update(const Eigen::MatrixX3d& vertices);
-  double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override;
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.

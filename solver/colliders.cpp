@@ -17,6 +17,12 @@ namespace {
 
 using Eigen::Vector3d;
 
+// Halving the step's path 40 times locates the entry point to 1e-12 of it.
+constexpr int kEntryBisections = 40;
+// Nearest-surface and entry normals more than 60 degrees apart mean the
+// nearest surface is not the one the point came through.
+constexpr double kSameSide = 0.5;
+
 /// A unit vector perpendicular to unit `u`, the same every time for the same
 /// `u`: crossing with the coordinate axis least aligned with `u` keeps it
 /// well conditioned.
@@ -82,6 +88,15 @@ SurfaceQuery query_capsule(const CapsuleCollider& capsule, const Vector3d& p) {
   return query;
 }
 
+/// max over the collider of n . x: its tangent plane with outward normal n
+/// is n . x = support(n) (n unit; for a plane, n must be its normal).
+double support(const Collider& collider, const Vector3d& n) {
+  if (const auto* plane = std::get_if<PlaneCollider>(&collider.shape)) return n.dot(plane->point);
+  if (const auto* sphere = std::get_if<SphereCollider>(&collider.shape)) return n.dot(sphere->center) + sphere->radius;
+  const auto& capsule = std::get<CapsuleCollider>(collider.shape);
+  return std::max(n.dot(capsule.a) + capsule.radius_a, n.dot(capsule.b) + capsule.radius_b);
+}
+
 /// Reports "collider 3 (sphere): radius must be > 0 (got -0.1)".
 [[noreturn]] void refuse(std::size_t index, const char* kind, const std::string& problem) {
   throw ArgumentError("collider " + std::to_string(index) + " (" + kind + "): " + problem);
@@ -138,19 +153,45 @@ const char* kind_of(const Collider& collider) {
   }
 }
 
-/// Pushes `position` out to `thickness` from one collider and applies
-/// Coulomb friction to the step's tangential displacement; returns the
-/// normal correction (0 when the point is clear).
-double resolve_against(const Collider& collider, const Vector3d& previous, Vector3d& position) {
-  const SurfaceQuery query = query_surface(collider, position);
-  const double gap = query.distance - collider.thickness;
+/// Pushes `position` out to `thickness` from one collider that moved from
+/// `before` to `after`, through the surface the point entered by, and
+/// applies Coulomb friction to the step's tangential motion relative to the
+/// collider; returns the normal correction (0 when the point is clear).
+double resolve_against(const Collider& before, const Collider& after, const Vector3d& start, Vector3d& position,
+                       bool friction) {
+  const SurfaceQuery query = query_surface(after, position);
+  const double gap = query.distance - after.thickness;
   if (!(gap < 0.0)) return 0.0;
-  const double correction = -gap;
-  position += correction * query.normal;
-  const Vector3d step = position - previous;
-  const Vector3d tangential = step - query.normal * query.normal.dot(step);
+  const Vector3d carried = carry_with(before, after, start);
+  Vector3d normal = query.normal;
+  double correction = -gap;
+  const double start_gap = query_surface(after, carried).distance - after.thickness;
+  if (start_gap > 0.0) {
+    // The thickened collider is convex, so along the segment from the
+    // carried start (outside) to the end (inside) its distance crosses the
+    // thickness once: bisect for the entry point. When the nearest surface
+    // faces away from the entry (the collider moved past the point), push
+    // to the tangent plane at the entry instead, which the whole thickened
+    // collider lies behind; otherwise the nearest surface is the entry side.
+    double outside = 0.0, inside = 1.0;
+    const Vector3d path = position - carried;
+    for (int k = 0; k < kEntryBisections; ++k) {
+      const double middle = 0.5 * (outside + inside);
+      if (query_surface(after, carried + middle * path).distance - after.thickness > 0.0) outside = middle;
+      else inside = middle;
+    }
+    const Vector3d entry_normal = query_surface(after, carried + outside * path).normal;
+    if (entry_normal.dot(query.normal) < kSameSide) {
+      normal = entry_normal;
+      correction = std::max(0.0, support(after, normal) + after.thickness - normal.dot(position));
+    }
+  }
+  position += correction * normal;
+  if (!friction) return correction;
+  const Vector3d step = position - carried;
+  const Vector3d tangential = step - normal * normal.dot(step);
   const double slide = tangential.norm();
-  const double grip = collider.friction * correction;
+  const double grip = after.friction * correction;
   // Inside the friction cone the point sticks; outside it slides, slowed by
   // mu times the normal impulse (here expressed as displacements).
   if (slide <= grip) position -= tangential;
@@ -182,8 +223,33 @@ void validate_colliders(const std::vector<Collider>& colliders) {
 
 constexpr int kMaxCollisionSweeps = 8;
 
+Eigen::Vector3d carry_with(const Collider& before, const Collider& after, const Eigen::Vector3d& p) {
+  if (const auto* from = std::get_if<SphereCollider>(&before.shape)) {
+    if (const auto* to = std::get_if<SphereCollider>(&after.shape)) return p + (to->center - from->center);
+  }
+  if (const auto* from = std::get_if<CapsuleCollider>(&before.shape)) {
+    if (const auto* to = std::get_if<CapsuleCollider>(&after.shape)) {
+      const Vector3d axis_from = from->b - from->a, axis_to = to->b - to->a;
+      const double length_from = axis_from.norm(), length_to = axis_to.norm();
+      if (!(length_from > 0.0) || !(length_to > 0.0)) return p + (to->a - from->a);
+      const Vector3d u = axis_from / length_from;
+      const Vector3d offset = p - from->a;
+      const double along = offset.dot(u);
+      const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(axis_from, axis_to);
+      return to->a + turn * (offset - along * u) + (along * length_to / length_from) * (axis_to / length_to);
+    }
+  }
+  return p;
+}
+
 double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector3d& previous,
                      Eigen::Vector3d& position) {
+  return resolve_point(colliders, colliders, previous, position, true);
+}
+
+double resolve_point(const std::vector<Collider>& before, const std::vector<Collider>& after,
+                     const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) {
+  assert(before.size() == after.size());
   double largest = 0.0;
   // Overlapping colliders (a body of capsules) can push a point from one
   // into another; sweep until a sweep changes nothing. Eight sweeps settle
@@ -191,9 +257,10 @@ double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector
   // keeps a point wedged between two shapes from costing more.
   for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
     double this_sweep = 0.0;
-    for (const Collider& collider : colliders) this_sweep = std::max(this_sweep, resolve_against(collider, previous, position));
+    for (std::size_t i = 0; i < after.size(); ++i)
+      this_sweep = std::max(this_sweep, resolve_against(before[i], after[i], start, position, friction));
     largest = std::max(largest, this_sweep);
-    if (this_sweep == 0.0 || colliders.size() == 1) break;
+    if (this_sweep == 0.0 || after.size() == 1) break;
   }
   return largest;
 }

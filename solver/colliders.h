@@ -54,6 +54,25 @@ void validate_colliders(const std::vector<Collider>& colliders);
 double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector3d& previous,
                      Eigen::Vector3d& position);
 
+/// Where a point that moved rigidly with a collider from `before` to
+/// `after` (the same shape, moved) is now: a sphere translates; a capsule
+/// moves with its axis (translation of `a`, the smallest rotation taking the
+/// old axis to the new, its length scaled along the axis); a plane is a
+/// half-space with no wrong side, so points stay where they were.
+Eigen::Vector3d carry_with(const Collider& before, const Collider& after, const Eigen::Vector3d& p);
+
+/// The response of one point to colliders that moved over the step from
+/// `before` to `after` (the same colliders in the same order; pass the same
+/// vector twice for static ones). As resolve_point, except for a point whose
+/// start, carried with a collider, was outside it and whose nearest surface
+/// now faces more than 60 degrees away from the surface it entered by (the
+/// collider moved past it within the step): that point is pushed to the
+/// tangent plane of the thickened collider at its entry point, so a limb
+/// faster than the cloth's step cannot push cloth out on its far side.
+/// Friction (when `friction`) acts on the motion relative to the collider.
+double resolve_point(const std::vector<Collider>& before, const std::vector<Collider>& after,
+                     const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true);
+
 /// Deepest penetration of p below any collider surface less thickness
 /// (metres, 0 when p is at least `thickness` outside all of them).
 double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p);

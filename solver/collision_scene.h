@@ -16,9 +16,11 @@ class CollisionScene {
  public:
   virtual ~CollisionScene() = default;
   /// Like resolve_point: pushes `position` out to `thickness` from every
-  /// surface, applying friction to the motion from `previous`. Returns the
-  /// largest normal correction (metres).
-  virtual double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const = 0;
+  /// surface, on the side the point was on at `start` (its position when
+  /// the step began, while the scene was still in its previous pose), and
+  /// when `friction` applies friction to the motion from `start` relative
+  /// to the surface. Returns the largest normal correction (metres).
+  virtual double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const = 0;
   /// Depth of p inside surface + thickness (0 when outside), metres.
   virtual double penetration(const Eigen::Vector3d& p) const = 0;
   /// True when there is nothing to collide with (the integrator skips work).
@@ -29,8 +31,8 @@ class CollisionScene {
 class AnalyticScene : public CollisionScene {
  public:
   explicit AnalyticScene(std::vector<Collider> colliders = {}) : colliders_(std::move(colliders)) {}
-  double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override {
-    return resolve_point(colliders_, previous, position);
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override {
+    return resolve_point(colliders_, colliders_, start, position, friction);
   }
   double penetration(const Eigen::Vector3d& p) const override { return mrcloth::penetration(colliders_, p); }
   bool empty() const override { return colliders_.empty(); }
@@ -46,10 +48,10 @@ class AnalyticScene : public CollisionScene {
 class CompositeScene : public CollisionScene {
  public:
   void add(const CollisionScene* scene) { scenes_.push_back(scene); }
-  double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override {
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override {
     double largest = 0.0;
     for (int sweep = 0; sweep < 2; ++sweep)
-      for (const CollisionScene* s : scenes_) largest = std::max(largest, s->resolve(previous, position));
+      for (const CollisionScene* s : scenes_) largest = std::max(largest, s->resolve(start, position, friction));
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

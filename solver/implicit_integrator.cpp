@@ -243,14 +243,14 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
 }
 
 double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Positions& q,
-                                              const CollisionScene& scene) const {
+                                              const CollisionScene& scene, bool friction) const {
   if (scene.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
       Eigen::Vector3d x = q.row(f).transpose();
-      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x));
+      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, friction));
       q.row(f) = x.transpose();
     }
     // A T-node can be inside while its parents are outside (the collider is
@@ -258,7 +258,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     for (int v : m.hanging_vertices) {
       const Eigen::Vector3d x = position_of(v, q);
       Eigen::Vector3d target = x;
-      const double correction = scene.resolve(x, target);
+      const double correction = scene.resolve(position_of(v, q_previous), target, false);
       if (correction <= 0.0) continue;
       largest = std::max(largest, correction);
       const Eigen::Vector3d delta = target - x;
@@ -312,8 +312,8 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     limit_strain(q);
     report.dynamics_ms += ms_since(limit_start);
     const auto collide_start = Clock::now();
-    const Positions& reference = round == 0 ? q_previous : Positions(q);
-    report.max_correction = std::max(report.max_correction, resolve_collisions(reference, q, scene));
+    report.max_correction =
+        std::max(report.max_correction, resolve_collisions(q_previous, q, scene, /*friction=*/round == 0));
     report.collision_ms += ms_since(collide_start);
   }
 

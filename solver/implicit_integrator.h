@@ -80,7 +80,7 @@ class ImplicitIntegrator {
  private:
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   void limit_strain(Positions& q) const;
-  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene) const;
+  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
 
   const DynamicsModel* model_ = nullptr;

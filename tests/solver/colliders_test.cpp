@@ -395,6 +395,82 @@ TEST(ResolvePoint, DeepInsideAnyColliderComesOutAtThickness) {
   }
 }
 
+// ---------------------------------------------------------------------------
+// Moving colliders: carry_with and the entry-side response
+
+TEST(CarryWith, MovesPointsRigidlyWithTheCollider) {
+  const Collider before = make(CapsuleCollider{{0, 0, 0}, {0, 1, 0}, 0.1, 0.05});
+  // The capsule turns 90 degrees about z (its axis from +y to -x) and moves by (1, 2, 3).
+  const Collider after = make(CapsuleCollider{{1, 2, 3}, {0, 2, 3}, 0.1, 0.05});
+  std::mt19937 rng(21);
+  for (int i = 0; i < 200; ++i) {
+    const Vector3d p = random_point(rng, Vector3d::Constant(-1), Vector3d::Constant(1));
+    const Vector3d q = carry_with(before, after, p);
+    EXPECT_NEAR(q.x(), 1.0 - p.y(), 1e-12);
+    EXPECT_NEAR(q.y(), 2.0 + p.x(), 1e-12);
+    EXPECT_NEAR(q.z(), 3.0 + p.z(), 1e-12);
+    EXPECT_NEAR(query_surface(after, q).distance, query_surface(before, p).distance, 1e-12)
+        << "the distance to a rigidly moved capsule is kept";
+  }
+  const Collider sphere0 = make(SphereCollider{{0, 0, 0}, 0.2}), sphere1 = make(SphereCollider{{0.5, 0, -1}, 0.2});
+  EXPECT_EQ(carry_with(sphere0, sphere1, Vector3d(1, 1, 1)), Vector3d(1.5, 1, 0));
+  const Collider plane = make(PlaneCollider{});
+  EXPECT_EQ(carry_with(plane, plane, Vector3d(1, 1, 1)), Vector3d(1, 1, 1));
+}
+
+/// A leg (capsule along z, radius 0.1) sweeps 0.15 in +x through a point at
+/// the origin that sat 0.12 in front of its axis: the point ends 0.03 behind
+/// the new axis, where the nearest surface is the far side.
+TEST(ResolvePoint, AColliderThatMovedPastAPointPushesItOutOnTheSideItCameFrom) {
+  const std::vector<Collider> before = {make(CapsuleCollider{{-0.12, 0, -1}, {-0.12, 0, 1}, 0.1, 0.1}, 0.004, 0.0)};
+  const std::vector<Collider> after = {make(CapsuleCollider{{0.03, 0, -1}, {0.03, 0, 1}, 0.1, 0.1}, 0.004, 0.0)};
+  Vector3d position(0, 0, 0);
+  EXPECT_NEAR(resolve_point(before, after, Vector3d(0, 0, 0), position), 0.134, 1e-12);
+  EXPECT_NEAR(position.x(), 0.134, 1e-12) << "in front of the leg, where it was";
+  EXPECT_NEAR(position.y(), 0.0, 1e-12);
+  // Without the motion the nearest surface wins: out through the back.
+  Vector3d static_position(0, 0, 0);
+  resolve_point(after, after, Vector3d(0, 0, 0), static_position);
+  EXPECT_NEAR(static_position.x(), 0.03 - 0.104, 1e-12);
+}
+
+/// The same sweep with the point also moving: the entry is found along the
+/// point's path relative to the leg, and it leaves through that side's
+/// tangent plane, outside the thickened capsule and never behind it.
+TEST(ResolvePoint, EntrySideResponseLeavesEveryPointOutsideOnItsSide) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int flipped = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vector3d a0(unit(rng), unit(rng), unit(rng)), b0 = a0 + Vector3d(0.1 * unit(rng), 0.6, 0.1 * unit(rng));
+    const Vector3d move(0.3 * unit(rng), 0.05 * unit(rng), 0.3 * unit(rng));
+    const Collider from = make(CapsuleCollider{a0, b0, 0.1, 0.06}, 0.004, 0.0);
+    const Collider to = make(CapsuleCollider{a0 + move, b0 + move, 0.1, 0.06}, 0.004, 0.0);
+    Vector3d start;
+    do start = a0 + Vector3d(0.3 * unit(rng), 0.6 * (unit(rng) + 1) / 2, 0.3 * unit(rng));
+    while (query_surface(from, start).distance <= 0.004);
+    Vector3d position = start + Vector3d(0.02 * unit(rng), 0.02 * unit(rng), 0.02 * unit(rng));
+    // The oracle: where the path relative to the leg first enters it, by dense sampling.
+    const Vector3d carried = carry_with(from, to, start);
+    Vector3d entry_normal = Vector3d::Zero();
+    for (int k = 1; k <= 20000; ++k) {
+      const Vector3d x = carried + (k / 20000.0) * (position - carried);
+      if (query_surface(to, x).distance < 0.004) {
+        entry_normal = query_surface(to, x).normal;
+        break;
+      }
+    }
+    // Only points that end inside are resolved (a path through and out again
+    // would need a leg faster than 0.2 m per step at these sizes).
+    if (entry_normal == Vector3d::Zero() || query_surface(to, position).distance >= 0.004) continue;
+    flipped += query_surface(to, position).normal.dot(entry_normal) < 0.5;
+    resolve_point({from}, {to}, start, position);
+    EXPECT_GE(query_surface(to, position).distance, 0.004 - 1e-12);
+    EXPECT_GT(query_surface(to, position).normal.dot(entry_normal), 0.0) << "start " << start.transpose();
+  }
+  EXPECT_GT(flipped, 20) << "the sample must include points the nearest surface would flip";
+}
+
 /// Falling onto the floor y = 0 with sideways motion 1/16 and a normal
 /// correction of 1/32 (dyadic, so the expected values are exact).
 Vector3d land_on_floor(double mu) {
