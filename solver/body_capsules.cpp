@@ -137,6 +137,16 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
       fail(i, "radii must be finite, >= 0 and not both 0 (got " + text(bone.radius_head) + ", " +
                   text(bone.radius_tail) + ")");
   }
+  for (std::size_t i = 0; i < rig.bridges.size(); ++i) {
+    const BridgeCapsule& bridge = rig.bridges[i];
+    for (int joint : {bridge.joint_a, bridge.child_a, bridge.joint_b, bridge.child_b})
+      if (joint < 0 || joint >= joint_count)
+        throw ArgumentError(std::string(caller) + ": bridge " + std::to_string(i) + " names joint " +
+                            std::to_string(joint) + ", not one of the skeleton's " + std::to_string(joint_count));
+    if (!(bridge.at >= 0.0 && bridge.at <= 1.0 && std::isfinite(bridge.radius) && bridge.radius > 0.0))
+      throw ArgumentError(std::string(caller) + ": bridge " + std::to_string(i) + " needs 0 <= at <= 1 and a radius > 0 (got at " +
+                          text(bridge.at) + ", radius " + text(bridge.radius) + ")");
+  }
   if (!(std::isfinite(rig.thickness) && rig.thickness >= 0.0))
     throw ArgumentError(std::string(caller) + ": thickness must be a finite number >= 0 (got " + text(rig.thickness) +
                         ")");
@@ -151,6 +161,15 @@ Collider bone_collider(const CapsuleRig& rig, const BoneCapsule& bone, const Pos
   capsule.b = pose.position(bone.child);
   capsule.radius_a = bone.radius_head;
   capsule.radius_b = bone.radius_tail;
+  return Collider{capsule, rig.thickness, rig.friction};
+}
+
+/// The bridge's collider in a pose.
+Collider bridge_collider(const CapsuleRig& rig, const BridgeCapsule& bridge, const Pose& pose) {
+  CapsuleCollider capsule;
+  capsule.a = pose.position(bridge.joint_a) + bridge.at * (pose.position(bridge.child_a) - pose.position(bridge.joint_a));
+  capsule.b = pose.position(bridge.joint_b) + bridge.at * (pose.position(bridge.child_b) - pose.position(bridge.joint_b));
+  capsule.radius_a = capsule.radius_b = bridge.radius;
   return Collider{capsule, rig.thickness, rig.friction};
 }
 
@@ -312,16 +331,48 @@ std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose) {
                           std::to_string(bone.joint) + " -> " + std::to_string(bone.child) + " but the pose has " +
                           std::to_string(joints) + " joints");
   }
+  check_rig(rig, joints, "posed_capsules");
   std::vector<Collider> colliders;
-  colliders.reserve(rig.bones.size());
+  colliders.reserve(rig.bones.size() + rig.bridges.size());
   for (const BoneCapsule& bone : rig.bones) colliders.push_back(bone_collider(rig, bone, pose));
+  for (const BridgeCapsule& bridge : rig.bridges) colliders.push_back(bridge_collider(rig, bridge, pose));
   return colliders;
+}
+
+void add_leg_bridges(CapsuleRig& rig, const Skeleton& skeleton, double reach) {
+  check_skeleton(skeleton, "add_leg_bridges");
+  check_rig(rig, static_cast<int>(skeleton.joints.size()), "add_leg_bridges");
+  if (!(reach >= 0.5 && reach <= 2.0))
+    throw ArgumentError("add_leg_bridges: reach must be in [0.5, 2] bones from the hips (got " + text(reach) + ")");
+  const auto joint = [&](const char* name) {
+    const int j = skeleton.find(name);
+    if (j < 0) throw ArgumentError(std::string("add_leg_bridges: the skeleton has no joint '") + name + "'");
+    return j;
+  };
+  // Thigh then shin of each leg: (joint, child) pairs.
+  const std::pair<int, int> left[2] = {{joint("LeftUpLeg"), joint("LeftLeg")}, {joint("LeftLeg"), joint("LeftFoot")}};
+  const std::pair<int, int> right[2] = {{joint("RightUpLeg"), joint("RightLeg")}, {joint("RightLeg"), joint("RightFoot")}};
+  // The leg capsule's radius at fraction `at` of a bone (0 if none).
+  const auto radius_at = [&](std::pair<int, int> bone, double at) {
+    for (const BoneCapsule& b : rig.bones)
+      if (b.joint == bone.first && b.child == bone.second) return b.radius_head + at * (b.radius_tail - b.radius_head);
+    return 0.0;
+  };
+  for (int half = 1; half <= static_cast<int>(std::floor(2.0 * reach + 1e-9)); ++half) {
+    const int k = (half - 1) / 2;      // thigh (0) or shin (1)
+    const double at = half % 2 ? 0.5 : 1.0;
+    const double radius = std::min(radius_at(left[k], at), radius_at(right[k], at));
+    if (!(radius > 0.0))
+      throw ArgumentError("add_leg_bridges: the rig has no capsule on both legs' " + std::string(k ? "shins" : "thighs"));
+    rig.bridges.push_back({left[k].first, left[k].second, right[k].first, right[k].second, at, radius});
+  }
 }
 
 CapsuleBody::CapsuleBody(CapsuleRig rig, const Skeleton& skeleton) : rig_(std::move(rig)) {
   check_skeleton(skeleton, "CapsuleBody");
   check_rig(rig_, static_cast<int>(skeleton.joints.size()), "CapsuleBody");
   colliders_ = posed_capsules(rig_, rest_pose(skeleton));
+  previous_ = colliders_;
 }
 
 void CapsuleBody::pose(const Pose& pose) {
@@ -333,14 +384,28 @@ void CapsuleBody::pose(const Pose& pose) {
                           std::to_string(i) + " needs joints " + std::to_string(bone.joint) + " and " +
                           std::to_string(bone.child));
     // Only the end points move: update in place, no allocation per step.
+    if (posed_) previous_[i].shape = colliders_[i].shape;
     auto& capsule = std::get<CapsuleCollider>(colliders_[i].shape);
     capsule.a = pose.position(bone.joint);
     capsule.b = pose.position(bone.child);
   }
+  for (std::size_t k = 0; k < rig_.bridges.size(); ++k) {
+    const BridgeCapsule& bridge = rig_.bridges[k];
+    if (std::max({bridge.joint_a, bridge.child_a, bridge.joint_b, bridge.child_b}) >= joints)
+      throw ArgumentError("CapsuleBody::pose: the pose has " + std::to_string(joints) + " joints; bridge " +
+                          std::to_string(k) + " needs more");
+    const std::size_t i = rig_.bones.size() + k;
+    if (posed_) previous_[i].shape = colliders_[i].shape;
+    colliders_[i] = bridge_collider(rig_, rig_.bridges[k], pose);
+  }
+  // The first pose may be far from the construction pose (the rest pose at
+  // the origin): that jump is not a motion the cloth took part in.
+  if (!posed_) previous_ = colliders_;
+  posed_ = true;
 }
 
-double CapsuleBody::resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const {
-  return resolve_point(colliders_, previous, position);
+double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const {
+  return resolve_point(previous_, colliders_, start, position, friction);
 }
 
 double CapsuleBody::penetration(const Eigen::Vector3d& p) const { return mrcloth::penetration(colliders_, p); }

@@ -16,6 +16,17 @@ struct BoneCapsule {
   double radius_tail = 0;  ///< radius at `child`, metres
 };
 
+/// A capsule across the gap between two bones, from the point at `at` along
+/// the first (joint_a -> child_a, 0 = joint, 1 = child) to the point at `at`
+/// along the second: the web between the legs that keeps a skirt from
+/// folding in between them (see add_leg_bridges).
+struct BridgeCapsule {
+  int joint_a = -1, child_a = -1;  ///< the first bone
+  int joint_b = -1, child_b = -1;  ///< the second bone
+  double at = 1.0;                 ///< position along both bones, in [0, 1]
+  double radius = 0;               ///< metres, > 0
+};
+
 struct CapsuleRigOptions {
   double thickness = 0.004;  ///< cloth keeps this far from the capsules, metres
   double friction = 0.3;     ///< Coulomb coefficient
@@ -25,6 +36,7 @@ struct CapsuleRigOptions {
 
 struct CapsuleRig {
   std::vector<BoneCapsule> bones;
+  std::vector<BridgeCapsule> bridges;  ///< collide after the bones, in this order
   double thickness = 0.004;
   double friction = 0.3;
 };
@@ -43,15 +55,27 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
 void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::MatrixX3d& rest_vertices,
                        const std::vector<std::vector<std::pair<int, double>>>& bone_weights);
 
-/// Analytic capsule colliders of the rig in a pose.
+/// Bridges between the legs for a skirt or dress (a garment with one tube
+/// around both legs): a real body's thighs meet, a capsule rig's leave a
+/// gap into which the cloth folds and where scissoring thighs trap it. Adds
+/// a bridge at every half bone from mid-thigh down to `reach` (in bones
+/// from the hips: 1 = the knees, 2 = the ankles, so a knee-length skirt
+/// needs 1 and a long dress 2), each as thick as the thinner leg capsule
+/// there. The legs are found by their CMU names (LeftUpLeg -> LeftLeg ->
+/// LeftFoot and Right...); ArgumentError names what is missing.
+void add_leg_bridges(CapsuleRig& rig, const Skeleton& skeleton, double reach = 1.0);
+
+/// Analytic capsule colliders of the rig in a pose: its bones, then its bridges.
 std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose);
 
-/// A collision scene that follows a rig: call pose() before each step.
+/// A collision scene that follows a rig: call pose() before each step. It
+/// remembers the previous pose, so cloth is kept on the side of each
+/// capsule it was on when the step began (see resolve_point).
 class CapsuleBody : public CollisionScene {
  public:
   CapsuleBody(CapsuleRig rig, const Skeleton& skeleton);
   void pose(const Pose& pose);
-  double resolve(const Eigen::Vector3d& previous, Eigen::Vector3d& position) const override;
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   bool empty() const override { return colliders_.empty(); }
   const std::vector<Collider>& colliders() const { return colliders_; }
@@ -59,6 +83,8 @@ class CapsuleBody : public CollisionScene {
  private:
   CapsuleRig rig_;
   std::vector<Collider> colliders_;
+  std::vector<Collider> previous_;  ///< the capsules before the last pose()
+  bool posed_ = false;              ///< false until the first pose(): no motion to carry yet
 };
 
 }  // namespace mrcloth

@@ -2,6 +2,7 @@
 
 #include "mesh_ops/errors.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrcloth {
@@ -26,12 +27,49 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
 
 }  // namespace
 
-SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness, double friction)
+/// The body mesh, then the bridges; a point a bridge moved is projected
+/// out of the mesh again (frictionless), so the mesh has the last word.
+class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
+ public:
+  MeshAndBridges(const MeshBody& mesh, const CapsuleBody* bridges) : mesh_(mesh), bridges_(bridges) {}
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const override {
+    double largest = mesh_.resolve(start, position, friction);
+    if (bridges_ && bridges_->resolve(start, position, friction) > 0.0)
+      largest = std::max(largest, mesh_.resolve(start, position, false));
+    return largest;
+  }
+  double penetration(const Eigen::Vector3d& p) const override {
+    return std::max(mesh_.penetration(p), bridges_ ? bridges_->penetration(p) : 0.0);
+  }
+  bool empty() const override { return false; }
+
+ private:
+  const MeshBody& mesh_;
+  const CapsuleBody* bridges_;
+};
+
+SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness, double friction,
+                                   CapsuleRig bridges)
     : body_(std::move(body)),
       skeleton_(skeleton),
-      mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)) {}
+      mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)) {
+  if (!bridges.bones.empty()) throw ArgumentError("SkinnedPosedBody: the bridge rig must hold bridges only");
+  if (!bridges.bridges.empty()) {
+    bridges.thickness = thickness;
+    bridges.friction = friction;
+    bridges_ = std::make_unique<CapsuleBody>(std::move(bridges), skeleton);
+  }
+  scene_ = std::make_unique<MeshAndBridges>(*mesh_, bridges_.get());
+}
 
-void SkinnedPosedBody::set_pose(const Pose& pose) { mesh_->update(skin(body_, skeleton_, pose)); }
+SkinnedPosedBody::~SkinnedPosedBody() = default;
+
+void SkinnedPosedBody::set_pose(const Pose& pose) {
+  mesh_->update(skin(body_, skeleton_, pose));
+  if (bridges_) bridges_->pose(pose);
+}
+
+const CollisionScene& SkinnedPosedBody::scene() const { return *scene_; }
 
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = rest_pose(motion.skeleton);

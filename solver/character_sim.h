@@ -32,17 +32,24 @@ class CapsulePosedBody : public PosedBody {
   CapsuleBody body_;
 };
 
-/// A skinned triangle mesh, re-skinned and refit for every pose.
+/// A skinned triangle mesh, re-skinned and refit for every pose, with
+/// optional bridges between the legs (a rig of bridges only, see
+/// add_leg_bridges) posed by the same skeleton.
 class SkinnedPosedBody : public PosedBody {
  public:
-  SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3);
+  SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3,
+                   CapsuleRig bridges = {});
+  ~SkinnedPosedBody() override;
   void set_pose(const Pose& pose) override;
-  const CollisionScene& scene() const override { return *mesh_; }
+  const CollisionScene& scene() const override;
 
  private:
+  class MeshAndBridges;
   SkinnedBody body_;
   const Skeleton& skeleton_;
   std::unique_ptr<MeshBody> mesh_;
+  std::unique_ptr<CapsuleBody> bridges_;  ///< null without bridges
+  std::unique_ptr<MeshAndBridges> scene_;
 };
 
 struct CharacterRunOptions {

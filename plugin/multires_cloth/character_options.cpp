@@ -1,5 +1,6 @@
 #include "character_options.h"
 
+#include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/units.h"
 #include "solver/body_capsules.h"
 
@@ -7,6 +8,7 @@
 #include <QFileInfo>
 
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <utility>
 
@@ -99,7 +101,7 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   const QStringList files = {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
                                       QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
-                                                  QStringLiteral("radii")});
+                                                  QStringLiteral("radii"), QStringLiteral("legBridges")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
   request.body = type == QLatin1String("mesh") ? CharacterBodyType::mesh : CharacterBodyType::capsules;
 
@@ -122,6 +124,23 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     request.makehuman.base_obj = file(QStringLiteral("obj"));
     request.makehuman.skeleton_file = file(QStringLiteral("skeleton"));
     request.makehuman.weights_file = file(QStringLiteral("weights"));
+  }
+  if (fields.has(QStringLiteral("legBridges"))) {
+    const QString label = fields.label(QStringLiteral("legBridges"));
+    const QVariant bridges = fields.required(QStringLiteral("legBridges"));
+    if (bridges.typeId() == QMetaType::QString) {
+      script::toChoice(bridges, label, {QStringLiteral("auto")});
+      request.legBridges = -1.0;
+    } else if (bridges.typeId() == QMetaType::Bool) {
+      request.legBridges = bridges.toBool() ? -1.0 : 0.0;
+    } else {
+      const double reach = script::toNumber(bridges, label);
+      if (!(reach == 0.0 || (reach >= 0.5 && reach <= 2.0)))
+        fail(QStringLiteral("%1 must be \"auto\", false, 0 or a reach from 0.5 to 2 bones below the hips (1: the "
+                            "knees, 2: the ankles), got %2")
+                 .arg(label, script::describeValue(bridges)));
+      request.legBridges = reach;
+    }
   }
   request.thickness = fields.numberFrom(QStringLiteral("thickness"), request.thickness, 0.0, false);
   request.friction = fields.numberFrom(QStringLiteral("friction"), request.friction, 0.0, false);
@@ -176,6 +195,25 @@ void recentreRoot(Motion& motion, const Eigen::Vector3d& root_at_start) {
   }
 }
 
+/// Bridges for a garment that is one tube around both legs (two boundary
+/// loops: a skirt or dress): to the knees, or to the ankles when the placed
+/// garment reaches below the knees' rest height. None for anything else
+/// (trousers have three loops; a shirt four) or without CMU leg names.
+double automaticLegBridges(const QuadMesh& garment, const Eigen::Isometry3d& placement, const Skeleton& skeleton) {
+  if (boundary_loops(garment).size() != 2) return 0.0;
+  const int knees[2] = {skeleton.find("LeftLeg"), skeleton.find("RightLeg")};
+  for (const char* name : {"LeftUpLeg", "RightUpLeg", "LeftLeg", "RightLeg", "LeftFoot", "RightFoot"})
+    if (skeleton.find(name) < 0) return 0.0;
+  const Pose rest = rest_pose(skeleton);
+  const double knee_height = std::max(rest.position(knees[0]).y(), rest.position(knees[1]).y());
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const auto vertex : garment.vertices()) {
+    const auto& p = garment.point(vertex);
+    lowest = std::min(lowest, (placement * Eigen::Vector3d(p[0], p[1], p[2])).y());
+  }
+  return lowest >= knee_height ? 1.0 : 2.0;
+}
+
 Motion withoutFirstFrame(const Motion& motion) {
   Motion clip;
   clip.skeleton = motion.skeleton;
@@ -218,7 +256,7 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   return request;
 }
 
-LoadedCharacter loadCharacter(const CharacterRequest& request) {
+LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& garment) {
   LoadedCharacter character;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
   BvhReadOptions read_options;
@@ -260,11 +298,21 @@ LoadedCharacter loadCharacter(const CharacterRequest& request) {
     if (skeleton.find(name) < 0)
       fail(QStringLiteral("option 'body.radii.%1': the motion's skeleton has no joint of that name")
                .arg(QString::fromStdString(name)));
+  character.legBridges = request.legBridges >= 0.0
+                             ? request.legBridges
+                             : automaticLegBridges(garment, character.placement, skeleton);
   naming(optionLabel(QStringLiteral("body")), [&] {
     if (request.body == CharacterBodyType::mesh) {
       character.bodyVertices = static_cast<int>(skinned->rest_vertices.rows());
+      CapsuleRig bridges;
+      if (character.legBridges > 0.0) {
+        // Sized like default leg capsules; the rig's bones are dropped, the mesh is the body.
+        bridges = make_capsule_rig(skeleton);
+        add_leg_bridges(bridges, skeleton, character.legBridges);
+        bridges.bones.clear();
+      }
       character.body = std::make_unique<SkinnedPosedBody>(std::move(*skinned), skeleton, request.thickness,
-                                                          request.friction);
+                                                          request.friction, std::move(bridges));
       return;
     }
     CapsuleRigOptions rig_options;
@@ -285,6 +333,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request) {
       rig.bones = std::move(kept);
     }
     character.bodyCapsules = static_cast<int>(rig.bones.size());
+    if (character.legBridges > 0.0) add_leg_bridges(rig, skeleton, character.legBridges);
     character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton);
   });
   return character;
@@ -341,6 +390,7 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
       {QStringLiteral("place"), placementName(request.place)},
       {QStringLiteral("placement"), QVariantList{shift.x(), shift.y(), shift.z()}},
       {QStringLiteral("stepRate"), substeps * run.fps},
+      {QStringLiteral("legBridges"), character.legBridges},
   };
   if (request.body == CharacterBodyType::mesh) map.insert(QStringLiteral("bodyVertices"), character.bodyVertices);
   else map.insert(QStringLiteral("capsules"), character.bodyCapsules);

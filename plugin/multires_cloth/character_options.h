@@ -5,6 +5,7 @@
 // placement they ask for, loaded for solver/character_sim.h. The waist
 // (`waist` / `pins`) is parsed with the other pins in simulation_options.cpp.
 #include "option_fields.h"
+#include "mesh_ops/quad_mesh.h"
 #include "solver/body_skinned_mesh.h"
 #include "solver/character_sim.h"
 #include "solver/skeleton.h"
@@ -46,6 +47,11 @@ struct CharacterRequest {
   double friction = 0.3;
   /// Capsule radius overrides by joint name (head, tail), metres; 0 removes the capsule.
   std::map<std::string, std::pair<double, double>> radii;
+  /// Bridges between the legs (add_leg_bridges): < 0 automatic (down to the
+  /// knees, or the ankles if the garment reaches below them, for a garment
+  /// that is one tube with two boundary loops, none otherwise), 0 none,
+  /// else the reach in bones from the hips (0.5 .. 2).
+  double legBridges = -1.0;
   GarmentPlacement place = GarmentPlacement::none;
   double prerollSeconds = 1.0;
   double stepRate = 120.0;      ///< time steps per second
@@ -69,12 +75,14 @@ struct LoadedCharacter {
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
   int bodyVertices = 0;         ///< skinned mesh vertices (0 for capsules)
   int bodyCapsules = 0;         ///< capsules (0 for a mesh)
+  double legBridges = 0.0;      ///< the reach of the bridges between the legs, bones (0: none)
   bool fittedCapsules = false;  ///< capsule radii fitted to the MakeHuman body
 };
 
-/// Reads the BVH, builds the body, finds the placement. Errors name the
-/// option they come from ("option 'motion': <file>:<line>: ...").
-LoadedCharacter loadCharacter(const CharacterRequest& request);
+/// Reads the BVH, finds the placement, builds the body (with bridges between
+/// the legs as the request and the garment ask). Errors name the option
+/// they come from ("option 'motion': <file>:<line>: ...").
+LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
 
 /// Settings for simulate_on_character from the request and the run's
 /// frames, fps and solver settings (iterations, gravity, colliders, cache).
@@ -86,7 +94,7 @@ QString placementName(GarmentPlacement place);
 /// What a character run adds to simulate's report: preroll {frames, steps,
 /// msPerFrame {dynamics, collision, total}, initialPenetration, maxPenetration,
 /// nonFinite}, maxWaistError, body, motion, motionUnits, motionStart,
-/// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz].
+/// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz], legBridges.
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const LoadedCharacter& character, const CharacterRunOptions& run);
 

@@ -307,7 +307,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
   const bool record = slot == QLatin1String("recordInstance");
-  const LoadedCharacter character = loadCharacter(wanted);
+  const LoadedCharacter character = loadCharacter(wanted, *input.mesh);
   const Motion& motion = *character.motion;
 
   // The garment in the skeleton's rest space; the object itself is untouched.
@@ -479,7 +479,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, initialPenetration, nonFinite}, "
                       "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
-                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate. The rest pose is "
+                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges. The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},
@@ -502,7 +502,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "
             "that body), thickness (m) = 0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
-            "only, 0 removes that joint's capsules)}, place: \"none\" (the garment is "
+            "only, 0 removes that joint's capsules), legBridges: \"auto\" | false | 0.5 .. 2 = \"auto\" (capsules "
+            "between the legs down to that many bones below the hips, 1 = knees, 2 = ankles, so a skirt cannot "
+            "fold in between the legs and be caught; auto: for a garment with two boundary loops, to the knees "
+            "or, if it reaches below them, the ankles, otherwise none)}, place: \"none\" (the garment is "
             "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "

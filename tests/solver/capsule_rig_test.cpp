@@ -427,6 +427,86 @@ TEST(CapsuleRig, FitKeepsRadiiWithoutVertices) {
   }
 }
 
+TEST(CapsuleRig, LegBridgesSpanTheLegsAtHalfBones) {
+  const Skeleton skeleton = cmu_like();
+  const Motion motion = random_motion(skeleton, 3, 13);
+  const int up[2] = {skeleton.find("LeftUpLeg"), skeleton.find("RightUpLeg")};
+  const int knee[2] = {skeleton.find("LeftLeg"), skeleton.find("RightLeg")};
+  const int ankle[2] = {skeleton.find("LeftFoot"), skeleton.find("RightFoot")};
+  for (const double reach : {0.5, 1.0, 1.5, 2.0}) {
+    CapsuleRig rig = make_capsule_rig(skeleton);
+    const std::size_t bones = rig.bones.size();
+    add_leg_bridges(rig, skeleton, reach);
+    ASSERT_EQ(rig.bridges.size(), static_cast<std::size_t>(2 * reach)) << "reach " << reach;
+    CapsuleBody body(rig, skeleton);
+    for (int f = 0; f < 3; ++f) {
+      const Pose pose = frame_pose(motion, f);
+      const auto colliders = posed_capsules(rig, pose);
+      ASSERT_EQ(colliders.size(), bones + rig.bridges.size());
+      body.pose(pose);
+      for (std::size_t k = 0; k < rig.bridges.size(); ++k) {
+        // Half bones from the hips: mid-thigh, knee, mid-shin, ankle.
+        const int (&from)[2] = k < 2 ? up : knee;
+        const int (&to)[2] = k < 2 ? knee : ankle;
+        const double at = k % 2 == 0 ? 0.5 : 1.0;
+        const CapsuleCollider& c = capsule_of(colliders[bones + k]);
+        const Vector3d left = pose.position(from[0]) + at * (pose.position(to[0]) - pose.position(from[0]));
+        const Vector3d right = pose.position(from[1]) + at * (pose.position(to[1]) - pose.position(from[1]));
+        EXPECT_LT((c.a - left).norm(), 1e-12) << "bridge " << k;
+        EXPECT_LT((c.b - right).norm(), 1e-12) << "bridge " << k;
+        EXPECT_EQ(c.radius_a, c.radius_b);
+        const CapsuleCollider& d = capsule_of(body.colliders()[bones + k]);
+        EXPECT_EQ(d.a, c.a);
+        EXPECT_EQ(d.b, c.b);
+      }
+    }
+  }
+  // As thick as the thinner leg there: the default thigh is 0.075 -> 0.050.
+  CapsuleRig rig = make_capsule_rig(skeleton);
+  add_leg_bridges(rig, skeleton, 1.0);
+  EXPECT_NEAR(rig.bridges[0].radius, 0.0625, 1e-12);
+  EXPECT_NEAR(rig.bridges[1].radius, 0.050, 1e-12);
+
+  EXPECT_THROW(add_leg_bridges(rig, skeleton, 0.25), ArgumentError);
+  EXPECT_THROW(add_leg_bridges(rig, skeleton, 2.5), ArgumentError);
+  SkeletonBuilder other;
+  const int root = other.add("root", -1, Vector3d::Zero());
+  other.add("root_end", root, Vector3d(0, 1, 0), true);
+  CapsuleRig other_rig = make_capsule_rig(other.skeleton);
+  try {
+    add_leg_bridges(other_rig, other.skeleton);
+    ADD_FAILURE() << "a skeleton without CMU leg names";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("LeftUpLeg"), std::string::npos) << e.what();
+  }
+}
+
+/// The body remembers where its capsules were before the last pose, so a
+/// point a capsule swept past within the step comes out on its own side.
+TEST(CapsuleBody, KeepsPointsOnTheSideTheyWereOn) {
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  b.add("root_end", root, Vector3d(0, 1, 0), true);
+  CapsuleRigOptions options;
+  options.thickness = 0.0;
+  options.friction = 0.0;
+  options.radii["root"] = {0.1, 0.1};
+  CapsuleBody body(make_capsule_rig(b.skeleton, options), b.skeleton);
+  Pose pose = rest_pose(b.skeleton);
+  const auto place = [&](double x) {
+    for (Eigen::Isometry3d& g : pose.global) g.translation().x() = x;
+    pose.global[1].translation() = pose.global[0].translation() + Vector3d(0, 1, 0);
+    body.pose(pose);
+  };
+  place(-0.12);  // the first pose: nothing moved yet
+  const Vector3d start(0, 0.5, 0);
+  Vector3d position = start;
+  EXPECT_EQ(body.resolve(start, position), 0.0) << "0.02 clear of the surface";
+  place(0.03);  // swept 0.15 in +x: the point is now 0.03 behind the axis
+  EXPECT_NEAR(body.resolve(start, position), 0.13, 1e-12);
+  EXPECT_NEAR(position.x(), 0.13, 1e-12);
+}
+
 TEST(CapsuleRig, CmuWalkSkeleton) {
   const std::string path = std::string(MRCLOTH_SHARED_DATA) + "/motions/cmu_mb/07_06.bvh";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
