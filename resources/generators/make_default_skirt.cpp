@@ -51,8 +51,8 @@ struct SkirtOptions {
   double hip_height = 0.90;           ///< y of the widest part of the hips, m
   double hip_circumference = 0.96;    ///< m
   double hip_aspect = 1.30;           ///< hips are a little rounder than the waist
-  double hem_height = 0.50;           ///< y of the bottom boundary loop, just above the knees, m
-  double hem_circumference = 1.16;    ///< m; the slight A-line flare keeps the hem off the legs when walking
+  double hem_height = 0.55;           ///< y of the bottom boundary loop, above the knees, m
+  double hem_circumference = 1.50;    ///< m; the A-line flare leaves room for a walking stride (knees ~0.35 m apart)
   double hem_aspect = 1.15;           ///< a flared hem hangs rounder than the body
 };
 
