@@ -494,11 +494,51 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
     body.rest_vertices.row(b) = bound_x.transpose();
   }
   body.joint_rest = binding.pivot;
+  // The input pose's joints: the rest pivots carried back through the
+  // corrections along the chain, so that skinning the input in the rest
+  // pose gives exactly the bound rest_vertices above.
+  body.rest_correction = binding.correction;
+  body.input_joints.assign(n, Vector3d::Zero());
+  for (std::size_t j = 0; j < n; ++j) {
+    const int parent = skeleton.joints[j].parent;
+    if (parent < 0) {
+      body.input_joints[j] = binding.pivot[j];
+      continue;
+    }
+    const auto p = static_cast<std::size_t>(parent);
+    body.input_joints[j] =
+        body.input_joints[p] + binding.correction[p].transpose() * (binding.pivot[j] - binding.pivot[p]);
+  }
+  body.input_vertices.resize(body_count, 3);
+  for (std::size_t v = 0; v < all_vertices.size(); ++v)
+    if (body_index[v] >= 0) body.input_vertices.row(body_index[v]) = (all_vertices[v] + offset).transpose();
   return body;
 }
 
 // ---------------------------------------------------------------------------
 // skin
+
+namespace {
+
+/// Checks a body's per-joint and per-vertex arrays against the skeleton.
+void check_body(const SkinnedBody& body, std::size_t n, const char* caller) {
+  const auto fail = [&](const std::string& problem) { throw ArgumentError(std::string(caller) + ": " + problem); };
+  if (!body.joint_rest.empty() && body.joint_rest.size() != n)
+    fail("the body has " + std::to_string(body.joint_rest.size()) + " joint pivots; expected " + std::to_string(n) +
+         " (the skeleton's)");
+  if (body.weights.size() != static_cast<std::size_t>(body.rest_vertices.rows()))
+    fail("the body has " + std::to_string(body.weights.size()) + " weight lists for " +
+         std::to_string(body.rest_vertices.rows()) + " vertices; expected one per vertex");
+  const bool has_input = body.input_vertices.rows() > 0;
+  if (has_input && (body.input_vertices.rows() != body.rest_vertices.rows() || body.input_joints.size() != n ||
+                    body.rest_correction.size() != n))
+    fail("the body's input mesh (" + std::to_string(body.input_vertices.rows()) + " vertices, " +
+         std::to_string(body.input_joints.size()) + " joints, " + std::to_string(body.rest_correction.size()) +
+         " corrections) does not match its " + std::to_string(body.rest_vertices.rows()) + " vertices and the " +
+         std::to_string(n) + " joints of the skeleton");
+}
+
+}  // namespace
 
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose) {
   const std::size_t n = skeleton.joints.size();
@@ -506,39 +546,41 @@ Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const P
     throw ArgumentError("skin: the pose has " + std::to_string(pose.global.size()) + " joints; expected " +
                         std::to_string(n) + " (the skeleton's)");
   }
-  if (!body.joint_rest.empty() && body.joint_rest.size() != n) {
-    throw ArgumentError("skin: the body has " + std::to_string(body.joint_rest.size()) + " joint pivots; expected " +
-                        std::to_string(n) + " (the skeleton's)");
-  }
-  if (body.weights.size() != static_cast<std::size_t>(body.rest_vertices.rows())) {
-    throw ArgumentError("skin: the body has " + std::to_string(body.weights.size()) + " weight lists for " +
-                        std::to_string(body.rest_vertices.rows()) + " vertices; expected one per vertex");
-  }
+  check_body(body, n, "skin");
+  // Skin from the input mesh when there is one (its own pose, undone by the
+  // rest correction), else from the rest mesh.
+  const bool from_input = body.input_vertices.rows() > 0;
+  const Eigen::MatrixX3d& source = from_input ? body.input_vertices : body.rest_vertices;
   const Pose rest = rest_pose(skeleton);
-  std::vector<Vector3d> pivot_rest(n);
-  for (std::size_t j = 0; j < n; ++j)
-    pivot_rest[j] = body.joint_rest.empty() ? rest.position(static_cast<int>(j)) : body.joint_rest[j];
+  std::vector<Vector3d> pivot_source(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    pivot_source[j] = from_input ? body.input_joints[j]
+                      : body.joint_rest.empty() ? rest.position(static_cast<int>(j))
+                                                : body.joint_rest[j];
+  }
 
-  // Per joint, once per pose: the rotation relative to rest, and where the
-  // pivot goes, carried down the body's own chain (the body keeps its bone
-  // lengths; only rotations and the root's motion come from the skeleton).
+  // Per joint, once per pose: the rotation relative to the source pose, and
+  // where the pivot goes, carried down the body's own chain (the body keeps
+  // its bone lengths; only rotations and the root's motion come from the
+  // skeleton).
   std::vector<Matrix3d> turn(n);
   std::vector<Vector3d> pivot(n), shift(n);
   for (std::size_t j = 0; j < n; ++j) {
     turn[j] = pose.global[j].linear() * rest.global[j].linear().transpose();
+    if (from_input) turn[j] = turn[j] * body.rest_correction[j];
     const int parent = skeleton.joints[j].parent;
     if (parent < 0) {
-      pivot[j] = pose.position(static_cast<int>(j)) + turn[j] * (pivot_rest[j] - rest.position(static_cast<int>(j)));
+      pivot[j] = pose.position(static_cast<int>(j)) + turn[j] * (pivot_source[j] - rest.position(static_cast<int>(j)));
     } else {
       const auto p = static_cast<std::size_t>(parent);
-      pivot[j] = pivot[p] + turn[p] * (pivot_rest[j] - pivot_rest[p]);
+      pivot[j] = pivot[p] + turn[p] * (pivot_source[j] - pivot_source[p]);
     }
-    shift[j] = pivot[j] - turn[j] * pivot_rest[j];
+    shift[j] = pivot[j] - turn[j] * pivot_source[j];
   }
 
-  Eigen::MatrixX3d out(body.rest_vertices.rows(), 3);
-  for (Eigen::Index v = 0; v < body.rest_vertices.rows(); ++v) {
-    const Vector3d x = body.rest_vertices.row(v).transpose();
+  Eigen::MatrixX3d out(source.rows(), 3);
+  for (Eigen::Index v = 0; v < source.rows(); ++v) {
+    const Vector3d x = source.row(v).transpose();
     Vector3d y = Vector3d::Zero();
     for (const auto& [joint, w] : body.weights[static_cast<std::size_t>(v)]) {
       if (joint < 0 || static_cast<std::size_t>(joint) >= n)
@@ -550,6 +592,25 @@ Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const P
     out.row(v) = y.transpose();
   }
   return out;
+}
+
+Pose mesh_pose(const SkinnedBody& body, const Skeleton& skeleton) {
+  const std::size_t n = skeleton.joints.size();
+  check_body(body, n, "mesh_pose");
+  Pose pose = rest_pose(skeleton);
+  if (body.input_vertices.rows() == 0) return pose;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Matrix3d global = body.rest_correction[j].transpose() * pose.global[j].linear();
+    const int parent = skeleton.joints[j].parent;
+    Vector3d position = pose.global[j].translation();
+    if (parent >= 0) {
+      const Eigen::Isometry3d& up = pose.global[static_cast<std::size_t>(parent)];
+      position = up.translation() + up.linear() * skeleton.joints[j].offset;
+    }
+    pose.global[j].linear() = global;
+    pose.global[j].translation() = position;
+  }
+  return pose;
 }
 
 // ---------------------------------------------------------------------------

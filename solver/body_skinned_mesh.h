@@ -13,9 +13,13 @@
 
 namespace mrcloth {
 
-/// A body mesh bound to a skeleton's rest pose.
+/// A body mesh bound to a skeleton. The mesh may have been modelled in
+/// another pose than the skeleton's rest pose (MakeHuman: an A-pose, CMU: a
+/// T-pose); the rest correction rotates each bone from the mesh's pose to
+/// the rest pose, and skin() poses the input mesh directly, so the mesh's
+/// own pose (mesh_pose) reproduces the input exactly.
 struct SkinnedBody {
-  Eigen::MatrixX3d rest_vertices;                       ///< #V x 3, metres, in the skeleton's rest (T-pose) space
+  Eigen::MatrixX3d rest_vertices;                       ///< #V x 3, metres: the body in the skeleton's rest (T-)pose
   std::vector<Eigen::Vector3i> triangles;               ///< the body's quads split into triangles
   std::vector<std::vector<std::pair<int, double>>> weights;  ///< per vertex (skeleton joint, weight), weights sum to 1
   /// Per skeleton joint, the point its bone turns about in rest space
@@ -23,9 +27,16 @@ struct SkinnedBody {
   /// joints after the rest correction, not the skeleton's. Empty: skin()
   /// uses the skeleton's rest joint positions.
   std::vector<Eigen::Vector3d> joint_rest;
-  /// base.obj coordinates x 0.1 + obj_offset = the input (A-pose) mesh in
-  /// the skeleton's rest space, before the rest correction; garments
-  /// modelled on base.obj map the same way. Metres.
+  /// The input mesh (#V x 3, metres, skeleton space), its joints (per
+  /// skeleton joint) and per joint the global rotation taking the mesh's
+  /// pose to the rest pose. Empty: the input is rest_vertices, already in
+  /// the rest pose (no correction).
+  Eigen::MatrixX3d input_vertices;
+  std::vector<Eigen::Vector3d> input_joints;
+  std::vector<Eigen::Matrix3d> rest_correction;
+  /// base.obj coordinates x 0.1 + obj_offset = input_vertices (the A-pose
+  /// mesh in the skeleton's space); garments modelled on base.obj map the
+  /// same way. Metres.
   Eigen::Vector3d obj_offset{0, 0, 0};
 };
 
@@ -48,11 +59,18 @@ struct MakeHumanOptions {
 SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton);
 
 /// Linear-blend skinning: vertices of the body in `pose` (#V x 3). Each
-/// bone takes the rotation of its skeleton joint relative to the rest pose,
-/// about its joint_rest point carried along the body's own bone chain from
-/// the skeleton's root. In the skeleton's rest pose this reproduces
-/// rest_vertices to round-off.
+/// bone takes the rotation of its skeleton joint relative to the mesh's own
+/// pose, about its joint carried along the body's own bone chain from the
+/// skeleton's root. In the skeleton's rest pose this gives rest_vertices,
+/// in mesh_pose the input mesh, both to round-off.
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose);
+
+/// The skeleton posed as the body's input mesh was modelled (MakeHuman's
+/// A-pose): every joint's rest rotation undone by its rest correction, the
+/// root where the rest pose has it, positions by forward kinematics with the
+/// skeleton's own offsets. The skeleton's rest pose for a body without a
+/// correction. Garments modelled on the mesh fit the body in this pose.
+Pose mesh_pose(const SkinnedBody& body, const Skeleton& skeleton);
 
 /// Collision with a moving triangle mesh: a bounding-volume hierarchy built
 /// once over the triangles and refit when the vertices move; closest point

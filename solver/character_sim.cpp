@@ -74,7 +74,10 @@ const CollisionScene& SkinnedPosedBody::scene() const { return *scene_; }
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = rest_pose(motion.skeleton);
   const Pose first = pose_at(motion, options.motion_start);
-  Pose pose = rest;
+  if (!options.garment_pose.global.empty() && options.garment_pose.global.size() != rest.global.size())
+    throw ArgumentError("the garment pose has " + std::to_string(options.garment_pose.global.size()) +
+                        " joints; the motion's skeleton has " + std::to_string(rest.global.size()));
+  Pose pose = options.garment_pose.global.empty() ? rest : options.garment_pose;
   // Every root of the skeleton moves with its own first-frame position.
   for (std::size_t j = 0; j < motion.skeleton.joints.size(); ++j) {
     int root = static_cast<int>(j);

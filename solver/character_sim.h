@@ -59,6 +59,10 @@ struct CharacterRunOptions {
   double preroll_seconds = 1.0;      ///< rest pose -> first motion frame, not recorded; >= 0
   double motion_start = 0.0;         ///< seconds into the clip where the recording starts
   std::string pelvis_joint = "Hips"; ///< the joint whose frame the pinned waist follows
+  /// The pose the garment was modelled on, in the skeleton's rest space
+  /// (root where the rest pose has it); the pre-roll starts from it. Empty:
+  /// the rest pose. MakeHuman garments: mesh_pose of the body (its A-pose).
+  Pose garment_pose;
   SimulationOptions simulation;      ///< iterations, sweeps, gravity, extra colliders; frames/fps/substeps are set from the above
 };
 
@@ -68,8 +72,9 @@ struct CharacterRunReport {
   double max_waist_error = 0.0;      ///< largest distance of a pinned vertex from its target at an output frame, metres
 };
 
-/// The reference pose: the skeleton's rest pose (for CMU, the T-pose) moved
-/// so its root stands where the clip's root is at motion_start. Garments are
+/// The reference pose: options.garment_pose (by default the skeleton's rest
+/// pose, for CMU the T-pose) moved so its root stands where the clip's root
+/// is at motion_start. Garments are
 /// simulated from their rest shape in this pose, and the pinned waist keeps
 /// its place relative to the pelvis as posed here.
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);

@@ -292,7 +292,11 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
   std::optional<SkinnedBody> skinned;
   if (request.hasMakeHuman)
     skinned = naming(optionLabel(QStringLiteral("body")), [&] { return load_makehuman_body(request.makehuman, skeleton); });
-  if (request.place == GarmentPlacement::makehuman) character.placement = Eigen::Translation3d(skinned->obj_offset);
+  if (request.place == GarmentPlacement::makehuman) {
+    // Modelled on base.obj: in the body's A-pose, where the pre-roll starts.
+    character.placement = Eigen::Translation3d(skinned->obj_offset);
+    character.garmentPose = mesh_pose(*skinned, skeleton);
+  }
 
   for (const auto& [name, radii] : request.radii)
     if (skeleton.find(name) < 0)
@@ -339,8 +343,10 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
   return character;
 }
 
-CharacterRunOptions characterRunOptions(const CharacterRequest& request, const SimulationOptions& simulation) {
+CharacterRunOptions characterRunOptions(const CharacterRequest& request, const LoadedCharacter& character,
+                                        const SimulationOptions& simulation) {
   CharacterRunOptions run;
+  run.garment_pose = character.garmentPose;
   run.frames = simulation.frames;
   run.fps = simulation.fps;
   run.step_rate = request.stepRate;

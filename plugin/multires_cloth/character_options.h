@@ -73,6 +73,7 @@ struct LoadedCharacter {
   std::unique_ptr<Motion> motion;
   std::unique_ptr<PosedBody> body;
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
+  Pose garmentPose;             ///< the pose the garment was modelled on (empty: the rest pose)
   int bodyVertices = 0;         ///< skinned mesh vertices (0 for capsules)
   int bodyCapsules = 0;         ///< capsules (0 for a mesh)
   double legBridges = 0.0;      ///< the reach of the bridges between the legs, bones (0: none)
@@ -84,9 +85,11 @@ struct LoadedCharacter {
 /// they come from ("option 'motion': <file>:<line>: ...").
 LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
 
-/// Settings for simulate_on_character from the request and the run's
-/// frames, fps and solver settings (iterations, gravity, colliders, cache).
-CharacterRunOptions characterRunOptions(const CharacterRequest& request, const SimulationOptions& simulation);
+/// Settings for simulate_on_character from the request, the loaded
+/// character (its garment pose) and the run's frames, fps and solver
+/// settings (iterations, gravity, colliders, cache).
+CharacterRunOptions characterRunOptions(const CharacterRequest& request, const LoadedCharacter& character,
+                                        const SimulationOptions& simulation);
 
 QString bodyTypeName(CharacterBodyType type);
 QString placementName(GarmentPlacement place);

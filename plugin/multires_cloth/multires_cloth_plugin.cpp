@@ -324,7 +324,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   }
   const DynamicsModel model = build_dynamics(*garment, request.dynamics);
   ClothState state = rest_state(model);
-  const CharacterRunOptions run = characterRunOptions(wanted, request.simulation);
+  const CharacterRunOptions run = characterRunOptions(wanted, character, request.simulation);
 
   // Warnings a script author can act on before waiting for the run.
   const int pelvis = motion.skeleton.find(run.pelvis_joint);
@@ -475,7 +475,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
                       "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN). "
                       "With `motion` the garment is worn by a character: its waist follows the pelvis (Hips), a "
-                      "body collides, a pre-roll (not recorded) blends the T-pose into the clip's pose at `start`, "
+                      "body collides, a pre-roll (not recorded) blends the pose the garment was modelled on (the T-pose; "
+                      "MakeHuman's A-pose with place \"makehuman\") into the clip's pose at `start`, "
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, initialPenetration, nonFinite}, "
                       "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "

@@ -489,6 +489,32 @@ TEST_F(SkinnedBodyTest, RestPoseReproducesRestVertices) {
   EXPECT_LE((posed - body_->rest_vertices).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+/// The mesh's own pose (MakeHuman's A-pose) reproduces base.obj exactly:
+/// garments modelled on it start where they were modelled.
+TEST_F(SkinnedBodyTest, MeshPoseReproducesTheInputMesh) {
+  SKIP_WITHOUT_BODY();
+  const Eigen::MatrixX3d input = input_mesh(*body_);
+  ASSERT_EQ(body_->input_vertices.rows(), input.rows());
+  EXPECT_LE((body_->input_vertices - input).cwiseAbs().maxCoeff(), 1e-12);
+  const Pose pose = mesh_pose(*body_, skeleton());
+  const Eigen::MatrixX3d posed = skin(*body_, skeleton(), pose);
+  EXPECT_LE((posed - input).cwiseAbs().maxCoeff(), 1e-12);
+  // A real pose of the skeleton: its bones keep their lengths, the root stays.
+  const Pose rest = rest_pose(skeleton());
+  EXPECT_EQ(pose.position(0), rest.position(0));
+  for (std::size_t j = 1; j < skeleton().joints.size(); ++j) {
+    const int parent = skeleton().joints[j].parent;
+    EXPECT_NEAR((pose.position(static_cast<int>(j)) - pose.position(parent)).norm(),
+                (rest.position(static_cast<int>(j)) - rest.position(parent)).norm(), 1e-12);
+  }
+  // The A-pose: the arms hang well below the T-pose's horizontal ones.
+  for (const char* hand : {"LeftHand", "RightHand"})
+    EXPECT_LT(pose.position(joint(hand)).y(), rest.position(joint(hand)).y() - 0.2) << hand;
+  // Poses between mesh_pose and the rest pose blend smoothly (the pre-roll).
+  const Eigen::MatrixX3d half = skin(*body_, skeleton(), blend_poses(skeleton(), pose, rest, 0.5));
+  EXPECT_TRUE(half.allFinite());
+}
+
 TEST_F(SkinnedBodyTest, BonesAreTurnedRigidlyOntoTheSkeletonsRestDirections) {
   SKIP_WITHOUT_BODY();
   const Pose rest = rest_pose(skeleton());
