@@ -32,7 +32,7 @@ struct Row {
 };
 
 Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d& offset, const Motion& motion,
-        PosedBody& body, const std::string& body_name, const BenchOptions& b) {
+        PosedBody& body, const std::string& body_name, const BenchOptions& b, const Pose& garment_pose) {
   QuadMesh placed = copy_mesh(garment);
   for (auto v : placed.vertices()) placed.point(v) += OpenMesh::Vec3d(offset.x(), offset.y(), offset.z());
   DynamicsOptions d;
@@ -42,6 +42,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
   CharacterRunOptions o;
   o.frames = b.frames;
   o.preroll_seconds = b.preroll;
+  o.garment_pose = garment_pose;  // the A-pose base.obj (and the skirt) were modelled in
   Row row;
   row.garment = name;
   row.body = body_name;
@@ -106,11 +107,12 @@ int main(int argc, char** argv) {
   CharacterRunOptions reference;
   const Eigen::Vector3d offset =
       skinned.obj_offset + garment_shift(motion, reference, rest_pose(motion.skeleton).position(0));
+  const Pose a_pose = mesh_pose(skinned, motion.skeleton);
   const QuadMesh* garments[] = {&coarse, &high};
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
-    print(run(name, *g, offset, motion, capsules, "capsules", b));
-    print(run(name, *g, offset, motion, mesh, "mesh", b));
+    print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose));
+    print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose));
   }
   return 0;
 }

@@ -9,6 +9,10 @@
 // starts from it (paper, Stage 6); maxLevel 3 = the instance mesh's level, so
 // the multi-resolution mesh never gets finer than the high-resolution one.
 //
+// With the default garment it then records the high-resolution skirt on the
+// instance walk and simulates the coarse skirt and the trousers on the new
+// walk, on the embedded mannequin (PC2 caches with their rest OBJs).
+//
 // Usage: mrcloth -b main_job.js [-- <output folder> [<garment file> [<units>]]]
 //   output folder  created if missing (default "out")
 //   garment file   default: the embedded default skirt (resources/garments)
@@ -71,6 +75,31 @@ exportColored(multi, "multires_by_level.ply", "level");
 exportColored(multi, "multires_by_mode.ply", "mode");
 const saveMilliseconds = Date.now() - started;
 
+// --- Stage 2: the instance and a new motion on the embedded mannequin -------
+// The garments are modelled on the mannequin's T-pose (frame 0 of its
+// clips): place "firstFrame". Capsules along the bones collide; a skirt gets
+// bridges between the legs automatically. Two seconds of each motion after a
+// one-second pre-roll; the paper's instance is 200 frames (recordInstance's
+// default), shortened here so the main job stays quick.
+const characters = core.resourcePath() + "/characters";
+const motionFrames = 60;
+const runs = [];
+function onCharacter(label, id, motionFile, record) {
+  const options = {motion: characters + "/" + motionFile, body: "capsules", place: "firstFrame",
+                   frames: motionFrames, output: outDir + "/" + label + ".pc2"};
+  const report = record ? multirescloth.recordInstance(id, options) : multirescloth.simulate(id, options);
+  written.push(label + ".pc2");
+  if (record) written.push(label + ".obj");
+  runs.push({label: label, motion: motionFile, report: report});
+}
+const usesDefaultGarment = args[1] === undefined;
+if (usesDefaultGarment) {
+  onCharacter("instance_high_walk", high, "walk_instance.bvh", true);
+  onCharacter("coarse_walk_new", coarse, "walk_new.bvh", false);
+  const trousers = core.loadObject(core.resourcePath() + "/garments/default_trousers.obj");
+  onCharacter("trousers_walk_new", trousers, "walk_new.bvh", true);
+}
+
 // --- Summary -------------------------------------------------------------------
 const highInfo = core.objectInfo(high);
 const multiInfo = core.objectInfo(multi);
@@ -109,4 +138,17 @@ print(row("multi-resolution", multiInfo, multiReport.milliseconds));
 print("");
 print("multi-resolution / high-res vertices: " + (100 * multiInfo.vertices / highInfo.vertices).toFixed(1) + " %");
 print("mass = " + coarseInfo.arealDensity + " kg/m^2 x area, the same on every mesh");
+if (runs.length > 0) {
+  print("");
+  print("on the mannequin (capsules, " + motionFrames + " frames at 30 fps, 120 Hz steps):");
+  print("run".padEnd(22) + "motion".padEnd(19) + cell("vertices", 9) + cell("ms/frame", 10) + cell("stretch %", 11) +
+        cell("penetr. mm", 12) + cell("waist m", 10));
+  for (const r of runs) {
+    const t = r.report;
+    if (t.nonFinite) throw new Error(r.label + ": the simulation produced a non-finite value");
+    print(r.label.padEnd(22) + r.motion.padEnd(19) + cell(t.vertices, 9) + cell(t.msPerFrame.total.toFixed(1), 10) +
+          cell((100 * t.maxStretch).toFixed(1), 11) + cell((1000 * t.maxPenetration).toFixed(2), 12) +
+          cell(t.maxWaistError.toExponential(1), 10));
+  }
+}
 print("wrote " + written.length + " files to " + outDir + " in " + saveMilliseconds + " ms: " + written.join(", "));
