@@ -87,6 +87,14 @@ Skeleton cmu_like(double scale = 1.0) {
   return b.skeleton;
 }
 
+/// One 1 m bone straight up from the origin: "root" -> its End Site.
+Skeleton one_bone() {
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  b.add("root_end", root, Vector3d(0, 1, 0), true);
+  return b.skeleton;
+}
+
 /// The capsules whose head joint has this name.
 std::vector<BoneCapsule> bones_named(const CapsuleRig& rig, const Skeleton& skeleton, const std::string& name) {
   std::vector<BoneCapsule> out;
@@ -315,13 +323,11 @@ TEST(CapsuleBody, PenetrationIsTheDeepestExactCapsuleQuery) {
 
 TEST(CapsuleBody, HandComputedDistancesOfOneTaperedCapsule) {
   // One bone from (0, 0, 0) to (0, 1, 0) with radii 0.1 -> 0.05 (overridden).
-  SkeletonBuilder b;
-  const int root = b.add("root", -1, Vector3d::Zero());
-  b.add("root_end", root, Vector3d(0, 1, 0), true);
+  const Skeleton skeleton = one_bone();
   CapsuleRigOptions options;
   options.thickness = 0.0;
   options.radii["root"] = {0.1, 0.05};
-  CapsuleBody body(make_capsule_rig(b.skeleton, options), b.skeleton);
+  CapsuleBody body(make_capsule_rig(skeleton, options), skeleton);
   ASSERT_EQ(body.colliders().size(), 1u);
   // Beyond the ends the surface is the end spheres.
   EXPECT_NEAR(body.penetration(Vector3d(0, -0.05, 0)), 0.05, 1e-12);
@@ -339,7 +345,7 @@ TEST(CapsuleBody, HandComputedDistancesOfOneTaperedCapsule) {
   EXPECT_NEAR(query_surface(body.colliders()[0], Vector3d(0.3, 0.5, 0)).distance, s * 0.5 + c * 0.3 - 0.1, 1e-12);
   // The thickness adds a layer: a point 3 mm outside is 1 mm too close at 4 mm.
   options.thickness = 0.004;
-  CapsuleBody thick(make_capsule_rig(b.skeleton, options), b.skeleton);
+  CapsuleBody thick(make_capsule_rig(skeleton, options), skeleton);
   EXPECT_NEAR(thick.penetration(Vector3d(0, -0.103, 0)), 0.001, 1e-12);
   const Vector3d previous(0, -0.103, 0);
   Vector3d p = previous;
@@ -469,12 +475,10 @@ TEST(CapsuleRig, LegBridgesSpanTheLegsAtHalfBones) {
 
   EXPECT_THROW(add_leg_bridges(rig, skeleton, 0.25), ArgumentError);
   EXPECT_THROW(add_leg_bridges(rig, skeleton, 2.5), ArgumentError);
-  SkeletonBuilder other;
-  const int root = other.add("root", -1, Vector3d::Zero());
-  other.add("root_end", root, Vector3d(0, 1, 0), true);
-  CapsuleRig other_rig = make_capsule_rig(other.skeleton);
+  const Skeleton other = one_bone();
+  CapsuleRig other_rig = make_capsule_rig(other);
   try {
-    add_leg_bridges(other_rig, other.skeleton);
+    add_leg_bridges(other_rig, other);
     ADD_FAILURE() << "a skeleton without CMU leg names";
   } catch (const ArgumentError& e) {
     EXPECT_NE(std::string(e.what()).find("LeftUpLeg"), std::string::npos) << e.what();
@@ -484,15 +488,13 @@ TEST(CapsuleRig, LegBridgesSpanTheLegsAtHalfBones) {
 /// The body remembers where its capsules were before the last pose, so a
 /// point a capsule swept past within the step comes out on its own side.
 TEST(CapsuleBody, KeepsPointsOnTheSideTheyWereOn) {
-  SkeletonBuilder b;
-  const int root = b.add("root", -1, Vector3d::Zero());
-  b.add("root_end", root, Vector3d(0, 1, 0), true);
+  const Skeleton skeleton = one_bone();
   CapsuleRigOptions options;
   options.thickness = 0.0;
   options.friction = 0.0;
   options.radii["root"] = {0.1, 0.1};
-  CapsuleBody body(make_capsule_rig(b.skeleton, options), b.skeleton);
-  Pose pose = rest_pose(b.skeleton);
+  CapsuleBody body(make_capsule_rig(skeleton, options), skeleton);
+  Pose pose = rest_pose(skeleton);
   const auto place = [&](double x) {
     for (Eigen::Isometry3d& g : pose.global) g.translation().x() = x;
     pose.global[1].translation() = pose.global[0].translation() + Vector3d(0, 1, 0);
