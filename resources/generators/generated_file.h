@@ -3,7 +3,10 @@
 // writing a file so it is either complete or absent. Standard library only,
 // so the generators do not depend on the code their output tests.
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <iostream>
+#include <ostream>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -42,6 +45,32 @@ inline void write_atomically(const std::string& text, const std::filesystem::pat
     std::filesystem::remove(temporary, error);
     throw std::runtime_error("cannot rename " + temporary.string() + " to " + path.string());
   }
+}
+
+/// The OBJ body: `v x y z` per vertex (fields x, y, z) and `f a b c d` per
+/// quad (0-based corner indices, written 1-based).
+template <class Vertices, class Quads>
+void write_obj_elements(std::ostream& out, const Vertices& vertices, const Quads& quads) {
+  for (const auto& v : vertices)
+    out << "v " << format_coordinate(v.x) << ' ' << format_coordinate(v.y) << ' ' << format_coordinate(v.z) << '\n';
+  for (const auto& q : quads) out << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << '\n';
+}
+
+/// A generator's main: `name <output.obj>` writes text() atomically; --help
+/// prints the usage and `what`; failures print "name: message", exit 1.
+template <class Text>
+int generator_main(int argc, char** argv, const char* name, const char* what, Text&& text) {
+  if (argc != 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::cerr << "usage: " << name << " <output.obj>\n" << what << '\n';
+    return argc == 2 ? 0 : 2;
+  }
+  try {
+    write_atomically(text(), argv[1]);
+  } catch (const std::exception& e) {
+    std::cerr << name << ": " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace mrcloth::generators

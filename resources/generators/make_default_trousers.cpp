@@ -52,7 +52,8 @@ namespace {
 
 using mrcloth::generators::equal_arc_angles;
 using mrcloth::generators::ellipse_perimeter;
-using mrcloth::generators::write_atomically;
+using mrcloth::generators::generator_main;
+using mrcloth::generators::write_obj_elements;
 using mrcloth::generators::format_coordinate;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -258,28 +259,16 @@ std::string obj_text(const TrouserOptions& o) {
       << " circumference " << format_coordinate(o.hip_circumference) << "; crotch y "
       << format_coordinate(o.crotch_height) << "; ankles y " << format_coordinate(o.ankle_height) << "\n"
       << "o default_trousers\n";
-  for (const Vertex& v : trousers.vertices)
-    out << "v " << format_coordinate(v.x) << ' ' << format_coordinate(v.y) << ' ' << format_coordinate(v.z) << '\n';
-  for (const auto& q : trousers.quads)
-    out << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << '\n';
+  write_obj_elements(out, trousers.vertices, trousers.quads);
   return out.str();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    std::cerr << "usage: make_default_trousers <output.obj>\n"
-                 "Writes mrcloth's default full-length trousers (all quads, metres, Y up, facing +Z).\n";
-    return argc == 2 ? 0 : 2;
-  }
-  try {
+  return generator_main(argc, argv, "make_default_trousers", "Writes mrcloth's default full-length trousers (all quads, metres, Y up, facing +Z).", [] {
     const TrouserOptions options;
     check_options(options);
-    write_atomically(obj_text(options), argv[1]);
-  } catch (const std::exception& e) {
-    std::cerr << "make_default_trousers: " << e.what() << '\n';
-    return 1;
-  }
-  return 0;
+    return obj_text(options);
+  });
 }
