@@ -920,7 +920,7 @@ struct MeshBody::Impl {
       Contact c;
       if (!contact(p, sweep == 0 ? search2 : near2, false, c)) return;
       const double gap = c.distance - thickness;
-      if (!(gap < 0.0)) return;
+      if (!(gap < -1e-12)) return;  // round-off short of thickness is clear: no endless re-pushes
       if (c.distance > best_distance) {
         best_distance = c.distance;
         best_p = p;

@@ -43,15 +43,24 @@ class AnalyticScene : public CollisionScene {
   std::vector<Collider> colliders_;
 };
 
-/// Several scenes as one: resolves against each in turn (twice, so a point
-/// pushed from one into another settles), penetration is the deepest.
+/// Several scenes as one: resolves against each non-empty one in turn, and
+/// when there are several and one pushed, once more without friction (a
+/// point pushed from one into another settles); penetration is the deepest.
 class CompositeScene : public CollisionScene {
  public:
   void add(const CollisionScene* scene) { scenes_.push_back(scene); }
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override {
     double largest = 0.0;
-    for (int sweep = 0; sweep < 2; ++sweep)
-      for (const CollisionScene* s : scenes_) largest = std::max(largest, s->resolve(start, position, friction));
+    int active = 0;
+    for (const CollisionScene* s : scenes_) {
+      if (s->empty()) continue;
+      ++active;
+      largest = std::max(largest, s->resolve(start, position, friction));
+    }
+    // One scene has already had the last word; friction acts once per step.
+    if (active < 2 || largest <= 0.0) return largest;
+    for (const CollisionScene* s : scenes_)
+      if (!s->empty()) largest = std::max(largest, s->resolve(start, position, false));
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

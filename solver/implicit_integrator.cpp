@@ -243,12 +243,16 @@ void ImplicitIntegrator::limit_strain(Positions& q) const {
 }
 
 double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Positions& q,
-                                              const CollisionScene& scene, bool friction) const {
+                                              const CollisionScene& scene, bool friction,
+                                              const Positions* settled) const {
   if (scene.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
+      // A vertex the strain limiter left exactly where the last round put it
+      // is already resolved against this (unchanged) scene.
+      if (settled && q.row(f) == settled->row(f)) continue;
       Eigen::Vector3d x = q.row(f).transpose();
       largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, friction));
       q.row(f) = x.transpose();
@@ -257,6 +261,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     // curved): push its free stencil by the correction, mass-weighted.
     for (int v : m.hanging_vertices) {
       const Eigen::Vector3d x = position_of(v, q);
+      if (settled && x == position_of(v, *settled)) continue;
       Eigen::Vector3d target = x;
       const double correction = scene.resolve(position_of(v, q_previous), target, false);
       if (correction <= 0.0) continue;
@@ -312,8 +317,10 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     limit_strain(q);
     report.dynamics_ms += ms_since(limit_start);
     const auto collide_start = Clock::now();
-    report.max_correction =
-        std::max(report.max_correction, resolve_collisions(q_previous, q, scene, /*friction=*/round == 0));
+    report.max_correction = std::max(report.max_correction,
+                                     resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
+                                                        round == 0 ? nullptr : &settled_));
+    if (round + 1 < options_.collision_rounds) settled_ = q;
     report.collision_ms += ms_since(collide_start);
   }
 

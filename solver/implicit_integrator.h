@@ -80,7 +80,10 @@ class ImplicitIntegrator {
  private:
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   void limit_strain(Positions& q) const;
-  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction) const;
+  /// Resolves every free vertex and T-node of q; with `settled` (the last
+  /// round's result), only those that have moved since.
+  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction,
+                            const Positions* settled = nullptr) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
 
   const DynamicsModel* model_ = nullptr;
@@ -88,6 +91,7 @@ class ImplicitIntegrator {
   SparseLdlt3 solver_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
+  Positions settled_;                  // scratch: q after the last collision round of this step
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
   Eigen::VectorXd inverse_mass_;       // per free vertex, 1/kg
