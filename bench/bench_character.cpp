@@ -87,8 +87,8 @@ int main(int argc, char** argv) {
   const SkinnedBody skinned = load_makehuman_body(mh, motion.skeleton);
 
   CapsuleRig rig = make_capsule_rig(motion.skeleton);
-  fit_capsule_radii(rig, motion.skeleton, skinned.rest_vertices, skinned.weights);
-  CapsulePosedBody capsules(rig, motion.skeleton);
+  fit_capsule_radii(rig, motion.skeleton, skinned.rest_vertices, skinned.weights, skinned.joint_rest);
+  CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
   SkinnedPosedBody mesh(skinned, motion.skeleton);
 
   const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;

@@ -260,7 +260,8 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
 }
 
 void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::MatrixX3d& rest_vertices,
-                       const std::vector<std::vector<std::pair<int, double>>>& bone_weights) {
+                       const std::vector<std::vector<std::pair<int, double>>>& bone_weights,
+                       const std::vector<Eigen::Vector3d>& joint_rest) {
   const int n = static_cast<int>(skeleton.joints.size());
   check_skeleton(skeleton, "fit_capsule_radii");
   check_rig(rig, n, "fit_capsule_radii");
@@ -268,7 +269,7 @@ void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::M
     throw ArgumentError("fit_capsule_radii: " + std::to_string(rest_vertices.rows()) + " vertices but " +
                         std::to_string(bone_weights.size()) + " weight lists; expected one list per vertex");
   if (rig.bones.empty()) return;
-  const Pose rest = rest_pose(skeleton);
+  const Pose rest = proportioned_pose(skeleton, joint_rest, rest_pose(skeleton));
 
   std::vector<std::vector<int>> bones_of(n);  // capsules by their head joint
   for (std::size_t b = 0; b < rig.bones.size(); ++b) bones_of[rig.bones[b].joint].push_back(static_cast<int>(b));

@@ -51,9 +51,15 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
 /// rest_vertices (#V x 3, metres, in the skeleton's rest space) and per
 /// vertex its dominant bone weights (bone_weights[v] = list of (joint, w)):
 /// a capsule's radius at each end is a robust (90th percentile) distance to
-/// its axis of the vertices that the bone dominates near that end.
+/// its axis of the vertices that the bone dominates near that end. The axes
+/// run between `joint_rest` (per joint, the body's own rest joints, metres,
+/// see SkinnedBody::joint_rest; empty: the skeleton's rest joints): a body
+/// whose proportions differ from the capture subject's (MakeHuman under a
+/// CMU skeleton: up to 20 cm at the neck and arms) is fitted about its own
+/// limbs, and the capsules must then be posed with proportioned_pose.
 void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::MatrixX3d& rest_vertices,
-                       const std::vector<std::vector<std::pair<int, double>>>& bone_weights);
+                       const std::vector<std::vector<std::pair<int, double>>>& bone_weights,
+                       const std::vector<Eigen::Vector3d>& joint_rest = {});
 
 /// Bridges between the legs for a skirt or dress (a garment with one tube
 /// around both legs): a real body's thighs meet, a capsule rig's leave a

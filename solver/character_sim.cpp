@@ -66,7 +66,8 @@ SkinnedPosedBody::~SkinnedPosedBody() = default;
 
 void SkinnedPosedBody::set_pose(const Pose& pose) {
   mesh_->update(skin(body_, skeleton_, pose));
-  if (bridges_) bridges_->pose(pose);
+  // The bridges sit between the body's own legs, not the capture subject's.
+  if (bridges_) bridges_->pose(proportioned_pose(skeleton_, body_.joint_rest, pose));
 }
 
 const CollisionScene& SkinnedPosedBody::scene() const { return *scene_; }

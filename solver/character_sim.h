@@ -21,15 +21,20 @@ class PosedBody {
   virtual const CollisionScene& scene() const = 0;
 };
 
-/// Capsules along the bones (CapsuleRig), posed by FK.
+/// Capsules along the bones (CapsuleRig), posed by FK; with `joint_rest`
+/// (a body's own rest joints, the ones its radii were fitted about) on that
+/// body's proportions (proportioned_pose), else on the skeleton's.
 class CapsulePosedBody : public PosedBody {
  public:
-  CapsulePosedBody(CapsuleRig rig, const Skeleton& skeleton) : body_(std::move(rig), skeleton) {}
-  void set_pose(const Pose& pose) override { body_.pose(pose); }
+  CapsulePosedBody(CapsuleRig rig, const Skeleton& skeleton, std::vector<Eigen::Vector3d> joint_rest = {})
+      : body_(std::move(rig), skeleton), skeleton_(skeleton), joint_rest_(std::move(joint_rest)) {}
+  void set_pose(const Pose& pose) override { body_.pose(proportioned_pose(skeleton_, joint_rest_, pose)); }
   const CollisionScene& scene() const override { return body_; }
 
  private:
   CapsuleBody body_;
+  const Skeleton& skeleton_;
+  std::vector<Eigen::Vector3d> joint_rest_;
 };
 
 /// A skinned triangle mesh, re-skinned and refit for every pose, with

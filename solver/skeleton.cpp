@@ -178,4 +178,31 @@ Pose blend_poses(const Skeleton& skeleton, const Pose& a, const Pose& b, double 
   return forward_kinematics(skeleton, interpolate(locals_of(skeleton, a), locals_of(skeleton, b), t));
 }
 
+Pose proportioned_pose(const Skeleton& skeleton, const std::vector<Eigen::Vector3d>& joint_rest, const Pose& pose) {
+  check_skeleton(skeleton, "proportioned_pose");
+  const std::size_t n = skeleton.joints.size();
+  if (pose.global.size() != n)
+    throw ArgumentError("proportioned_pose: the pose has " + std::to_string(pose.global.size()) + " joints; expected " +
+                        std::to_string(n) + " (the skeleton's)");
+  if (joint_rest.empty()) return pose;
+  if (joint_rest.size() != n)
+    throw ArgumentError("proportioned_pose: " + std::to_string(joint_rest.size()) + " rest joints; expected " +
+                        std::to_string(n) + " (the skeleton's)");
+  const Pose rest = rest_pose(skeleton);
+  Pose out = pose;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Matrix3d turn = pose.global[j].linear() * rest.global[j].linear().transpose();
+    const int parent = skeleton.joints[j].parent;
+    if (parent < 0) {
+      out.global[j].translation() =
+          pose.position(static_cast<int>(j)) + turn * (joint_rest[j] - rest.position(static_cast<int>(j)));
+    } else {
+      const auto p = static_cast<std::size_t>(parent);
+      const Eigen::Matrix3d parent_turn = pose.global[p].linear() * rest.global[p].linear().transpose();
+      out.global[j].translation() = out.position(parent) + parent_turn * (joint_rest[j] - joint_rest[p]);
+    }
+  }
+  return out;
+}
+
 }  // namespace mrcloth

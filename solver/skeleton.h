@@ -74,4 +74,12 @@ Pose pose_at(const Motion& motion, double time);
 /// pre-rolls from the rest pose to a first frame.
 Pose blend_poses(const Skeleton& skeleton, const Pose& a, const Pose& b, double t);
 
+/// `pose` on a body with its own bone lengths: every joint keeps its
+/// global rotation, and the joints are carried down the chain from
+/// `joint_rest` (per joint, where the body's joint is in the rest pose,
+/// metres; empty: the skeleton's own) exactly as skin() carries a skinned
+/// body's pivots, so capsules posed by it follow that body's limbs. In the
+/// rest pose the joints are at joint_rest.
+Pose proportioned_pose(const Skeleton& skeleton, const std::vector<Eigen::Vector3d>& joint_rest, const Pose& pose);
+
 }  // namespace mrcloth

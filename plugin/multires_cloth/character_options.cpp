@@ -325,7 +325,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
     rig_options.radii = request.radii;
     CapsuleRig rig = make_capsule_rig(skeleton, rig_options);
     if (skinned) {
-      fit_capsule_radii(rig, skeleton, skinned->rest_vertices, skinned->weights);
+      fit_capsule_radii(rig, skeleton, skinned->rest_vertices, skinned->weights, skinned->joint_rest);
       character.fittedCapsules = true;
       // The overrides win over the fit, as they win over the defaults.
       std::vector<BoneCapsule> kept;
@@ -338,7 +338,8 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
     }
     character.bodyCapsules = static_cast<int>(rig.bones.size());
     if (character.legBridges > 0.0) add_leg_bridges(rig, skeleton, character.legBridges);
-    character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton);
+    character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton,
+                                                        skinned ? skinned->joint_rest : std::vector<Eigen::Vector3d>{});
   });
   return character;
 }

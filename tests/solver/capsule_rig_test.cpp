@@ -4,9 +4,11 @@
 #include "solver/body_capsules.h"
 
 #include "mesh_ops/errors.h"
+#include "solver/character_sim.h"
 #include "solver/colliders.h"
 #include "solver/skeleton.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -420,6 +422,46 @@ TEST(CapsuleRig, FitRecoversACylindersRadius) {
 
   weights.pop_back();
   EXPECT_THROW(fit_capsule_radii(rig, b.skeleton, vertices, weights), ArgumentError) << "one weight list per vertex";
+}
+
+TEST(CapsuleRig, FitAboutTheBodysOwnJointsAndPoseOnThem) {
+  // The body's limb runs 6 cm beside the skeleton's bone (a body of other
+  // proportions than the capture subject): fitted about the skeleton's
+  // axis the radius takes the offset in; about the body's own joints it is
+  // the limb's, and proportioned_pose puts the capsule on the limb.
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  const int upper = b.add("upper", root, Vector3d(0.0, 1.0, 0.0));
+  const int end = b.add("upper_end", upper, Vector3d(0.0, -0.5, 0.0), true);
+  const Pose rest = rest_pose(b.skeleton);
+  std::vector<Vector3d> joint_rest = {rest.position(root), rest.position(upper) + Vector3d(0.06, 0, 0),
+                                      rest.position(end) + Vector3d(0.06, 0, 0.0)};
+  Eigen::MatrixX3d vertices(0, 3);
+  std::vector<std::vector<std::pair<int, double>>> weights;
+  add_cylinder(vertices, weights, joint_rest[upper], joint_rest[end], 0.05, upper);
+
+  CapsuleRig about_skeleton = make_capsule_rig(b.skeleton);
+  fit_capsule_radii(about_skeleton, b.skeleton, vertices, weights);
+  CapsuleRig about_body = make_capsule_rig(b.skeleton);
+  fit_capsule_radii(about_body, b.skeleton, vertices, weights, joint_rest);
+  std::size_t limb = 0;
+  while (limb < about_body.bones.size() && about_body.bones[limb].joint != upper) ++limb;
+  ASSERT_LT(limb, about_body.bones.size());
+  EXPECT_GT(about_skeleton.bones[limb].radius_head, 0.09);
+  EXPECT_NEAR(about_body.bones[limb].radius_head, 0.05, 0.0005);
+  EXPECT_NEAR(about_body.bones[limb].radius_tail, 0.05, 0.0005);
+
+  // Posed: the bone turned 90 degrees about z at the root; the capsule's
+  // axis is the body's limb, turned with it (exact).
+  Pose turned = rest;
+  const Eigen::Matrix3d quarter = Eigen::AngleAxisd(kPi / 2, Vector3d::UnitZ()).toRotationMatrix();
+  for (Eigen::Isometry3d& g : turned.global) g.prerotate(quarter);
+  CapsulePosedBody body(about_body, b.skeleton, joint_rest);
+  body.set_pose(turned);
+  const CapsuleCollider& c = capsule_of(static_cast<const CapsuleBody&>(body.scene()).colliders()[limb]);
+  EXPECT_LT((c.a - quarter * joint_rest[upper]).norm(), 1e-12);
+  EXPECT_LT((c.b - quarter * joint_rest[end]).norm(), 1e-12);
+  EXPECT_THROW(proportioned_pose(b.skeleton, {Vector3d::Zero()}, rest), ArgumentError) << "one rest joint per joint";
 }
 
 TEST(CapsuleRig, FitKeepsRadiiWithoutVertices) {

@@ -620,6 +620,41 @@ TEST_F(SkinnedBodyTest, WalkFramesAreFiniteWithFeetOnTheGround) {
   }
 }
 
+TEST_F(SkinnedBodyTest, ProportionedPosePutsJointsWhereSkinningPutsThem) {
+  // A "body" made of the body's own rest joints, each weighted to its
+  // parent (a root to itself), skins to exactly where proportioned_pose
+  // puts the joints: capsules posed by it follow the skinned mesh's limbs.
+  SKIP_WITHOUT_BODY();
+  const std::size_t n = skeleton().joints.size();
+  ASSERT_EQ(body_->joint_rest.size(), n);
+  SkinnedBody joints;
+  joints.rest_vertices.resize(static_cast<Eigen::Index>(n), 3);
+  joints.weights.resize(n);
+  joints.joint_rest = body_->joint_rest;
+  for (std::size_t j = 0; j < n; ++j) {
+    joints.rest_vertices.row(static_cast<Eigen::Index>(j)) = body_->joint_rest[j].transpose();
+    const int parent = skeleton().joints[j].parent;
+    joints.weights[j] = {{parent < 0 ? static_cast<int>(j) : parent, 1.0}};
+  }
+  const Pose rest = rest_pose(skeleton());
+  const Pose at_rest = proportioned_pose(skeleton(), body_->joint_rest, rest);
+  for (std::size_t j = 0; j < n; ++j)
+    EXPECT_LT((at_rest.position(static_cast<int>(j)) - body_->joint_rest[j]).norm(), 1e-12) << skeleton().joints[j].name;
+  for (int frame : {0, 75, 150, 300}) {
+    const Pose pose = frame_pose(*motion_, frame);
+    const Pose proportioned = proportioned_pose(skeleton(), body_->joint_rest, pose);
+    const Eigen::MatrixX3d skinned = skin(joints, skeleton(), pose);
+    for (std::size_t j = 0; j < n; ++j) {
+      EXPECT_LT((proportioned.position(static_cast<int>(j)) - skinned.row(static_cast<Eigen::Index>(j)).transpose()).norm(), 1e-12)
+          << skeleton().joints[j].name << " frame " << frame;
+      EXPECT_LT((proportioned.global[j].linear() - pose.global[j].linear()).norm(), 1e-15);
+    }
+  }
+  // Without a body's joints the pose is the skeleton's own.
+  const Pose same = proportioned_pose(skeleton(), {}, frame_pose(*motion_, 75));
+  EXPECT_LT((same.position(5) - frame_pose(*motion_, 75).position(5)).norm(), 1e-15);
+}
+
 /// The largest weight's joint of each vertex.
 std::vector<int> dominant_joints(const SkinnedBody& body) {
   std::vector<int> out;
