@@ -1,5 +1,7 @@
 #include "body_capsules.h"
 
+#include <Eigen/Eigenvalues>
+
 #include "mesh_ops/errors.h"
 
 #include <algorithm>
@@ -29,7 +31,9 @@ constexpr double kUnknownMax = 0.15;
 
 /// Vertices needed at one end of a bone to fit that end's radius.
 constexpr std::size_t kMinFitSamples = 4;
-constexpr double kFitPercentile = 0.90;
+constexpr double kFitPercentile = 0.75;
+/// A cross-section this many times wider one way than the other gets two capsules.
+constexpr double kTwinAspect = 1.3;
 
 /// Default radii (head, tail) in metres for a 1.65 m woman, by CMU joint
 /// name; a capsule runs from the named joint to each child. (0, 0): no
@@ -136,6 +140,7 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
           bone.radius_tail >= 0.0 && bone.radius_head + bone.radius_tail > 0.0))
       fail(i, "radii must be finite, >= 0 and not both 0 (got " + text(bone.radius_head) + ", " +
                   text(bone.radius_tail) + ")");
+    if (!(bone.shift_head.allFinite() && bone.shift_tail.allFinite())) fail(i, "its shifts must be finite");
   }
   for (std::size_t i = 0; i < rig.bridges.size(); ++i) {
     const BridgeCapsule& bridge = rig.bridges[i];
@@ -157,8 +162,9 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
 /// The collider of one bone in a pose.
 Collider bone_collider(const CapsuleRig& rig, const BoneCapsule& bone, const Pose& pose) {
   CapsuleCollider capsule;
-  capsule.a = pose.position(bone.joint);
-  capsule.b = pose.position(bone.child);
+  const Eigen::Matrix3d turn = pose.global[bone.joint].linear();
+  capsule.a = pose.position(bone.joint) + turn * bone.shift_head;
+  capsule.b = pose.position(bone.child) + turn * bone.shift_tail;
   capsule.radius_a = bone.radius_head;
   capsule.radius_b = bone.radius_tail;
   return Collider{capsule, rig.thickness, rig.friction};
@@ -180,6 +186,20 @@ std::pair<double, double> segment_distance(const Vector3d& p, const Vector3d& a,
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
   return {(p - (a + t * ab)).norm(), t};
+}
+
+/// Where the centre of a limb's cross-section lies relative to its bone
+/// a -> c (metres): the mean of the samples' offsets perpendicular to the
+/// bone (from a; for a zero-length bone, of their offsets from a).
+Vector3d cross_section_centre(const std::vector<Vector3d>& samples, const Vector3d& a, const Vector3d& c) {
+  const double length = (c - a).norm();
+  const Vector3d axis = length > 0.0 ? Vector3d((c - a) / length) : Vector3d::Zero();
+  Vector3d sum = Vector3d::Zero();
+  for (const Vector3d& p : samples) {
+    const Vector3d d = p - a;
+    sum += d - d.dot(axis) * axis;
+  }
+  return sum / static_cast<double>(samples.size());
 }
 
 /// Nearest-rank percentile of unsorted values (non-empty).
@@ -259,6 +279,94 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
   return rig;
 }
 
+namespace {
+
+/// Fits one bone's capsule to the body vertices it dominates near its head
+/// and tail (rest space). Each end moves to the centre of its cross-section:
+/// a bone may run off-centre in its limb (the spine along the back), and a
+/// capsule about it would have to be as wide as the limb's far side and
+/// stick out of the near one. A cross-section much wider one way than the
+/// other (the pelvis, the chest) gets two capsules side by side, each as
+/// thick as the narrow way: one round capsule as wide as the hips would
+/// stand 5-10 cm proud of the belly and the back. Too few vertices at both
+/// ends: the bone as it was.
+std::vector<BoneCapsule> fit_bone(const BoneCapsule& bone, const Pose& rest, const std::vector<Vector3d>& head_samples,
+                                  const std::vector<Vector3d>& tail_samples) {
+  const bool head_ok = head_samples.size() >= kMinFitSamples;
+  const bool tail_ok = tail_samples.size() >= kMinFitSamples;
+  if (!head_ok && !tail_ok) return {bone};
+  const Vector3d a = rest.position(bone.joint), c = rest.position(bone.child);
+  const Vector3d head_centre = head_ok ? cross_section_centre(head_samples, a, c) : Vector3d::Zero();
+  const Vector3d tail_centre = tail_ok ? cross_section_centre(tail_samples, a, c) : Vector3d::Zero();
+  const Vector3d head_shift = head_ok ? head_centre : tail_centre;
+  const Vector3d tail_shift = tail_ok ? tail_centre : head_centre;
+  const Vector3d a_fit = a + head_shift, c_fit = c + tail_shift;
+
+  // The cross-section's principal directions (perpendicular to the centred
+  // axis; a sphere bone has no axis and stays round).
+  Vector3d spread_direction = Vector3d::Zero();
+  double side_offset = 0.0;
+  const double length = (c_fit - a_fit).norm();
+  if (length > 0.0) {
+    const Vector3d axis = (c_fit - a_fit) / length;
+    const Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+    std::vector<Eigen::Vector2d> offsets;
+    for (const auto* samples : {&head_samples, &tail_samples})
+      for (const Vector3d& p : *samples) {
+        const Vector3d d = p - a_fit;
+        offsets.emplace_back(d.dot(e1), d.dot(e2));
+      }
+    Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+    for (const Eigen::Vector2d& o : offsets) covariance += o * o.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> principal(covariance);
+    const Eigen::Vector2d major = principal.eigenvectors().col(1), minor = principal.eigenvectors().col(0);
+    std::vector<double> along_major, along_minor;
+    for (const Eigen::Vector2d& o : offsets) {
+      along_major.push_back(std::abs(o.dot(major)));
+      along_minor.push_back(std::abs(o.dot(minor)));
+    }
+    const double wide = percentile(along_major, kFitPercentile), narrow = percentile(along_minor, kFitPercentile);
+    if (wide > kTwinAspect * narrow) {
+      spread_direction = major.x() * e1 + major.y() * e2;
+      side_offset = wide - narrow;
+    }
+  }
+
+  const int count = side_offset > 0.0 ? 2 : 1;
+  std::vector<BoneCapsule> out;
+  for (int k = 0; k < count; ++k) {
+    const Vector3d side = (count == 2 ? (k == 0 ? 1.0 : -1.0) * side_offset : 0.0) * spread_direction;
+    out.push_back(bone);
+    BoneCapsule& fit = out.back();
+    // Each sample is covered by the nearer twin, so the radius is a
+    // percentile of the distance to the nearer axis.
+    const auto radius = [&](const std::vector<Vector3d>& samples) {
+      std::vector<double> distances;
+      distances.reserve(samples.size());
+      for (const Vector3d& p : samples) {
+        double d = segment_distance(p, a_fit + side, c_fit + side).first;
+        if (count == 2) d = std::min(d, segment_distance(p, a_fit - side, c_fit - side).first);
+        distances.push_back(d);
+      }
+      return percentile(std::move(distances), kFitPercentile);
+    };
+    const double head = head_ok ? radius(head_samples) : 0.0;
+    const double tail = tail_ok ? radius(tail_samples) : 0.0;
+    // A zero-length (sphere) bone puts every vertex at t = 0, so its head
+    // radius serves both ends.
+    fit.radius_head = head_ok ? head : tail;
+    fit.radius_tail = tail_ok ? tail : head;
+    if (!(fit.radius_head + fit.radius_tail > 0.0)) fit.radius_head = fit.radius_tail = 1e-6;
+    // Shifts are kept in the joint's frame, so they turn with the bone.
+    const Eigen::Matrix3d to_local = rest.global[bone.joint].linear().transpose();
+    fit.shift_head = to_local * (head_shift + side);
+    fit.shift_tail = to_local * (tail_shift + side);
+  }
+  return out;
+}
+
+}  // namespace
+
 void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::MatrixX3d& rest_vertices,
                        const std::vector<std::vector<std::pair<int, double>>>& bone_weights,
                        const std::vector<Eigen::Vector3d>& joint_rest) {
@@ -276,7 +384,7 @@ void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::M
 
   // Each vertex goes to the nearest capsule axis among the capsules of its
   // dominant joint, at the end of that axis it is closer to.
-  std::vector<std::vector<double>> head_samples(rig.bones.size()), tail_samples(rig.bones.size());
+  std::vector<std::vector<Vector3d>> head_samples(rig.bones.size()), tail_samples(rig.bones.size());
   for (Eigen::Index v = 0; v < rest_vertices.rows(); ++v) {
     const auto& weights = bone_weights[static_cast<std::size_t>(v)];
     int dominant = -1;
@@ -305,22 +413,15 @@ void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::M
         nearest_t = t;
       }
     }
-    (nearest_t <= 0.5 ? head_samples : tail_samples)[nearest].push_back(nearest_distance);
+    (nearest_t <= 0.5 ? head_samples : tail_samples)[nearest].push_back(p);
   }
 
+  std::vector<BoneCapsule> fitted;
   for (std::size_t b = 0; b < rig.bones.size(); ++b) {
-    BoneCapsule& bone = rig.bones[b];
-    const bool head_ok = head_samples[b].size() >= kMinFitSamples;
-    const bool tail_ok = tail_samples[b].size() >= kMinFitSamples;
-    if (!head_ok && !tail_ok) continue;  // too few vertices: keep the current radii
-    const double head = head_ok ? percentile(head_samples[b], kFitPercentile) : 0.0;
-    const double tail = tail_ok ? percentile(tail_samples[b], kFitPercentile) : 0.0;
-    // A zero-length (sphere) bone puts every vertex at t = 0, so its head
-    // radius serves both ends.
-    bone.radius_head = head_ok ? head : tail;
-    bone.radius_tail = tail_ok ? tail : head;
-    if (!(bone.radius_head + bone.radius_tail > 0.0)) bone.radius_head = bone.radius_tail = 1e-6;
+    const std::vector<BoneCapsule> capsules = fit_bone(rig.bones[b], rest, head_samples[b], tail_samples[b]);
+    fitted.insert(fitted.end(), capsules.begin(), capsules.end());
   }
+  rig.bones = std::move(fitted);
 }
 
 std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose) {

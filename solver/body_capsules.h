@@ -14,6 +14,10 @@ struct BoneCapsule {
   int child = -1;          ///< ... to this one (a child joint or End Site)
   double radius_head = 0;  ///< radius at `joint`, metres
   double radius_tail = 0;  ///< radius at `child`, metres
+  /// Where the capsule's ends sit relative to `joint` and `child`, in the
+  /// joint's frame (turning with the bone), metres: a fitted capsule is
+  /// centred in its limb, which the bone need not be.
+  Eigen::Vector3d shift_head{0, 0, 0}, shift_tail{0, 0, 0};
 };
 
 /// A capsule across the gap between two bones, from the point at `at` along
@@ -50,8 +54,12 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
 /// Refits every capsule's radii to a body mesh in the rig's rest pose:
 /// rest_vertices (#V x 3, metres, in the skeleton's rest space) and per
 /// vertex its dominant bone weights (bone_weights[v] = list of (joint, w)):
-/// a capsule's radius at each end is a robust (90th percentile) distance to
-/// its axis of the vertices that the bone dominates near that end. The axes
+/// each end of a capsule moves to the centre of the cross-section of the
+/// vertices the bone dominates near that end (shift_head / shift_tail), and
+/// its radius there is a robust (75th percentile) distance of those vertices
+/// to the centred axis. A bone whose cross-section is over 1.3 times wider
+/// one way than the other (pelvis, chest) becomes two capsules side by
+/// side, as thick as the narrow way, so rig.bones can grow. The axes
 /// run between `joint_rest` (per joint, the body's own rest joints, metres,
 /// see SkinnedBody::joint_rest; empty: the skeleton's rest joints): a body
 /// whose proportions differ from the capture subject's (MakeHuman under a

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <variant>
@@ -388,7 +389,7 @@ TEST(CapsuleRig, FitRecoversACylindersRadius) {
   std::vector<std::vector<std::pair<int, double>>> weights;
   add_cylinder(vertices, weights, rest.position(upper), rest.position(lower), 0.07, upper);
   add_cylinder(vertices, weights, rest.position(lower), rest.position(lower + 1), 0.045, lower);
-  // A few outliers (5 %, three times as far) must not move a 90th percentile.
+  // A few outliers (5 %, three times as far) must not move a 75th percentile.
   const Eigen::Index clean = vertices.rows();
   for (Eigen::Index v = 0; v < clean; v += 20) {
     const Vector3d p = vertices.row(v).transpose();
@@ -427,8 +428,8 @@ TEST(CapsuleRig, FitRecoversACylindersRadius) {
 TEST(CapsuleRig, FitAboutTheBodysOwnJointsAndPoseOnThem) {
   // The body's limb runs 6 cm beside the skeleton's bone (a body of other
   // proportions than the capture subject): fitted about the skeleton's
-  // axis the radius takes the offset in; about the body's own joints it is
-  // the limb's, and proportioned_pose puts the capsule on the limb.
+  // bone the capsule is shifted onto the limb; about the body's own joints
+  // it needs no shift, and proportioned_pose puts it on the limb.
   SkeletonBuilder b;
   const int root = b.add("root", -1, Vector3d::Zero());
   const int upper = b.add("upper", root, Vector3d(0.0, 1.0, 0.0));
@@ -447,7 +448,9 @@ TEST(CapsuleRig, FitAboutTheBodysOwnJointsAndPoseOnThem) {
   std::size_t limb = 0;
   while (limb < about_body.bones.size() && about_body.bones[limb].joint != upper) ++limb;
   ASSERT_LT(limb, about_body.bones.size());
-  EXPECT_GT(about_skeleton.bones[limb].radius_head, 0.09);
+  EXPECT_LT((about_skeleton.bones[limb].shift_head - Vector3d(0.06, 0, 0)).norm(), 1e-9);
+  EXPECT_NEAR(about_skeleton.bones[limb].radius_head, 0.05, 0.0005);
+  EXPECT_LT(about_body.bones[limb].shift_head.norm() + about_body.bones[limb].shift_tail.norm(), 1e-9);
   EXPECT_NEAR(about_body.bones[limb].radius_head, 0.05, 0.0005);
   EXPECT_NEAR(about_body.bones[limb].radius_tail, 0.05, 0.0005);
 
@@ -462,6 +465,61 @@ TEST(CapsuleRig, FitAboutTheBodysOwnJointsAndPoseOnThem) {
   EXPECT_LT((c.a - quarter * joint_rest[upper]).norm(), 1e-12);
   EXPECT_LT((c.b - quarter * joint_rest[end]).norm(), 1e-12);
   EXPECT_THROW(proportioned_pose(b.skeleton, {Vector3d::Zero()}, rest), ArgumentError) << "one rest joint per joint";
+}
+
+TEST(CapsuleRig, FitCentresCapsulesAndSplitsWideCrossSections) {
+  // A torso-like limb: an elliptic cylinder (semi-axes 0.12 across, 0.07
+  // front to back) whose bone runs 4 cm behind its centre. One round
+  // capsule about the bone would have to be ~0.15 wide and stand 8 cm proud
+  // of the front; the fit centres the axis and puts two capsules side by
+  // side along the wide direction.
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  const int spine = b.add("spine", root, Vector3d(0.0, 1.0, 0.0));
+  const int top = b.add("spine_end", spine, Vector3d(0.0, 0.4, 0.0), true);
+  const Pose rest = rest_pose(b.skeleton);
+  const Vector3d centre(0.0, 0.0, 0.04);
+  const double wide = 0.12, narrow = 0.07;
+  Eigen::MatrixX3d vertices(21 * 48, 3);
+  std::vector<std::vector<std::pair<int, double>>> weights;
+  for (int r = 0; r < 21; ++r)
+    for (int k = 0; k < 48; ++k) {
+      const double angle = 2.0 * kPi * k / 48.0;
+      const Vector3d p = rest.position(spine) + centre + Vector3d(wide * std::cos(angle), 0.4 * r / 20.0, narrow * std::sin(angle));
+      vertices.row(r * 48 + k) = p.transpose();
+      weights.push_back({{spine, 1.0}});
+    }
+  CapsuleRig rig = make_capsule_rig(b.skeleton);
+  fit_capsule_radii(rig, b.skeleton, vertices, weights);
+  std::vector<BoneCapsule> twins;
+  for (const BoneCapsule& bone : rig.bones)
+    if (bone.joint == spine) twins.push_back(bone);
+  ASSERT_EQ(twins.size(), 2u);
+  EXPECT_LT((twins[0].shift_head + twins[1].shift_head - 2.0 * centre).norm(), 1e-9) << "centred";
+  EXPECT_LT((twins[0].shift_tail + twins[1].shift_tail - 2.0 * centre).norm(), 1e-9);
+  const Vector3d side = twins[0].shift_head - centre;
+  EXPECT_LT(std::abs(side.y()) + std::abs(side.z()), 1e-9) << "spread across the wide direction";
+  EXPECT_GT(std::abs(side.x()), 0.03);
+  for (const BoneCapsule& twin : twins) {
+    // Out of the ellipse by at most 1.5 cm front to back and across.
+    EXPECT_LE(twin.radius_head, narrow + 0.015);
+    EXPECT_LE(std::abs(side.x()) + twin.radius_head, wide + 0.015);
+  }
+  // Posed, the twins turn with the bone (shifts in the joint's frame).
+  Pose turned = rest;
+  const Eigen::Matrix3d quarter = Eigen::AngleAxisd(kPi / 2, Vector3d::UnitY()).toRotationMatrix();
+  for (Eigen::Isometry3d& g : turned.global) g.prerotate(quarter);
+  const std::vector<Collider> posed = posed_capsules(rig, turned);
+  for (std::size_t i = 0; i < rig.bones.size(); ++i) {
+    if (rig.bones[i].joint != spine) continue;
+    const CapsuleCollider& c = capsule_of(posed[i]);
+    EXPECT_LT((c.a - quarter * (rest.position(spine) + rig.bones[i].shift_head)).norm(), 1e-12);
+    EXPECT_LT((c.b - quarter * (rest.position(top) + rig.bones[i].shift_tail)).norm(), 1e-12);
+  }
+  BoneCapsule bad = twins[0];
+  bad.shift_tail.x() = std::numeric_limits<double>::quiet_NaN();
+  rig.bones.push_back(bad);
+  EXPECT_THROW(posed_capsules(rig, rest), ArgumentError) << "non-finite shift";
 }
 
 TEST(CapsuleRig, FitKeepsRadiiWithoutVertices) {
