@@ -40,7 +40,8 @@ struct IntegratorOptions {
   int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs per round, >= 0
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
-  int collision_rounds = 2;                     ///< rounds of (strain limiting, collisions) per step, >= 1
+  int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
+  double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
 };
 
 /// State in free coordinates (rows follow DynamicsModel::free_vertices).
@@ -58,6 +59,7 @@ struct StepReport {
   double dynamics_ms = 0.0;        ///< local/global iterations and strain limiting
   double collision_ms = 0.0;       ///< collision resolution
   double max_correction = 0.0;     ///< largest collision push-out this step, metres
+  int rounds = 0;                  ///< rounds of (strain limiting, collisions) taken
   bool finite = true;              ///< false if any position became NaN or infinite
 };
 
@@ -79,7 +81,8 @@ class ImplicitIntegrator {
 
  private:
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
-  void limit_strain(Positions& q) const;
+  /// Returns the largest strain beyond the limit it met (0 when none).
+  double limit_strain(Positions& q) const;
   /// Resolves every free vertex and T-node of q; with `settled` (the last
   /// round's result), only those that have moved since.
   double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction,
