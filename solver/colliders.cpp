@@ -157,16 +157,31 @@ const char* kind_of(const Collider& collider) {
 /// `before` to `after`, through the surface the point entered by, and
 /// applies Coulomb friction to the step's tangential motion relative to the
 /// collider; returns the normal correction (0 when the point is clear).
+/// True when p is certainly farther than thickness from a sphere or capsule
+/// (outside its bounding ball grown by the thickness): most colliders of a
+/// body are far from any one cloth point, and this costs one dot product.
+bool surely_clear(const Collider& collider, const Vector3d& p) {
+  const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape);
+  if (!capsule) return false;
+  const double reach =
+      0.5 * (capsule->b - capsule->a).norm() + std::max(capsule->radius_a, capsule->radius_b) + collider.thickness;
+  return (p - 0.5 * (capsule->a + capsule->b)).squaredNorm() > reach * reach;
+}
+
 double resolve_against(const Collider& before, const Collider& after, const Vector3d& start, Vector3d& position,
                        bool friction) {
+  if (surely_clear(after, position)) return 0.0;
   const SurfaceQuery query = query_surface(after, position);
   const double gap = query.distance - after.thickness;
   if (!(gap < 0.0)) return 0.0;
   const Vector3d carried = carry_with(before, after, start);
   Vector3d normal = query.normal;
   double correction = -gap;
-  const double start_gap = query_surface(after, carried).distance - after.thickness;
-  if (start_gap > 0.0) {
+  const SurfaceQuery start_query = query_surface(after, carried);
+  const double start_gap = start_query.distance - after.thickness;
+  // A start whose nearest surface faces the way the end's does entered by
+  // that surface (cloth resting on a limb, every step): no entry to find.
+  if (start_gap > 0.0 && start_query.normal.dot(query.normal) < kSameSide) {
     // The thickened collider is convex, so along the segment from the
     // carried start (outside) to the end (inside) its distance crosses the
     // thickness once: bisect for the entry point. When the nearest surface
