@@ -93,6 +93,22 @@ Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& o
   return reference_pose(motion, options).position(0) - authored_root;
 }
 
+std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const SkinnedBody& body,
+                                                                    const Eigen::MatrixX3d& body_vertices,
+                                                                    const Eigen::MatrixX3d& points) {
+  if (body_vertices.rows() == 0 || body_vertices.rows() != static_cast<Eigen::Index>(body.weights.size()))
+    throw ArgumentError("waist_skin_weights: " + std::to_string(body_vertices.rows()) + " body vertices for " +
+                        std::to_string(body.weights.size()) + " weight lists; expected one list per vertex");
+  std::vector<std::vector<std::pair<int, double>>> out;
+  out.reserve(static_cast<std::size_t>(points.rows()));
+  for (Eigen::Index p = 0; p < points.rows(); ++p) {
+    Eigen::Index nearest = 0;
+    (body_vertices.rowwise() - points.row(p)).rowwise().squaredNorm().minCoeff(&nearest);
+    out.push_back(body.weights[static_cast<std::size_t>(nearest)]);
+  }
+  return out;
+}
+
 Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
   if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
   const Pose first = pose_at(motion, options.motion_start);
@@ -104,8 +120,25 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
                                          const SimulationProgress& progress, std::vector<Positions>* frames_out) {
   check(options, motion);
   const int pelvis = motion.skeleton.find(options.pelvis_joint);
-  const Eigen::Isometry3d pelvis_rest_inverse = reference_pose(motion, options).global[pelvis].inverse();
+  const Pose reference = reference_pose(motion, options);
+  const Eigen::Isometry3d pelvis_rest_inverse = reference.global[pelvis].inverse();
   const Positions rest_pinned = pinned_rows(model, model.rest);
+  // A skinned waist: per joint, the inverse of the body's joint frame in
+  // the reference pose (the waist's rest shape sits on that pose).
+  const bool skinned_waist = !options.waist_weights.empty();
+  std::vector<Eigen::Isometry3d> reference_inverse;
+  if (skinned_waist) {
+    if (options.waist_weights.size() != model.pinned_vertices.size())
+      throw ArgumentError("waist weights for " + std::to_string(options.waist_weights.size()) +
+                          " vertices; the model pins " + std::to_string(model.pinned_vertices.size()));
+    for (const Eigen::Isometry3d& g : proportioned_pose(motion.skeleton, options.body_joints, reference).global)
+      reference_inverse.push_back(g.inverse());
+    for (const auto& list : options.waist_weights)
+      for (const auto& [joint, weight] : list)
+        if (joint < 0 || joint >= static_cast<int>(reference_inverse.size()) || !std::isfinite(weight))
+          throw ArgumentError("waist weight " + std::to_string(weight) + " on joint " + std::to_string(joint) +
+                              ": expected a finite weight on a joint of the motion's skeleton");
+  }
 
   // Poses are needed by both the pins and the body at the same times; cache
   // the last one so each step computes FK once.
@@ -119,9 +152,23 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
     return cached;
   };
   const PinTrajectory pins = [&](double time, Positions& pinned) {
-    const Eigen::Isometry3d follow = pose_at_time(time).global[pelvis] * pelvis_rest_inverse;
-    for (Eigen::Index k = 0; k < pinned.rows(); ++k)
-      pinned.row(k) = (follow * Eigen::Vector3d(rest_pinned.row(k).transpose())).transpose();
+    const Pose& pose = pose_at_time(time);
+    if (!skinned_waist) {
+      const Eigen::Isometry3d follow = pose.global[pelvis] * pelvis_rest_inverse;
+      for (Eigen::Index k = 0; k < pinned.rows(); ++k)
+        pinned.row(k) = (follow * Eigen::Vector3d(rest_pinned.row(k).transpose())).transpose();
+      return;
+    }
+    // Linear blend skinning, as skin() moves the body (same joints, pivots
+    // and weights), so the waist keeps its place on the skin.
+    const Pose body = proportioned_pose(motion.skeleton, options.body_joints, pose);
+    for (Eigen::Index k = 0; k < pinned.rows(); ++k) {
+      const Eigen::Vector3d x = rest_pinned.row(k).transpose();
+      Eigen::Vector3d y = Eigen::Vector3d::Zero();
+      for (const auto& [joint, weight] : options.waist_weights[static_cast<std::size_t>(k)])
+        y += weight * (body.global[static_cast<std::size_t>(joint)] * (reference_inverse[static_cast<std::size_t>(joint)] * x));
+      pinned.row(k) = y.transpose();
+    }
   };
   MovingBodies bodies;
   bodies.scene = &body.scene();

@@ -68,6 +68,16 @@ struct CharacterRunOptions {
   /// (root where the rest pose has it); the pre-roll starts from it. Empty:
   /// the rest pose. MakeHuman garments: mesh_pose of the body (its A-pose).
   Pose garment_pose;
+  /// How the pinned waist moves. Empty: rigidly with the pelvis joint's
+  /// frame. Otherwise one list of (joint, weight) per pinned vertex (in
+  /// DynamicsModel::pinned_vertices order, weights summing to 1): the waist
+  /// is skinned by the same joints as the body under it (see
+  /// waist_skin_weights), about `body_joints`, so it moves as that skin
+  /// does. A skinned body bends above the pelvis (MakeHuman's waist moves
+  /// with the lower back), and a waist pinned rigidly to the pelvis ends up
+  /// to 13 mm inside it.
+  std::vector<std::vector<std::pair<int, double>>> waist_weights;
+  std::vector<Eigen::Vector3d> body_joints;  ///< SkinnedBody::joint_rest of the body the weights come from; empty: the skeleton's
   SimulationOptions simulation;      ///< iterations, sweeps, gravity, extra colliders; frames/fps/substeps are set from the above
 };
 
@@ -90,6 +100,14 @@ Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
 /// T-pose first frame) must be translated to sit on the reference pose.
 Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& options,
                               const Eigen::Vector3d& authored_root);
+
+/// Per point, the skin weights of the body vertex nearest to it: `points`
+/// (#P x 3, metres) and `body_vertices` (the body's vertices in the same
+/// pose and space, #V x 3). For CharacterRunOptions::waist_weights, with
+/// the pinned waist and the body both in the reference pose.
+std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const SkinnedBody& body,
+                                                                    const Eigen::MatrixX3d& body_vertices,
+                                                                    const Eigen::MatrixX3d& points);
 
 /// The pose of the character at simulation time `time`: during the pre-roll
 /// a smooth blend from the reference pose to the clip's pose at

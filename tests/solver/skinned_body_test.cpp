@@ -3,6 +3,8 @@
 // friction) against brute force on meshes built here and on the body.
 #include "solver/body_skinned_mesh.h"
 
+#include "solver/character_sim.h"
+
 #include "mesh_ops/errors.h"
 #include "solver/colliders.h"
 #include "test_meshes.h"
@@ -653,6 +655,87 @@ TEST_F(SkinnedBodyTest, ProportionedPosePutsJointsWhereSkinningPutsThem) {
   // Without a body's joints the pose is the skeleton's own.
   const Pose same = proportioned_pose(skeleton(), {}, frame_pose(*motion_, 75));
   EXPECT_LT((same.position(5) - frame_pose(*motion_, 75).position(5)).norm(), 1e-15);
+}
+
+/// A waist band (a short open tube, its top ring pinned) around the body's
+/// waist in the reference pose of 07_06 from the A-pose, and its model.
+struct WaistBand {
+  DynamicsModel model;
+  CharacterRunOptions options;
+  Pose reference;
+};
+WaistBand waist_band(const SkinnedBody& body, const Motion& walk) {
+  WaistBand band;
+  band.options.frames = 4;
+  band.options.preroll_seconds = 0.2;
+  band.options.garment_pose = mesh_pose(body, walk.skeleton);
+  band.reference = reference_pose(walk, band.options);
+  QuadMesh tube = test::make_tube(16, 3, 0.16, 0.08);
+  const Vector3d centre = band.reference.position(walk.skeleton.find("Hips")) + Vector3d(0, 0.05, 0);
+  for (auto v : tube.vertices()) tube.point(v) += QuadMesh::Point(centre.x(), centre.y(), centre.z());
+  DynamicsOptions d;
+  for (int i = 0; i < 16; ++i) d.pinned.push_back(2 * 16 + i);  // the top ring
+  band.model = build_dynamics(tube, d);
+  return band;
+}
+
+TEST_F(SkinnedBodyTest, SkinnedWaistMovesAsTheSkinUnderIt) {
+  // The pinned ring, given the skin weights of the body under it, must be
+  // wherever skin() puts the same points as part of the body: a body made
+  // of them (input mesh = the points in the A-pose) skinned by the pose.
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  WaistBand band = waist_band(*body_, walk);
+  const Positions rest_pinned = pinned_rows(band.model, band.model.rest);
+  band.options.body_joints = body_->joint_rest;
+  band.options.waist_weights = waist_skin_weights(*body_, skin(*body_, walk.skeleton, band.reference), rest_pinned);
+  CapsulePosedBody nothing(CapsuleRig{}, walk.skeleton);  // no collisions: the pins alone
+  ClothState state = rest_state(band.model);
+  std::vector<Positions> frames;
+  const CharacterRunReport report = simulate_on_character(band.model, state, walk, nothing, band.options, {}, &frames);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_LT(report.max_waist_error, 1e-12);
+
+  SkinnedBody ring;
+  const Vector3d moved = band.reference.position(0) - band.options.garment_pose.position(0);
+  ring.input_vertices = rest_pinned.rowwise() - moved.transpose();
+  ring.rest_vertices = ring.input_vertices;  // only its row count matters here
+  ring.weights = band.options.waist_weights;
+  ring.joint_rest = body_->joint_rest;
+  ring.input_joints = body_->input_joints;
+  ring.rest_correction = body_->rest_correction;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const double time = band.options.preroll_seconds + (f + 1) / band.options.fps;
+    const Eigen::MatrixX3d expected = skin(ring, walk.skeleton, character_pose(walk, time, band.options));
+    for (std::size_t k = 0; k < band.model.pinned_vertices.size(); ++k)
+      EXPECT_LT((frames[f].row(band.model.pinned_vertices[k]) - expected.row(static_cast<Eigen::Index>(k))).norm(), 1e-12)
+          << "frame " << f << " pinned " << k;
+  }
+  // The weights are those of the nearest body vertex.
+  const Eigen::MatrixX3d placed = skin(*body_, walk.skeleton, band.reference);
+  Eigen::Index nearest = 0;
+  (placed.rowwise() - rest_pinned.row(3)).rowwise().squaredNorm().minCoeff(&nearest);
+  EXPECT_EQ(band.options.waist_weights[3], body_->weights[static_cast<std::size_t>(nearest)]);
+
+  band.options.waist_weights.pop_back();
+  ClothState again = rest_state(band.model);
+  EXPECT_THROW(simulate_on_character(band.model, again, walk, nothing, band.options), ArgumentError) << "one list per pin";
+}
+
+TEST_F(SkinnedBodyTest, AWaistSkinnedToThePelvisAloneIsPinnedToIt) {
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  WaistBand band = waist_band(*body_, walk);
+  CapsulePosedBody nothing(CapsuleRig{}, walk.skeleton);
+  ClothState rigid_state = rest_state(band.model);
+  std::vector<Positions> rigid, skinned;
+  simulate_on_character(band.model, rigid_state, walk, nothing, band.options, {}, &rigid);
+  band.options.body_joints = body_->joint_rest;
+  band.options.waist_weights.assign(band.model.pinned_vertices.size(), {{walk.skeleton.find("Hips"), 1.0}});
+  ClothState skinned_state = rest_state(band.model);
+  simulate_on_character(band.model, skinned_state, walk, nothing, band.options, {}, &skinned);
+  ASSERT_EQ(rigid.size(), skinned.size());
+  for (std::size_t f = 0; f < rigid.size(); ++f) EXPECT_LT((rigid[f] - skinned[f]).cwiseAbs().maxCoeff(), 1e-9) << "frame " << f;
 }
 
 /// The largest weight's joint of each vertex.
