@@ -32,7 +32,8 @@ struct Row {
 };
 
 Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d& offset, const Motion& motion,
-        PosedBody& body, const std::string& body_name, const BenchOptions& b, const Pose& garment_pose) {
+        PosedBody& body, const std::string& body_name, const BenchOptions& b, const Pose& garment_pose,
+        const SkinnedBody* waist_skin = nullptr) {
   QuadMesh placed = copy_mesh(garment);
   for (auto v : placed.vertices()) placed.point(v) += OpenMesh::Vec3d(offset.x(), offset.y(), offset.z());
   DynamicsOptions d;
@@ -43,6 +44,12 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
   o.frames = b.frames;
   o.preroll_seconds = b.preroll;
   o.garment_pose = garment_pose;  // the A-pose base.obj (and the skirt) were modelled in
+  if (waist_skin) {
+    // On the mesh body the waist follows the skin under it, as the plugin does.
+    o.body_joints = waist_skin->joint_rest;
+    o.waist_weights = waist_skin_weights(*waist_skin, skin(*waist_skin, motion.skeleton, reference_pose(motion, o)),
+                                         pinned_rows(model, model.rest));
+  }
   Row row;
   row.garment = name;
   row.body = body_name;
@@ -112,7 +119,7 @@ int main(int argc, char** argv) {
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
     print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose));
-    print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose));
+    print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned));
   }
   return 0;
 }

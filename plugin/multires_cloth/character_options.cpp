@@ -101,7 +101,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   const QStringList files = {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
                                       QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
-                                                  QStringLiteral("radii"), QStringLiteral("legBridges")});
+                                                  QStringLiteral("radii"), QStringLiteral("legBridges"),
+                                                  QStringLiteral("waistFollows")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
   request.body = type == QLatin1String("mesh") ? CharacterBodyType::mesh : CharacterBodyType::capsules;
 
@@ -141,6 +142,16 @@ void parseBody(const Fields& top, CharacterRequest& request) {
                  .arg(label, script::describeValue(bridges)));
       request.legBridges = reach;
     }
+  }
+  if (fields.has(QStringLiteral("waistFollows"))) {
+    const QString follows = fields.choice(QStringLiteral("waistFollows"), QStringLiteral("auto"),
+                                          {QStringLiteral("auto"), QStringLiteral("pelvis"), QStringLiteral("skin")});
+    request.waistFollows = follows == QLatin1String("pelvis") ? WaistFollows::pelvis
+                           : follows == QLatin1String("skin") ? WaistFollows::skin
+                                                              : WaistFollows::automatic;
+    if (request.waistFollows == WaistFollows::skin && !request.hasMakeHuman)
+      fail(QStringLiteral("%1 \"skin\" needs a body to skin by: give the MakeHuman files (obj, skeleton, weights)")
+               .arg(fields.label(QStringLiteral("waistFollows"))));
   }
   request.thickness = fields.numberFrom(QStringLiteral("thickness"), request.thickness, 0.0, false);
   request.friction = fields.numberFrom(QStringLiteral("friction"), request.friction, 0.0, false);
@@ -305,6 +316,9 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
   character.legBridges = request.legBridges >= 0.0
                              ? request.legBridges
                              : automaticLegBridges(garment, character.placement, skeleton);
+  const bool waist_on_skin = request.waistFollows == WaistFollows::skin ||
+                             (request.waistFollows == WaistFollows::automatic && request.body == CharacterBodyType::mesh);
+  if (waist_on_skin) character.waistSkin = std::make_shared<const SkinnedBody>(*skinned);
   naming(optionLabel(QStringLiteral("body")), [&] {
     if (request.body == CharacterBodyType::mesh) {
       character.bodyVertices = static_cast<int>(skinned->rest_vertices.rows());
@@ -345,7 +359,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
 }
 
 CharacterRunOptions characterRunOptions(const CharacterRequest& request, const LoadedCharacter& character,
-                                        const SimulationOptions& simulation) {
+                                        const DynamicsModel& model, const SimulationOptions& simulation) {
   CharacterRunOptions run;
   run.garment_pose = character.garmentPose;
   run.frames = simulation.frames;
@@ -354,6 +368,15 @@ CharacterRunOptions characterRunOptions(const CharacterRequest& request, const L
   run.preroll_seconds = request.prerollSeconds;
   run.motion_start = request.motionStart;
   run.simulation = simulation;
+  if (character.waistSkin && !model.pinned_vertices.empty()) {
+    // Each pinned vertex takes the weights of the skin under it, in the
+    // pose the garment starts in.
+    const SkinnedBody& body = *character.waistSkin;
+    const Skeleton& skeleton = character.motion->skeleton;
+    run.body_joints = body.joint_rest;
+    run.waist_weights = waist_skin_weights(body, skin(body, skeleton, reference_pose(*character.motion, run)),
+                                           pinned_rows(model, model.rest));
+  }
   return run;
 }
 
@@ -398,6 +421,7 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
       {QStringLiteral("placement"), QVariantList{shift.x(), shift.y(), shift.z()}},
       {QStringLiteral("stepRate"), substeps * run.fps},
       {QStringLiteral("legBridges"), character.legBridges},
+      {QStringLiteral("waistFollows"), character.waistSkin ? QStringLiteral("skin") : QStringLiteral("pelvis")},
   };
   if (request.body == CharacterBodyType::mesh) map.insert(QStringLiteral("bodyVertices"), character.bodyVertices);
   else map.insert(QStringLiteral("capsules"), character.bodyCapsules);

@@ -24,6 +24,8 @@
 
 namespace mrcloth {
 
+/// What the pinned waist of a garment on a character follows.
+enum class WaistFollows { automatic, pelvis, skin };
 enum class CharacterBodyType { capsules, mesh };
 
 /// Where the garment's rest positions are, relative to the skeleton's rest
@@ -52,6 +54,10 @@ struct CharacterRequest {
   /// that is one tube with two boundary loops, none otherwise), 0 none,
   /// else the reach in bones from the hips (0.5 .. 2).
   double legBridges = -1.0;
+  /// How the pinned waist moves: rigidly with the pelvis, or skinned like
+  /// the MakeHuman body under it (CharacterRunOptions::waist_weights).
+  /// Automatic: with the skin on the mesh body, with the pelvis on capsules.
+  WaistFollows waistFollows = WaistFollows::automatic;
   GarmentPlacement place = GarmentPlacement::none;
   double prerollSeconds = 1.0;
   double stepRate = 120.0;      ///< time steps per second
@@ -78,6 +84,8 @@ struct LoadedCharacter {
   int bodyCapsules = 0;         ///< capsules (0 for a mesh)
   double legBridges = 0.0;      ///< the reach of the bridges between the legs, bones (0: none)
   bool fittedCapsules = false;  ///< capsule radii fitted to the MakeHuman body
+  /// The MakeHuman body whose skin the waist follows; null: the waist follows the pelvis.
+  std::shared_ptr<const SkinnedBody> waistSkin;
 };
 
 /// Reads the BVH, finds the placement, builds the body (with bridges between
@@ -86,10 +94,11 @@ struct LoadedCharacter {
 LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
 
 /// Settings for simulate_on_character from the request, the loaded
-/// character (its garment pose) and the run's frames, fps and solver
-/// settings (iterations, gravity, colliders, cache).
+/// character (its garment pose, the skin the waist follows), the garment's
+/// model (its pinned waist) and the run's frames, fps and solver settings
+/// (iterations, gravity, colliders, cache).
 CharacterRunOptions characterRunOptions(const CharacterRequest& request, const LoadedCharacter& character,
-                                        const SimulationOptions& simulation);
+                                        const DynamicsModel& model, const SimulationOptions& simulation);
 
 QString bodyTypeName(CharacterBodyType type);
 QString placementName(GarmentPlacement place);
@@ -97,7 +106,8 @@ QString placementName(GarmentPlacement place);
 /// What a character run adds to simulate's report: preroll {frames, steps,
 /// msPerFrame {dynamics, collision, total}, initialPenetration, maxPenetration,
 /// nonFinite}, maxWaistError, body, motion, motionUnits, motionStart,
-/// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz], legBridges.
+/// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz], legBridges,
+/// waistFollows ("pelvis" | "skin").
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const LoadedCharacter& character, const CharacterRunOptions& run);
 

@@ -324,7 +324,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   }
   const DynamicsModel model = build_dynamics(*garment, request.dynamics);
   ClothState state = rest_state(model);
-  const CharacterRunOptions run = characterRunOptions(wanted, character, request.simulation);
+  const CharacterRunOptions run = characterRunOptions(wanted, character, model, request.simulation);
 
   // Warnings a script author can act on before waiting for the run.
   const int pelvis = motion.skeleton.find(run.pelvis_joint);
@@ -480,7 +480,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, initialPenetration, nonFinite}, "
                       "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
-                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges. The rest pose is "
+                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, waistFollows. The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},
@@ -506,7 +506,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "only, 0 removes that joint's capsules), legBridges: \"auto\" | false | 0.5 .. 2 = \"auto\" (capsules "
             "between the legs down to that many bones below the hips, 1 = knees, 2 = ankles, so a skirt cannot "
             "fold in between the legs and be caught; auto: for a garment with two boundary loops, to the knees "
-            "or, if it reaches below them, the ankles, otherwise none)}, place: \"none\" (the garment is "
+            "or, if it reaches below them, the ankles, otherwise none), waistFollows: \"auto\" | \"pelvis\" | \"skin\" = "
+            "\"auto\" (the pinned waist moves rigidly with the pelvis, or skinned like the MakeHuman body under it, "
+            "which bends above the pelvis; auto: skin on the mesh body, pelvis on capsules)}, place: \"none\" (the garment is "
             "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "

@@ -42,6 +42,7 @@ expectAtMost(report.maxPenetration, 0.002, "maxPenetration");
 // between the legs, and to 15 % with two fixed rounds of strain limiting).
 expectAtMost(report.maxStretch, 0.10, "maxStretch");
 expectEqual(report.legBridges, 1, "a skirt above the knees gets bridges to the knees");
+expectEqual(report.waistFollows, "pelvis", "on capsules the waist follows the pelvis");
 expectAtMost(report.preroll.initialPenetration, 0, "the placed skirt starting inside the body:");
 expectEqual(report.perFrameMs.length, frames, "timings per frame");
 if (!(report.perFrameMs.every(t => t.dynamics > 0 && t.collision >= 0)))

@@ -34,6 +34,9 @@ expectThrows(sim({motion: walk, body: {radius: 1}}), "ArgumentError", "unknown o
              "accepted: type, obj, skeleton, weights, thickness, friction");
 expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError", "option 'body.thickness' must be a number >= 0");
 expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must be \"capsules\", \"mesh\" or an object");
+expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
+             "option 'body.waistFollows' \"skin\" needs a body to skin by");
+expectThrows(sim({motion: walk, body: {waistFollows: "ribs"}}), "ArgumentError", "option 'body.waistFollows'");
 
 // The motion.
 expectThrows(sim({motion: missing}), "InputError", "option 'motion': ", "no_such_motion.bvh: no such file");

@@ -43,11 +43,15 @@ if (!(report.maxWaistError <= 1e-9)) throw new Error("maxWaistError " + report.m
 // were modelled in: the skirt starts within the body's 4 mm thickness (it
 // started 53 mm inside the T-posed legs before).
 expectAtMost(report.preroll.initialPenetration, 0.004, "initial penetration in the A-pose");
-// Known limit (issue 4, open): on the skinned body the walk pushes the
-// ankle-length skirt up and it tears, so penetration and stretch during
-// the motion are reported here, not yet bounded. The run itself must stay
-// finite with the waist exact.
-print("character mesh: maxPenetration " + report.maxPenetration + " m, maxStretch " + report.maxStretch +
-      " (not yet bounded; see the README's known limits)");
+// On the mesh body the waist follows the skin under it (the MakeHuman waist
+// bends with the lower back): pinned rigidly to the pelvis it ended 10 mm
+// inside the body. 3.6 mm measured (the hands brush the hips); issue 4's
+// target is 2 mm.
+expectEqual(report.waistFollows, "skin", "the waist follows the skin on the mesh body");
+expectAtMost(report.maxPenetration, 0.005, "penetration during the motion");
+// Known limit (issue 4, open): the ankle-length skirt's hem (1.42 m) is
+// narrower than 07_06's stride needs around the ankles, so the walk
+// stretches it; stretch is reported here, not yet bounded.
+print("character mesh: maxStretch " + report.maxStretch + " (not yet bounded; see the README's known limits)");
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
 print("character mesh: ok");
