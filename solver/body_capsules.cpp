@@ -9,6 +9,7 @@
 #include <limits>
 #include <locale>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 namespace mrcloth {
@@ -160,14 +161,26 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
 }
 
 /// The collider of one bone in a pose.
+/// A bone capsule's end points in a pose: its joints, shifted in the joint's frame.
+std::pair<Vector3d, Vector3d> capsule_ends(const BoneCapsule& bone, const Pose& pose) {
+  const Eigen::Matrix3d turn = pose.global[static_cast<std::size_t>(bone.joint)].linear();
+  return {pose.position(bone.joint) + turn * bone.shift_head, pose.position(bone.child) + turn * bone.shift_tail};
+}
+
 Collider bone_collider(const CapsuleRig& rig, const BoneCapsule& bone, const Pose& pose) {
   CapsuleCollider capsule;
-  const Eigen::Matrix3d turn = pose.global[bone.joint].linear();
-  capsule.a = pose.position(bone.joint) + turn * bone.shift_head;
-  capsule.b = pose.position(bone.child) + turn * bone.shift_tail;
+  std::tie(capsule.a, capsule.b) = capsule_ends(bone, pose);
   capsule.radius_a = bone.radius_head;
   capsule.radius_b = bone.radius_tail;
   return Collider{capsule, rig.thickness, rig.friction};
+}
+
+/// True when p is farther than the thickness from the capsule's bounding ball.
+bool surely_clear_of(const Collider& collider, const Vector3d& p) {
+  const auto& capsule = std::get<CapsuleCollider>(collider.shape);
+  const double reach =
+      0.5 * (capsule.b - capsule.a).norm() + std::max(capsule.radius_a, capsule.radius_b) + collider.thickness;
+  return (p - 0.5 * (capsule.a + capsule.b)).squaredNorm() > reach * reach;
 }
 
 /// The bridge's collider in a pose.
@@ -441,6 +454,50 @@ std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose) {
   return colliders;
 }
 
+int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d& points, double floor) {
+  check_rig(rig, static_cast<int>(pose.global.size()), "clear_capsules_of");
+  if (!(floor > 0.0 && floor <= 1.0))
+    throw ArgumentError("clear_capsules_of: floor must be in (0, 1] (got " + text(floor) + ")");
+  if (!points.allFinite()) throw ArgumentError("clear_capsules_of: the points must be finite");
+  int shrunk = 0;
+  for (BoneCapsule& bone : rig.bones) {
+    const Collider full = bone_collider(rig, bone, pose);
+    const auto scaled = [&](double s) {
+      Collider c = full;
+      auto& capsule = std::get<CapsuleCollider>(c.shape);
+      capsule.radius_a *= s;
+      capsule.radius_b *= s;
+      return c;
+    };
+    const auto clear = [&](const Collider& c, const Vector3d& p) {
+      return query_surface(c, p).distance >= rig.thickness;
+    };
+    double factor = 1.0;
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      const Vector3d p = points.row(i).transpose();
+      if (surely_clear_of(full, p) || clear(scaled(factor), p)) continue;
+      // The distance grows as the radii shrink: bisect for the largest
+      // factor that clears p (none above the floor: the floor).
+      double inside = factor, outside = floor;
+      if (!clear(scaled(floor), p)) {
+        factor = floor;
+        continue;
+      }
+      for (int k = 0; k < 50; ++k) {
+        const double middle = 0.5 * (inside + outside);
+        (clear(scaled(middle), p) ? outside : inside) = middle;
+      }
+      factor = outside;
+    }
+    if (factor < 1.0) {
+      bone.radius_head *= factor;
+      bone.radius_tail *= factor;
+      ++shrunk;
+    }
+  }
+  return shrunk;
+}
+
 void add_leg_bridges(CapsuleRig& rig, const Skeleton& skeleton, double reach) {
   check_skeleton(skeleton, "add_leg_bridges");
   check_rig(rig, static_cast<int>(skeleton.joints.size()), "add_leg_bridges");
@@ -488,8 +545,7 @@ void CapsuleBody::pose(const Pose& pose) {
     // Only the end points move: update in place, no allocation per step.
     if (posed_) previous_[i].shape = colliders_[i].shape;
     auto& capsule = std::get<CapsuleCollider>(colliders_[i].shape);
-    capsule.a = pose.position(bone.joint);
-    capsule.b = pose.position(bone.child);
+    std::tie(capsule.a, capsule.b) = capsule_ends(bone, pose);
   }
   for (std::size_t k = 0; k < rig_.bridges.size(); ++k) {
     const BridgeCapsule& bridge = rig_.bridges[k];

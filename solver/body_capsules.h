@@ -69,6 +69,18 @@ void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::M
                        const std::vector<std::vector<std::pair<int, double>>>& bone_weights,
                        const std::vector<Eigen::Vector3d>& joint_rest = {});
 
+/// Shrinks every bone capsule that a garment starts inside of until the
+/// garment is clear of it: `points` (#P x 3, metres) are the garment's
+/// vertices where it starts, `pose` the rig's pose then (as posed for
+/// collision, e.g. proportioned_pose of the garment's pose). A capsule's
+/// two radii shrink by one factor, the largest that leaves every point at
+/// least the rig's thickness outside, but not below `floor` of their size
+/// (a point on the bone itself would remove the capsule). Capsules fitted
+/// to a body sit partly outside it wherever it is narrower than a linear
+/// taper (the waist, the small of the back), and a garment modelled on
+/// the body would start inside them. Returns how many capsules shrank.
+int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d& points, double floor = 0.5);
+
 /// Bridges between the legs for a skirt or dress (a garment with one tube
 /// around both legs): a real body's thighs meet, a capsule rig's leave a
 /// gap into which the cloth folds and where scissoring thighs trap it. Adds

@@ -510,16 +510,55 @@ TEST(CapsuleRig, FitCentresCapsulesAndSplitsWideCrossSections) {
   const Eigen::Matrix3d quarter = Eigen::AngleAxisd(kPi / 2, Vector3d::UnitY()).toRotationMatrix();
   for (Eigen::Isometry3d& g : turned.global) g.prerotate(quarter);
   const std::vector<Collider> posed = posed_capsules(rig, turned);
+  CapsuleBody body(rig, b.skeleton);  // the body a simulation collides with poses them the same way
+  body.pose(turned);
   for (std::size_t i = 0; i < rig.bones.size(); ++i) {
     if (rig.bones[i].joint != spine) continue;
-    const CapsuleCollider& c = capsule_of(posed[i]);
-    EXPECT_LT((c.a - quarter * (rest.position(spine) + rig.bones[i].shift_head)).norm(), 1e-12);
-    EXPECT_LT((c.b - quarter * (rest.position(top) + rig.bones[i].shift_tail)).norm(), 1e-12);
+    for (const Collider* collider : {&posed[i], &body.colliders()[i]}) {
+      const CapsuleCollider& c = capsule_of(*collider);
+      EXPECT_LT((c.a - quarter * (rest.position(spine) + rig.bones[i].shift_head)).norm(), 1e-12);
+      EXPECT_LT((c.b - quarter * (rest.position(top) + rig.bones[i].shift_tail)).norm(), 1e-12);
+    }
   }
   BoneCapsule bad = twins[0];
   bad.shift_tail.x() = std::numeric_limits<double>::quiet_NaN();
   rig.bones.push_back(bad);
   EXPECT_THROW(posed_capsules(rig, rest), ArgumentError) << "non-finite shift";
+}
+
+TEST(CapsuleRig, CapsulesShrinkToClearAGarmentStartingInsideThem) {
+  // One straight bone of radius 0.1 (thickness 4 mm) and a second far away;
+  // a garment point 8 cm from the first bone's axis, mid-bone, must end
+  // exactly 4 mm outside: radius 0.076, both ends by the same factor.
+  SkeletonBuilder b;
+  const int root = b.add("root", -1, Vector3d::Zero());
+  const int upper = b.add("upper", root, Vector3d(0.0, 1.0, 0.0));
+  b.add("upper_end", upper, Vector3d(0.0, -0.5, 0.0), true);
+  CapsuleRigOptions options;
+  options.radii = {{"root", {0.05, 0.05}}, {"upper", {0.1, 0.1}}};
+  CapsuleRig rig = make_capsule_rig(b.skeleton, options);
+  const Pose rest = rest_pose(b.skeleton);
+  std::size_t limb = 0, other = 0;
+  for (std::size_t i = 0; i < rig.bones.size(); ++i) (rig.bones[i].joint == upper ? limb : other) = i;
+  ASSERT_NE(limb, other);
+  const CapsuleRig before = rig;
+  Eigen::MatrixX3d points(3, 3);
+  points << 0.08, 0.75, 0.0,   // inside the limb
+      0.0, 0.75, 0.3,          // outside everything
+      0.2, 0.2, 0.0;           // outside everything
+  EXPECT_EQ(clear_capsules_of(rig, rest, points), 1);
+  EXPECT_NEAR(rig.bones[limb].radius_head, 0.076, 1e-9);
+  EXPECT_NEAR(rig.bones[limb].radius_tail, 0.076, 1e-9);
+  EXPECT_EQ(rig.bones[other].radius_head, before.bones[other].radius_head) << "a capsule nothing is inside keeps its size";
+  EXPECT_NEAR(query_surface(posed_capsules(rig, rest)[limb], points.row(0).transpose()).distance, 0.004, 1e-9);
+  // A point on both bones' axes (root -> upper runs up the same line):
+  // both capsules shrink to the floor only.
+  Eigen::MatrixX3d on_axis(1, 3);
+  on_axis << 0.0, 0.75, 0.0;
+  EXPECT_EQ(clear_capsules_of(rig, rest, on_axis, 0.5), 2);
+  EXPECT_NEAR(rig.bones[limb].radius_head, 0.038, 1e-12);
+  EXPECT_NEAR(rig.bones[other].radius_tail, 0.025, 1e-12);
+  EXPECT_THROW(clear_capsules_of(rig, rest, on_axis, 0.0), ArgumentError);
 }
 
 TEST(CapsuleRig, FitKeepsRadiiWithoutVertices) {
