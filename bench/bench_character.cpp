@@ -95,7 +95,6 @@ int main(int argc, char** argv) {
 
   CapsuleRig rig = make_capsule_rig(motion.skeleton);
   fit_capsule_radii(rig, motion.skeleton, skinned.rest_vertices, skinned.weights, skinned.joint_rest);
-  CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
   SkinnedPosedBody mesh(skinned, motion.skeleton);
 
   const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
@@ -115,10 +114,18 @@ int main(int argc, char** argv) {
   const Eigen::Vector3d offset =
       skinned.obj_offset + garment_shift(motion, reference, rest_pose(motion.skeleton).position(0));
   const Pose a_pose = mesh_pose(skinned, motion.skeleton);
+  // As the plugin does: shrink the capsules the skirt starts inside of.
+  CharacterRunOptions start;
+  start.garment_pose = a_pose;
+  Eigen::MatrixX3d skirt_points(static_cast<Eigen::Index>(coarse.n_vertices()), 3);
+  for (auto v : coarse.vertices())
+    skirt_points.row(v.idx()) = (Eigen::Vector3d(coarse.point(v)[0], coarse.point(v)[1], coarse.point(v)[2]) + offset).transpose();
+  clear_capsules_of(rig, proportioned_pose(motion.skeleton, skinned.joint_rest, reference_pose(motion, start)), skirt_points);
+  CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
   const QuadMesh* garments[] = {&coarse, &high};
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
-    print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose));
+    print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned));
     print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned));
   }
   return 0;

@@ -79,7 +79,7 @@ void fit_capsule_radii(CapsuleRig& rig, const Skeleton& skeleton, const Eigen::M
 /// to a body sit partly outside it wherever it is narrower than a linear
 /// taper (the waist, the small of the back), and a garment modelled on
 /// the body would start inside them. Returns how many capsules shrank.
-int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d& points, double floor = 0.5);
+int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d& points, double floor = 0.25);
 
 /// Bridges between the legs for a skirt or dress (a garment with one tube
 /// around both legs): a real body's thighs meet, a capsule rig's leave a

@@ -317,7 +317,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
                              ? request.legBridges
                              : automaticLegBridges(garment, character.placement, skeleton);
   const bool waist_on_skin = request.waistFollows == WaistFollows::skin ||
-                             (request.waistFollows == WaistFollows::automatic && request.body == CharacterBodyType::mesh);
+                             (request.waistFollows == WaistFollows::automatic && request.hasMakeHuman);
   if (waist_on_skin) character.waistSkin = std::make_shared<const SkinnedBody>(*skinned);
   naming(optionLabel(QStringLiteral("body")), [&] {
     if (request.body == CharacterBodyType::mesh) {
@@ -350,10 +350,24 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
       }
       rig.bones = std::move(kept);
     }
+    // The garment must start outside every capsule: shrink those it starts
+    // inside (fitted capsules stand out of a body wherever it is narrower
+    // than a linear taper). Posed as the run starts: the garment's pose, on
+    // the body's own joints.
+    const std::vector<Eigen::Vector3d> joints = skinned ? skinned->joint_rest : std::vector<Eigen::Vector3d>{};
+    CharacterRunOptions start;
+    start.garment_pose = character.garmentPose;
+    start.motion_start = request.motionStart;
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(garment.n_vertices()), 3);
+    for (const auto vertex : garment.vertices()) {
+      const auto& p = garment.point(vertex);
+      points.row(vertex.idx()) = (character.placement * Eigen::Vector3d(p[0], p[1], p[2])).transpose();
+    }
+    character.capsulesShrunk = clear_capsules_of(
+        rig, proportioned_pose(skeleton, joints, reference_pose(*character.motion, start)), points);
     character.bodyCapsules = static_cast<int>(rig.bones.size());
     if (character.legBridges > 0.0) add_leg_bridges(rig, skeleton, character.legBridges);
-    character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton,
-                                                        skinned ? skinned->joint_rest : std::vector<Eigen::Vector3d>{});
+    character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton, joints);
   });
   return character;
 }
@@ -421,6 +435,7 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
       {QStringLiteral("placement"), QVariantList{shift.x(), shift.y(), shift.z()}},
       {QStringLiteral("stepRate"), substeps * run.fps},
       {QStringLiteral("legBridges"), character.legBridges},
+      {QStringLiteral("capsulesShrunk"), character.capsulesShrunk},
       {QStringLiteral("waistFollows"), character.waistSkin ? QStringLiteral("skin") : QStringLiteral("pelvis")},
   };
   if (request.body == CharacterBodyType::mesh) map.insert(QStringLiteral("bodyVertices"), character.bodyVertices);

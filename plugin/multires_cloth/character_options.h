@@ -56,7 +56,8 @@ struct CharacterRequest {
   double legBridges = -1.0;
   /// How the pinned waist moves: rigidly with the pelvis, or skinned like
   /// the MakeHuman body under it (CharacterRunOptions::waist_weights).
-  /// Automatic: with the skin on the mesh body, with the pelvis on capsules.
+  /// Automatic: with the skin whenever the MakeHuman body is given (its
+  /// mesh, or capsules fitted to it), else with the pelvis.
   WaistFollows waistFollows = WaistFollows::automatic;
   GarmentPlacement place = GarmentPlacement::none;
   double prerollSeconds = 1.0;
@@ -84,6 +85,7 @@ struct LoadedCharacter {
   int bodyCapsules = 0;         ///< capsules (0 for a mesh)
   double legBridges = 0.0;      ///< the reach of the bridges between the legs, bones (0: none)
   bool fittedCapsules = false;  ///< capsule radii fitted to the MakeHuman body
+  int capsulesShrunk = 0;       ///< capsules shrunk so the garment starts outside them (clear_capsules_of)
   /// The MakeHuman body whose skin the waist follows; null: the waist follows the pelvis.
   std::shared_ptr<const SkinnedBody> waistSkin;
 };
@@ -107,7 +109,7 @@ QString placementName(GarmentPlacement place);
 /// msPerFrame {dynamics, collision, total}, initialPenetration, maxPenetration,
 /// nonFinite}, maxWaistError, body, motion, motionUnits, motionStart,
 /// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz], legBridges,
-/// waistFollows ("pelvis" | "skin").
+/// capsulesShrunk, waistFollows ("pelvis" | "skin").
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const LoadedCharacter& character, const CharacterRunOptions& run);
 

@@ -480,7 +480,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, initialPenetration, nonFinite}, "
                       "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
-                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, waistFollows. The rest pose is "
+                      "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows. The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},
@@ -508,7 +508,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "fold in between the legs and be caught; auto: for a garment with two boundary loops, to the knees "
             "or, if it reaches below them, the ankles, otherwise none), waistFollows: \"auto\" | \"pelvis\" | \"skin\" = "
             "\"auto\" (the pinned waist moves rigidly with the pelvis, or skinned like the MakeHuman body under it, "
-            "which bends above the pelvis; auto: skin on the mesh body, pelvis on capsules)}, place: \"none\" (the garment is "
+            "which bends above the pelvis; auto: skin when the MakeHuman files are given, else pelvis)}, place: \"none\" (the garment is "
             "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "

@@ -54,4 +54,28 @@ expectAtMost(report.maxPenetration, 0.005, "penetration during the motion");
 // stretches it; stretch is reported here, not yet bounded.
 print("character mesh: maxStretch " + report.maxStretch + " (not yet bounded; see the README's known limits)");
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
+
+// Capsules fitted to the same body, under the knee-length skirt: the fit
+// centres them in the limbs (twins across the pelvis and chest) and shrinks
+// those the skirt starts inside of, and the waist follows the skin.
+const kneeSkirt = sharedDir + "/garments/makehuman/female_elegantsuit01_skirt_on_base.obj";
+if (core.fileExists(kneeSkirt)) {
+  const knee = core.loadObject(kneeSkirt, {units: "dm"});
+  const caps = multirescloth.simulate(knee, {
+    motion: {path: clip, units: "cmu"}, body: Object.assign({}, body, {type: "capsules"}), place: "makehuman",
+    preroll: 0.5, frames: frames});
+  print("character mesh: capsules fitted to the body, knee-length skirt: " + caps.capsules + " capsules, " +
+        caps.capsulesShrunk + " shrunk, initialPenetration " + (1000 * caps.preroll.initialPenetration).toFixed(2) +
+        " mm, maxPenetration " + (1000 * caps.maxPenetration).toFixed(2) + " mm, maxStretch " + caps.maxStretch.toFixed(3));
+  expectEqual([caps.body, caps.waistFollows, caps.nonFinite], ["capsules", "skin", false], "capsule fields");
+  if (!(caps.capsulesShrunk > 0)) throw new Error("the fitted capsules should have been shrunk to clear the skirt");
+  // Before the centring fit and the shrink it started 62 mm inside them.
+  expectAtMost(caps.preroll.initialPenetration, 0.004, "capsules: initial penetration");
+  if (!(caps.maxWaistError <= 1e-9)) throw new Error("capsules: maxWaistError " + caps.maxWaistError);
+  // Measured 9.6 mm (the swinging forearm through the pinned waistband) and
+  // 77 % (the waistband's 5 mm edges); bounds against regressions (645 %
+  // before this session), issue 4's 2 mm target not yet met.
+  expectAtMost(caps.maxPenetration, 0.012, "capsules: penetration");
+  expectAtMost(caps.maxStretch, 1.0, "capsules: stretch");
+}
 print("character mesh: ok");
