@@ -44,12 +44,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
   o.frames = b.frames;
   o.preroll_seconds = b.preroll;
   o.garment_pose = garment_pose;  // the A-pose base.obj (and the skirt) were modelled in
-  if (waist_skin) {
-    // On the mesh body the waist follows the skin under it, as the plugin does.
-    o.body_joints = waist_skin->joint_rest;
-    o.waist_weights = waist_skin_weights(*waist_skin, skin(*waist_skin, motion.skeleton, reference_pose(motion, o)),
-                                         pinned_rows(model, model.rest));
-  }
+  if (waist_skin) waist_follows_skin(o, *waist_skin, motion, model);  // as the plugin does with MakeHuman
   Row row;
   row.garment = name;
   row.body = body_name;
@@ -120,7 +115,7 @@ int main(int argc, char** argv) {
   Eigen::MatrixX3d skirt_points(static_cast<Eigen::Index>(coarse.n_vertices()), 3);
   for (auto v : coarse.vertices())
     skirt_points.row(v.idx()) = (Eigen::Vector3d(coarse.point(v)[0], coarse.point(v)[1], coarse.point(v)[2]) + offset).transpose();
-  clear_capsules_of(rig, proportioned_pose(motion.skeleton, skinned.joint_rest, reference_pose(motion, start)), skirt_points);
+  clear_capsules_for_garment(rig, motion, start, skinned.joint_rest, skirt_points);
   CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
   const QuadMesh* garments[] = {&coarse, &high};
   for (const QuadMesh* g : garments) {

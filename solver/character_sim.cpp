@@ -109,6 +109,20 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
   return out;
 }
 
+void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, const Motion& motion,
+                        const DynamicsModel& model) {
+  if (model.pinned_vertices.empty()) return;
+  options.body_joints = body.joint_rest;
+  options.waist_weights = waist_skin_weights(body, skin(body, motion.skeleton, reference_pose(motion, options)),
+                                             pinned_rows(model, model.rest));
+}
+
+int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,
+                               const std::vector<Eigen::Vector3d>& body_joints, const Eigen::MatrixX3d& garment) {
+  return clear_capsules_of(rig, proportioned_pose(motion.skeleton, body_joints, reference_pose(motion, options)),
+                           garment);
+}
+
 Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
   if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
   const Pose first = pose_at(motion, options.motion_start);

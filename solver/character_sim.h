@@ -109,6 +109,22 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
                                                                     const Eigen::MatrixX3d& body_vertices,
                                                                     const Eigen::MatrixX3d& points);
 
+/// Makes the model's pinned waist follow the skin of `body` (the skinned
+/// body the run collides with, or the one a capsule rig was fitted to):
+/// sets options.waist_weights (from the body in the reference pose, so
+/// options.garment_pose and motion_start must already be set) and
+/// options.body_joints. No pinned vertices: nothing to set.
+void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, const Motion& motion,
+                        const DynamicsModel& model);
+
+/// Shrinks the capsules a garment starts inside of (clear_capsules_of),
+/// posed as the run starts: the reference pose on `body_joints` (the
+/// body's own joints the rig was fitted about; empty: the skeleton's).
+/// `garment` (#V x 3, metres) is the placed garment. Returns how many
+/// capsules shrank.
+int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,
+                               const std::vector<Eigen::Vector3d>& body_joints, const Eigen::MatrixX3d& garment);
+
 /// The pose of the character at simulation time `time`: during the pre-roll
 /// a smooth blend from the reference pose to the clip's pose at
 /// motion_start, then the clip from motion_start.

@@ -352,8 +352,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
     }
     // The garment must start outside every capsule: shrink those it starts
     // inside (fitted capsules stand out of a body wherever it is narrower
-    // than a linear taper). Posed as the run starts: the garment's pose, on
-    // the body's own joints.
+    // than a linear taper).
     const std::vector<Eigen::Vector3d> joints = skinned ? skinned->joint_rest : std::vector<Eigen::Vector3d>{};
     CharacterRunOptions start;
     start.garment_pose = character.garmentPose;
@@ -363,8 +362,7 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
       const auto& p = garment.point(vertex);
       points.row(vertex.idx()) = (character.placement * Eigen::Vector3d(p[0], p[1], p[2])).transpose();
     }
-    character.capsulesShrunk = clear_capsules_of(
-        rig, proportioned_pose(skeleton, joints, reference_pose(*character.motion, start)), points);
+    character.capsulesShrunk = clear_capsules_for_garment(rig, *character.motion, start, joints, points);
     character.bodyCapsules = static_cast<int>(rig.bones.size());
     if (character.legBridges > 0.0) add_leg_bridges(rig, skeleton, character.legBridges);
     character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton, joints);
@@ -382,15 +380,7 @@ CharacterRunOptions characterRunOptions(const CharacterRequest& request, const L
   run.preroll_seconds = request.prerollSeconds;
   run.motion_start = request.motionStart;
   run.simulation = simulation;
-  if (character.waistSkin && !model.pinned_vertices.empty()) {
-    // Each pinned vertex takes the weights of the skin under it, in the
-    // pose the garment starts in.
-    const SkinnedBody& body = *character.waistSkin;
-    const Skeleton& skeleton = character.motion->skeleton;
-    run.body_joints = body.joint_rest;
-    run.waist_weights = waist_skin_weights(body, skin(body, skeleton, reference_pose(*character.motion, run)),
-                                           pinned_rows(model, model.rest));
-  }
+  if (character.waistSkin) waist_follows_skin(run, *character.waistSkin, *character.motion, model);
   return run;
 }
 

@@ -687,8 +687,7 @@ TEST_F(SkinnedBodyTest, SkinnedWaistMovesAsTheSkinUnderIt) {
   const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
   WaistBand band = waist_band(*body_, walk);
   const Positions rest_pinned = pinned_rows(band.model, band.model.rest);
-  band.options.body_joints = body_->joint_rest;
-  band.options.waist_weights = waist_skin_weights(*body_, skin(*body_, walk.skeleton, band.reference), rest_pinned);
+  waist_follows_skin(band.options, *body_, walk, band.model);
   CapsulePosedBody nothing(CapsuleRig{}, walk.skeleton);  // no collisions: the pins alone
   ClothState state = rest_state(band.model);
   std::vector<Positions> frames;
