@@ -339,6 +339,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                        "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
                             .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint)));
   }
+  if (character.capsulesShrunk > 0)
+    emit log(LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
+                                     "capsules stand out of the body where it is narrower than a taper)")
+                          .arg(slot).arg(character.capsulesShrunk).arg(character.bodyCapsules));
   const double end_time = run.motion_start + run.frames / run.fps;
   if (end_time > motion.duration() + 0.5 / run.fps)
     emit log(LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
