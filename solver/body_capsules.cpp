@@ -562,7 +562,8 @@ void CapsuleBody::pose(const Pose& pose) {
   posed_ = true;
 }
 
-double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const {
+double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
+                            ContactMemo*) const {
   return resolve_point(previous_, colliders_, start, position, friction);
 }
 

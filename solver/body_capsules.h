@@ -101,7 +101,8 @@ class CapsuleBody : public CollisionScene {
  public:
   CapsuleBody(CapsuleRig rig, const Skeleton& skeleton);
   void pose(const Pose& pose);
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override;
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                 ContactMemo* memo = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   bool empty() const override { return colliders_.empty(); }
   const std::vector<Collider>& colliders() const { return colliders_; }

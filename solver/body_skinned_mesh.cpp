@@ -666,6 +666,7 @@ struct MeshBody::Impl {
   std::vector<Vector3d> x, x_previous;         ///< vertex positions now and at the previous update
   Vector3d root_lo{0, 0, 0}, root_hi{0, 0, 0};  ///< the whole mesh's box
   double thickness = 0.0, friction = 0.0;
+  unsigned long long serial = 0;  ///< counts update() calls: a memo is only good for the pose it was made in
   double reach2 = 0.0;        ///< (thickness + margin)^2
   double normal_floor = 0.0;  ///< below this distance the pseudo-normal, not p - c, is the normal
 
@@ -978,6 +979,96 @@ struct MeshBody::Impl {
     return out.distance < 0.0;
   }
 
+  /// Every triangle whose box lies within sqrt(radius2) of p (a superset of
+  /// those within that distance), appended to `out`.
+  void gather(const Vector3d& p, double radius2, std::vector<int>& out) const {
+    int stack[kStackSize];
+    int top = 0;
+    if (!(root_distance2(p) <= radius2)) return;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes[static_cast<std::size_t>(stack[--top])];
+      for (int k = 0; k < 2; ++k) {
+        if (!(box_distance2(node, k, p) <= radius2)) continue;
+        if (node.count[k] > 0) {
+          for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) out.push_back(t);
+        } else if (node.index[k] >= 0) {
+          stack[top++] = node.index[k];
+        }
+      }
+    }
+  }
+
+  /// Beyond thickness, how far around a point a memo remembers triangles.
+  static constexpr double kMemoMargin = 0.006;
+
+  /// Whether `memo` holds this body's triangles near p in the current pose.
+  bool memo_applies(const ContactMemo* memo, const Vector3d& p) const {
+    return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0 &&
+           (p - memo->centre).norm() < 0.5 * memo->radius;
+  }
+
+  /// contact(p, search2, deep, out) answered from the memo when it can be
+  /// certified: every triangle within memo.radius of its centre is in it,
+  /// so one closer to p than (radius - |p - centre|) is the closest of all,
+  /// and with none that close p lies on its centre's side (a surface between
+  /// them would be closer). Else the tree answers.
+  bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo) const {
+    if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
+    const double slack = memo->radius - (p - memo->centre).norm();
+    Closest c;
+    for (int t : memo->items) {
+      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (d2 < c.d2) {
+        c.d2 = d2;
+        c.triangle = t;
+        c.at = at;
+      }
+    }
+    if (c.triangle >= 0 && c.d2 < slack * slack) {
+      if (c.d2 < search2) {
+        out = signed_contact(p, c);
+        return true;
+      }
+      if (!deep) return false;
+      out = signed_contact(p, c);
+      return out.distance < 0.0;
+    }
+    // Nothing within slack of p: no contact within search2 if that is
+    // inside the slack, and p is on the centre's side.
+    if (search2 <= slack * slack && memo->outside) return false;
+    return contact(p, search2, deep, out);
+  }
+
+  /// Remembers the triangles near p (where the point ended a resolve) for
+  /// the later rounds of this pose; `outside_known`: the resolve found p
+  /// clear without a push, so it is outside.
+  void remember(const Vector3d& p, bool outside_known, ContactMemo* memo) const {
+    if (!memo) return;
+    memo->items.clear();
+    memo->radius = -1.0;
+    const double radius = thickness + kMemoMargin;
+    gather(p, radius * radius, memo->items);
+    Closest c;
+    for (int t : memo->items) {
+      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (d2 < c.d2) {
+        c.d2 = d2;
+        c.triangle = t;
+        c.at = at;
+      }
+    }
+    if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
+    else if (outside_known) memo->outside = true;
+    else return;  // side unknown: nothing remembered
+    memo->centre = p;
+    memo->radius = radius;
+    memo->owner = this;
+    memo->serial = serial;
+  }
+
   /// Pushes p out to thickness along the distance's gradient, searching
   /// within sqrt(search2). A push out of one side of a crease (armpit,
   /// crotch) can land within thickness of the other, so it repeats, as
@@ -986,13 +1077,13 @@ struct MeshBody::Impl {
   /// far. In a gap narrower than twice the thickness (between toes or
   /// fingers) no place is clear of both sides and the pushes alternate: then
   /// the place seen farthest out is kept. `largest` takes the largest push.
-  void project(Vector3d& p, double search2, double& largest) const {
+  void project(Vector3d& p, double search2, double& largest, const ContactMemo* memo = nullptr) const {
     Vector3d best_p = p;
     double best_distance = -std::numeric_limits<double>::infinity();
     const double near2 = thickness * thickness;
     for (int sweep = 0; sweep <= kMaxSweeps; ++sweep) {
       Contact c;
-      if (!contact(p, sweep == 0 ? search2 : near2, false, c)) return;
+      if (!contact_with(p, sweep == 0 ? search2 : near2, false, c, memo)) return;
       const double gap = c.distance - thickness;
       if (!(gap < -1e-12)) return;  // round-off short of thickness is clear: no endless re-pushes
       if (c.distance > best_distance) {
@@ -1121,26 +1212,35 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices) {
                         std::to_string(m.x.size()) + " (the count the body was built with)");
   }
   Impl::require_finite(vertices);
+  ++m.serial;
   std::swap(m.x, m.x_previous);
   m.set_positions(vertices);
   m.refit();
 }
 
-double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const {
+double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
+                         ContactMemo* memo) const {
   const Impl& m = *impl_;
+  // A memo made in this pose answers for itself; one that does not apply is
+  // refilled where this resolve leaves the point.
+  const bool reuse = m.memo_applies(memo, position);
+  ContactMemo* refill = reuse ? nullptr : memo;
   Impl::Contact c;
-  if (!m.contact(position, m.reach2, true, c)) return 0.0;
+  if (!m.contact_with(position, m.reach2, true, c, memo) || !(c.distance - m.thickness < 0.0)) {
+    m.remember(position, true, refill);
+    return 0.0;
+  }
   const double gap = c.distance - m.thickness;
-  if (!(gap < 0.0)) return 0.0;
   // As resolve_point: out to thickness along the normal, then Coulomb
   // friction on the step's tangential displacement, here relative to the
   // surface (which moved by its vertices' displacement since the last
   // update).
   const double correction = -gap;
   position += correction * c.normal;
+  double largest = correction;
   if (!friction) {
-    double largest = correction;
-    m.project(position, m.thickness * m.thickness, largest);
+    m.project(position, m.thickness * m.thickness, largest, memo);
+    m.remember(position, false, refill);
     return largest;
   }
   const Vector3d step = position - start - m.surface_motion(c);
@@ -1153,9 +1253,9 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // surface by `move`: only a triangle nearer than thickness plus the move
   // can still hold it (the other side of a crease, or the surface it slid
   // along); pushes from there on are frictionless.
-  double largest = correction;
   const double reach = m.thickness + move.norm();
-  m.project(position, reach * reach, largest);
+  m.project(position, reach * reach, largest, memo);
+  m.remember(position, false, refill);
   return largest;
 }
 

@@ -86,7 +86,12 @@ class MeshBody : public CollisionScene {
   ~MeshBody() override;
   /// New vertex positions (same count), then refit; call once per step.
   void update(const Eigen::MatrixX3d& vertices);
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override;
+  /// With a memo, a point resolved again before the next update() (a later
+  /// collision round) is answered from the triangles remembered near it
+  /// whenever they certainly include its closest one, else from the tree:
+  /// the same answers, without the tree.
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                 ContactMemo* memo = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.

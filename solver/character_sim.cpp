@@ -32,10 +32,11 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
 class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
  public:
   MeshAndBridges(const MeshBody& mesh, const CapsuleBody* bridges) : mesh_(mesh), bridges_(bridges) {}
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) const override {
-    double largest = mesh_.resolve(start, position, friction);
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
+                 ContactMemo* memo) const override {
+    double largest = mesh_.resolve(start, position, friction, memo);
     if (bridges_ && bridges_->resolve(start, position, friction) > 0.0)
-      largest = std::max(largest, mesh_.resolve(start, position, false));
+      largest = std::max(largest, mesh_.resolve(start, position, false, memo));
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

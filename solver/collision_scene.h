@@ -12,6 +12,20 @@
 
 namespace mrcloth {
 
+/// What a scene may remember about one cloth point between the collision
+/// rounds of a step to answer its later queries faster; it never changes an
+/// answer. The caller owns one per point and passes it to every resolve of
+/// that point; a scene that does not use it leaves it alone, and the first
+/// scene of a composite that uses it owns it.
+struct ContactMemo {
+  std::vector<int> items;               ///< scene-defined (MeshBody: every triangle within `radius` of `centre`)
+  Eigen::Vector3d centre{0, 0, 0};      ///< where they were gathered
+  double radius = -1.0;                 ///< < 0: nothing remembered
+  bool outside = true;                  ///< whether centre was outside the surface
+  const void* owner = nullptr;          ///< the scene that wrote it
+  unsigned long long serial = 0;        ///< that scene's pose then
+};
+
 class CollisionScene {
  public:
   virtual ~CollisionScene() = default;
@@ -20,7 +34,9 @@ class CollisionScene {
   /// the step began, while the scene was still in its previous pose), and
   /// when `friction` applies friction to the motion from `start` relative
   /// to the surface. Returns the largest normal correction (metres).
-  virtual double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const = 0;
+  /// `memo`, if given, is this point's (see ContactMemo).
+  virtual double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                         ContactMemo* memo = nullptr) const = 0;
   /// Depth of p inside surface + thickness (0 when outside), metres.
   virtual double penetration(const Eigen::Vector3d& p) const = 0;
   /// True when there is nothing to collide with (the integrator skips work).
@@ -31,7 +47,8 @@ class CollisionScene {
 class AnalyticScene : public CollisionScene {
  public:
   explicit AnalyticScene(std::vector<Collider> colliders = {}) : colliders_(std::move(colliders)) {}
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override {
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                 ContactMemo* = nullptr) const override {
     return resolve_point(colliders_, colliders_, start, position, friction);
   }
   double penetration(const Eigen::Vector3d& p) const override { return mrcloth::penetration(colliders_, p); }
@@ -49,18 +66,19 @@ class AnalyticScene : public CollisionScene {
 class CompositeScene : public CollisionScene {
  public:
   void add(const CollisionScene* scene) { scenes_.push_back(scene); }
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true) const override {
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                 ContactMemo* memo = nullptr) const override {
     double largest = 0.0;
     int active = 0;
     for (const CollisionScene* s : scenes_) {
       if (s->empty()) continue;
       ++active;
-      largest = std::max(largest, s->resolve(start, position, friction));
+      largest = std::max(largest, s->resolve(start, position, friction, memo));
     }
     // One scene has already had the last word; friction acts once per step.
     if (active < 2 || largest <= 0.0) return largest;
     for (const CollisionScene* s : scenes_)
-      if (!s->empty()) largest = std::max(largest, s->resolve(start, position, false));
+      if (!s->empty()) largest = std::max(largest, s->resolve(start, position, false, memo));
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

@@ -253,22 +253,26 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   if (scene.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
+  memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
   {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
       // A vertex the strain limiter left exactly where the last round put it
       // is already resolved against this (unchanged) scene.
       if (settled && q.row(f) == settled->row(f)) continue;
       Eigen::Vector3d x = q.row(f).transpose();
-      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, friction));
+      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, friction,
+                                                &memos_[static_cast<std::size_t>(f)]));
       q.row(f) = x.transpose();
     }
     // A T-node can be inside while its parents are outside (the collider is
     // curved): push its free stencil by the correction, mass-weighted.
-    for (int v : m.hanging_vertices) {
+    for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
+      const int v = m.hanging_vertices[h];
       const Eigen::Vector3d x = position_of(v, q);
       if (settled && x == position_of(v, *settled)) continue;
       Eigen::Vector3d target = x;
-      const double correction = scene.resolve(position_of(v, q_previous), target, false);
+      const double correction =
+          scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(q.rows()) + h]);
       if (correction <= 0.0) continue;
       largest = std::max(largest, correction);
       const Eigen::Vector3d delta = target - x;

@@ -293,6 +293,61 @@ TEST(MeshBody, ResolveLeavesNoPointWithinThickness) {
   }
 }
 
+TEST(MeshBody, AMemoNeverChangesAnAnswer) {
+  // Collision rounds: each point resolved with friction, then nudged (as the
+  // strain limiter does) and resolved again, five times, with and without
+  // its memo; then the body moves and the memo must be ignored. The
+  // answers must be the same, and most later rounds must hit the memo
+  // (checked through the cube's crease points too: the memo's triangles
+  // must include the second side).
+  std::mt19937 rng(5);
+  std::normal_distribution<double> nudge(0.0, 0.0015);
+  Mesh cube = subdivided_cube(6);
+  MeshBody with(cube.vertices, cube.triangles, 0.02, 0.3), without(cube.vertices, cube.triangles, 0.02, 0.3);
+  const auto same = [&](const Vector3d& start, Vector3d& a, Vector3d& b, bool friction, ContactMemo& memo,
+                        const std::string& what) {
+    const double ca = with.resolve(start, a, friction, &memo);
+    const double cb = without.resolve(start, b, friction);
+    ASSERT_LT((a - b).norm(), 1e-12) << what;
+    ASSERT_NEAR(ca, cb, 1e-12) << what;
+  };
+  int remembered = 0;
+  std::vector<Vector3d> points = sample_points(cube, rng, 600, 0.1);
+  std::vector<ContactMemo> memos(points.size());
+  for (int pose = 0; pose < 2; ++pose) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      Vector3d a = points[i], b = points[i];
+      same(points[i] + Vector3d(0.004, -0.003, 0.002), a, b, true, memos[i], "round 0, point " + std::to_string(i));
+      for (int round = 1; round < 6; ++round) {
+        const Vector3d moved(nudge(rng), nudge(rng), nudge(rng));
+        a += moved;
+        b += moved;
+        remembered += memos[i].radius > 0.0 && (a - memos[i].centre).norm() < 0.5 * memos[i].radius;
+        same(points[i], a, b, false, memos[i], "round " + std::to_string(round) + ", point " + std::to_string(i));
+      }
+    }
+    // The body moves: every memo is stale.
+    Mesh moved = cube;
+    moved.vertices.rowwise() += Eigen::RowVector3d(0.003, 0.0, -0.002);
+    with.update(moved.vertices);
+    without.update(moved.vertices);
+  }
+  EXPECT_GT(remembered, 4000) << "the later rounds should mostly be answered from memos";
+
+  // A point remembered clear of everything (2.7 cm above the top face, no
+  // triangle within the memo's 2.6 cm) and then moved 1.2 cm down is within
+  // the 2 cm thickness: the memo must not call it clear.
+  MeshBody fresh(cube.vertices, cube.triangles, 0.02, 0.3);
+  ContactMemo memo;
+  Vector3d p(0.1, 1.027, 0.1);
+  EXPECT_EQ(fresh.resolve(p, p, true, &memo), 0.0);
+  ASSERT_GT(memo.radius, 0.0) << "a clear point is remembered";
+  EXPECT_TRUE(memo.items.empty());
+  p.y() -= 0.012;
+  EXPECT_NEAR(fresh.resolve(p, p, false, &memo), 0.005, 1e-12);
+  EXPECT_NEAR(p.y(), 1.02, 1e-12);
+}
+
 TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
   const Mesh sphere = icosphere(3);
   const MeshBody body(sphere.vertices, sphere.triangles, 0.01, 0.0);
