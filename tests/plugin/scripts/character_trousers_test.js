@@ -7,13 +7,8 @@ const [, sharedDir, tmpDir] = core.scriptArguments();
 const garment = sharedDir + "/garments/makehuman/male_casualsuit04_pants_on_base.obj";
 const clip = sharedDir + "/motions/cmu_mb/07_06.bvh";
 const makehuman = sharedDir + "/bodies/makehuman";
-for (const path of [garment, clip, makehuman + "/base.obj"])
-  if (!core.fileExists(path)) {
-    print("SKIP: " + path + " not found (the shared data folder is not beside the checkout)");
-    core.exitApplication(77);
-  }
-
 core.include("test_asserts.js");
+skipUnlessFiles([garment, clip, makehuman + "/base.obj"]);
 
 core.makePath(tmpDir);
 const frames = 60;

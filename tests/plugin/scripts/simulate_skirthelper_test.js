@@ -5,12 +5,8 @@
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
 const path = sharedDir + "/garments/makehuman/skirthelper.obj";
-if (!core.fileExists(path)) {
-  print("SKIP: " + path + " not found (the shared data folder is not beside the checkout)");
-  core.exitApplication(77);
-}
-
 core.include("test_asserts.js");
+skipUnlessFiles([path]);
 
 core.makePath(tmpDir);
 const skirt = core.loadObject(path, {units: "dm"});

@@ -3,12 +3,8 @@
 "use strict";
 const [, sharedDir] = core.scriptArguments();
 const path = sharedDir + "/garments/makehuman/skirthelper.obj";
-if (!core.fileExists(path)) {
-  print("SKIP: " + path + " not found (the shared data folder is not beside the checkout)");
-  core.exitApplication(77);
-}
-
 core.include("test_asserts.js");
+skipUnlessFiles([path]);
 function sum(list) { return list.reduce((a, b) => a + b, 0); }
 
 const skirt = core.loadObject(path, {units: "dm"});

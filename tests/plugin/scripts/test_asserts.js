@@ -52,3 +52,13 @@ function expectThrows(call, name, ...fragments) {
       throw new Error("message '" + error.message + "' does not contain '" + fragment + "'");
   ++checked;
 }
+
+/// Ends the script as skipped (exit 77, which ctest reports as skipped) unless every path exists:
+/// tests on ../shared/data run only where the shared data sits beside the checkout.
+function skipUnlessFiles(paths) {
+  for (const path of paths)
+    if (!core.fileExists(path)) {
+      print("SKIP: " + path + " not found (the shared data folder is not beside the checkout)");
+      core.exitApplication(77);
+    }
+}
