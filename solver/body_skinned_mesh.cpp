@@ -1002,6 +1002,21 @@ struct MeshBody::Impl {
   /// Beyond thickness, how far around a point a memo remembers triangles.
   static constexpr double kMemoMargin = 0.006;
 
+  /// The closest of the given triangles to p (triangle -1 if none).
+  Closest closest_among(const Vector3d& p, const std::vector<int>& items) const {
+    Closest c;
+    for (int t : items) {
+      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (d2 < c.d2) {
+        c.d2 = d2;
+        c.triangle = t;
+        c.at = at;
+      }
+    }
+    return c;
+  }
+
   /// Whether `memo` holds this body's triangles near p in the current pose.
   bool memo_applies(const ContactMemo* memo, const Vector3d& p) const {
     return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0 &&
@@ -1016,16 +1031,7 @@ struct MeshBody::Impl {
   bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo) const {
     if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
     const double slack = memo->radius - (p - memo->centre).norm();
-    Closest c;
-    for (int t : memo->items) {
-      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
-      const double d2 = (p - at.point).squaredNorm();
-      if (d2 < c.d2) {
-        c.d2 = d2;
-        c.triangle = t;
-        c.at = at;
-      }
-    }
+    const Closest c = closest_among(p, memo->items);
     if (c.triangle >= 0 && c.d2 < slack * slack) {
       if (c.d2 < search2) {
         out = signed_contact(p, c);
@@ -1050,16 +1056,7 @@ struct MeshBody::Impl {
     memo->radius = -1.0;
     const double radius = thickness + kMemoMargin;
     gather(p, radius * radius, memo->items);
-    Closest c;
-    for (int t : memo->items) {
-      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
-      const double d2 = (p - at.point).squaredNorm();
-      if (d2 < c.d2) {
-        c.d2 = d2;
-        c.triangle = t;
-        c.at = at;
-      }
-    }
+    const Closest c = closest_among(p, memo->items);
     if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
     else if (outside_known) memo->outside = true;
     else return;  // side unknown: nothing remembered
