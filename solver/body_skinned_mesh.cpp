@@ -1218,9 +1218,17 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices) {
 double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
                          ContactMemo* memo) const {
   const Impl& m = *impl_;
-  // A memo made in this pose answers for itself; one that does not apply is
-  // refilled where this resolve leaves the point.
-  const bool reuse = m.memo_applies(memo, position);
+  // A memo made in this pose answers for itself. Otherwise the triangles
+  // around the point are gathered first, so a point in contact is resolved
+  // from them (one traversal instead of a query, a crease check and a
+  // gather); where that cannot say which side the point is on (nothing
+  // within reach of the gather), the tree answers and the memo is filled
+  // where the point ends.
+  bool reuse = m.memo_applies(memo, position);
+  if (memo && !reuse) {
+    m.remember(position, false, memo);
+    reuse = m.memo_applies(memo, position);
+  }
   ContactMemo* refill = reuse ? nullptr : memo;
   Impl::Contact c;
   if (!m.contact_with(position, m.reach2, true, c, memo) || !(c.distance - m.thickness < 0.0)) {
