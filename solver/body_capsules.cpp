@@ -175,14 +175,6 @@ Collider bone_collider(const CapsuleRig& rig, const BoneCapsule& bone, const Pos
   return Collider{capsule, rig.thickness, rig.friction};
 }
 
-/// True when p is farther than the thickness from the capsule's bounding ball.
-bool surely_clear_of(const Collider& collider, const Vector3d& p) {
-  const auto& capsule = std::get<CapsuleCollider>(collider.shape);
-  const double reach =
-      0.5 * (capsule.b - capsule.a).norm() + std::max(capsule.radius_a, capsule.radius_b) + collider.thickness;
-  return (p - 0.5 * (capsule.a + capsule.b)).squaredNorm() > reach * reach;
-}
-
 /// The bridge's collider in a pose.
 Collider bridge_collider(const CapsuleRig& rig, const BridgeCapsule& bridge, const Pose& pose) {
   CapsuleCollider capsule;
@@ -475,7 +467,7 @@ int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d&
     double factor = 1.0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
       const Vector3d p = points.row(i).transpose();
-      if (surely_clear_of(full, p) || clear(scaled(factor), p)) continue;
+      if (surely_clear(full, p) || clear(scaled(factor), p)) continue;
       // The distance grows as the radii shrink: bisect for the largest
       // factor that clears p (none above the floor: the floor).
       double inside = factor, outside = floor;

@@ -157,20 +157,9 @@ const char* kind_of(const Collider& collider) {
 /// `before` to `after`, through the surface the point entered by, and
 /// applies Coulomb friction to the step's tangential motion relative to the
 /// collider; returns the normal correction (0 when the point is clear).
-/// True when p is certainly farther than thickness from a sphere or capsule
-/// (outside its bounding ball grown by the thickness): most colliders of a
-/// body are far from any one cloth point, and this costs one dot product.
-bool surely_clear(const Collider& collider, const Vector3d& p) {
-  const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape);
-  if (!capsule) return false;
-  const double reach =
-      0.5 * (capsule->b - capsule->a).norm() + std::max(capsule->radius_a, capsule->radius_b) + collider.thickness;
-  return (p - 0.5 * (capsule->a + capsule->b)).squaredNorm() > reach * reach;
-}
-
 double resolve_against(const Collider& before, const Collider& after, const Vector3d& start, Vector3d& position,
                        bool friction) {
-  if (surely_clear(after, position)) return 0.0;
+  if (surely_clear(after, position)) return 0.0;  // most of a body's capsules are far from any one point
   const SurfaceQuery query = query_surface(after, position);
   const double gap = query.distance - after.thickness;
   if (!(gap < 0.0)) return 0.0;
@@ -225,6 +214,14 @@ SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p) {
         else return query_capsule(shape, p);
       },
       collider.shape);
+}
+
+bool surely_clear(const Collider& collider, const Eigen::Vector3d& p) {
+  const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape);
+  if (!capsule) return false;
+  const double reach =
+      0.5 * (capsule->b - capsule->a).norm() + std::max(capsule->radius_a, capsule->radius_b) + collider.thickness;
+  return (p - 0.5 * (capsule->a + capsule->b)).squaredNorm() > reach * reach;
 }
 
 void validate_colliders(const std::vector<Collider>& colliders) {

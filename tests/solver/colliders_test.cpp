@@ -151,6 +151,26 @@ std::vector<CapsuleCollider> random_tapered_capsules(std::mt19937& rng, int coun
 // ---------------------------------------------------------------------------
 // query_surface against closed forms
 
+TEST(SurelyClear, NeverSkipsAPointWithinTheThickness) {
+  // The bounding-ball cull may only skip points the exact query finds
+  // farther than the thickness, and must skip points well outside the ball.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  Collider capsule{CapsuleCollider{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.3, 0.1, 0), 0.12, 0.05}, 0.01, 0.3};
+  int skipped = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    if (!surely_clear(capsule, p)) continue;
+    ++skipped;
+    EXPECT_GT(query_surface(capsule, p).distance, capsule.thickness) << p.transpose();
+  }
+  EXPECT_GT(skipped, 2500);
+  EXPECT_TRUE(surely_clear(capsule, Eigen::Vector3d(2, 0, 0)));
+  EXPECT_FALSE(surely_clear(capsule, Eigen::Vector3d(0.15, 0.05, 0.12 + 0.005)));
+  EXPECT_FALSE(surely_clear(Collider{SphereCollider{Eigen::Vector3d::Zero(), 0.1}, 0.0, 0.0}, Eigen::Vector3d(5, 0, 0)))
+      << "only capsules are culled";
+}
+
 TEST(QuerySurface, PlaneIsTheSignedDistanceAlongTheNormalisedNormal) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 50; ++trial) {
