@@ -176,12 +176,12 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
     }
     // Linear blend skinning, as skin() moves the body (same joints, pivots
     // and weights), so the waist keeps its place on the skin.
-    const Pose body = proportioned_pose(motion.skeleton, options.body_joints, pose);
+    const Pose skin_pose = proportioned_pose(motion.skeleton, options.body_joints, pose);
     for (Eigen::Index k = 0; k < pinned.rows(); ++k) {
       const Eigen::Vector3d x = rest_pinned.row(k).transpose();
       Eigen::Vector3d y = Eigen::Vector3d::Zero();
       for (const auto& [joint, weight] : options.waist_weights[static_cast<std::size_t>(k)])
-        y += weight * (body.global[static_cast<std::size_t>(joint)] * (reference_inverse[static_cast<std::size_t>(joint)] * x));
+        y += weight * (skin_pose.global[static_cast<std::size_t>(joint)] * (reference_inverse[static_cast<std::size_t>(joint)] * x));
       pinned.row(k) = y.transpose();
     }
   };
@@ -222,6 +222,16 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
           std::max(report.max_waist_error, ((*frames)[f].row(model.pinned_vertices[k]) - target.row(k)).norm());
   }
   return report;
+}
+
+double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& placed_points, const Skeleton& skeleton) {
+  if (boundary_loop_count != 2 || placed_points.rows() == 0) return 0.0;
+  for (const char* name : {"LeftUpLeg", "RightUpLeg", "LeftLeg", "RightLeg", "LeftFoot", "RightFoot"})
+    if (skeleton.find(name) < 0) return 0.0;
+  const Pose rest = rest_pose(skeleton);
+  const double knee_height =
+      std::max(rest.position(skeleton.find("LeftLeg")).y(), rest.position(skeleton.find("RightLeg")).y());
+  return placed_points.col(1).minCoeff() >= knee_height ? 1.0 : 2.0;
 }
 
 }  // namespace mrcloth

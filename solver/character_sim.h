@@ -125,6 +125,14 @@ void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, c
 int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,
                                const std::vector<Eigen::Vector3d>& body_joints, const Eigen::MatrixX3d& garment);
 
+/// How far down the legs bridges go for a garment (add_leg_bridges' reach,
+/// 0 = none): one tube around both legs (two boundary loops: a skirt or
+/// dress) gets them to the knees (1), or to the ankles (2) when any of its
+/// points (#V x 3, metres, placed in the skeleton's rest space) lies below
+/// the knees' rest height. Trousers (three loops), shirts and skeletons
+/// without the CMU leg names get none.
+double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& placed_points, const Skeleton& skeleton);
+
 /// The pose of the character at simulation time `time`: during the pre-roll
 /// a smooth blend from the reference pose to the clip's pose at
 /// motion_start, then the clip from motion_start.

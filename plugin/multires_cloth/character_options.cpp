@@ -206,23 +206,14 @@ void recentreRoot(Motion& motion, const Eigen::Vector3d& root_at_start) {
   }
 }
 
-/// Bridges for a garment that is one tube around both legs (two boundary
-/// loops: a skirt or dress): to the knees, or to the ankles when the placed
-/// garment reaches below the knees' rest height. None for anything else
-/// (trousers have three loops; a shirt four) or without CMU leg names.
-double automaticLegBridges(const QuadMesh& garment, const Eigen::Isometry3d& placement, const Skeleton& skeleton) {
-  if (boundary_loops(garment).size() != 2) return 0.0;
-  const int knees[2] = {skeleton.find("LeftLeg"), skeleton.find("RightLeg")};
-  for (const char* name : {"LeftUpLeg", "RightUpLeg", "LeftLeg", "RightLeg", "LeftFoot", "RightFoot"})
-    if (skeleton.find(name) < 0) return 0.0;
-  const Pose rest = rest_pose(skeleton);
-  const double knee_height = std::max(rest.position(knees[0]).y(), rest.position(knees[1]).y());
-  double lowest = std::numeric_limits<double>::infinity();
+/// The garment's points moved by `placement` (#V x 3, metres).
+Eigen::MatrixX3d placedPoints(const QuadMesh& garment, const Eigen::Isometry3d& placement) {
+  Eigen::MatrixX3d placed(static_cast<Eigen::Index>(garment.n_vertices()), 3);
   for (const auto vertex : garment.vertices()) {
     const auto& p = garment.point(vertex);
-    lowest = std::min(lowest, (placement * Eigen::Vector3d(p[0], p[1], p[2])).y());
+    placed.row(vertex.idx()) = (placement * Eigen::Vector3d(p[0], p[1], p[2])).transpose();
   }
-  return lowest >= knee_height ? 1.0 : 2.0;
+  return placed;
 }
 
 Motion withoutFirstFrame(const Motion& motion) {
@@ -315,7 +306,8 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
                .arg(QString::fromStdString(name)));
   character.legBridges = request.legBridges >= 0.0
                              ? request.legBridges
-                             : automaticLegBridges(garment, character.placement, skeleton);
+                             : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()),
+                                                     placedPoints(garment, character.placement), skeleton);
   const bool waist_on_skin = request.waistFollows == WaistFollows::skin ||
                              (request.waistFollows == WaistFollows::automatic && request.hasMakeHuman);
   if (waist_on_skin) character.waistSkin = std::make_shared<const SkinnedBody>(*skinned);
@@ -357,12 +349,8 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
     CharacterRunOptions start;
     start.garment_pose = character.garmentPose;
     start.motion_start = request.motionStart;
-    Eigen::MatrixX3d points(static_cast<Eigen::Index>(garment.n_vertices()), 3);
-    for (const auto vertex : garment.vertices()) {
-      const auto& p = garment.point(vertex);
-      points.row(vertex.idx()) = (character.placement * Eigen::Vector3d(p[0], p[1], p[2])).transpose();
-    }
-    character.capsulesShrunk = clear_capsules_for_garment(rig, *character.motion, start, joints, points);
+    character.capsulesShrunk = clear_capsules_for_garment(rig, *character.motion, start, joints,
+                                                          placedPoints(garment, character.placement));
     character.bodyCapsules = static_cast<int>(rig.bones.size());
     if (character.legBridges > 0.0) add_leg_bridges(rig, skeleton, character.legBridges);
     character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton, joints);

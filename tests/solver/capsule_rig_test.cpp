@@ -624,6 +624,24 @@ TEST(CapsuleRig, LegBridgesSpanTheLegsAtHalfBones) {
   }
 }
 
+TEST(CapsuleRig, AutomaticLegBridgesByLoopsAndHemHeight) {
+  // Reach 1 (knees) for a two-loop garment whose lowest point is at or
+  // above the knees' rest height, 2 (ankles) below it, 0 for other loop
+  // counts and for skeletons without the CMU leg names.
+  const Skeleton skeleton = cmu_like();
+  const Pose rest = rest_pose(skeleton);
+  const double knee = std::max(rest.position(skeleton.find("LeftLeg")).y(), rest.position(skeleton.find("RightLeg")).y());
+  Eigen::MatrixX3d points(3, 3);
+  points << 0.0, knee + 0.4, 0.0, 0.1, knee + 0.2, 0.0, -0.1, knee, 0.0;
+  EXPECT_EQ(automatic_leg_bridges(2, points, skeleton), 1.0);
+  points(2, 1) = knee - 1e-9;
+  EXPECT_EQ(automatic_leg_bridges(2, points, skeleton), 2.0);
+  EXPECT_EQ(automatic_leg_bridges(3, points, skeleton), 0.0) << "trousers";
+  EXPECT_EQ(automatic_leg_bridges(1, points, skeleton), 0.0);
+  EXPECT_EQ(automatic_leg_bridges(2, Eigen::MatrixX3d(0, 3), skeleton), 0.0);
+  EXPECT_EQ(automatic_leg_bridges(2, points, one_bone()), 0.0);
+}
+
 /// The body remembers where its capsules were before the last pose, so a
 /// point a capsule swept past within the step comes out on its own side.
 TEST(CapsuleBody, KeepsPointsOnTheSideTheyWereOn) {
