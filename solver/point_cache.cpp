@@ -330,16 +330,42 @@ PointCache read_pc2(const std::string& path) {
   return cache;
 }
 
-FramePositions read_pc2_frame(const std::string& path, int frame) {
-  Pc2File file = open_pc2(path);
-  if (frame < 0 || frame >= file.header.num_samples) {
-    throw ArgumentError(with_path(path, "frame " + std::to_string(frame) + " is out of range (the cache has " +
-                                            std::to_string(file.header.num_samples) + " frames)"));
+FramePositions read_pc2_frame(const std::string& path, int frame) { return Pc2Reader(path).frame(frame); }
+
+struct Pc2Reader::Impl {
+  std::string path;
+  Pc2File file;
+  int next = 0;  ///< the frame the stream is positioned at
+};
+
+Pc2Reader::Pc2Reader(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->file = open_pc2(path);
+}
+
+Pc2Reader::~Pc2Reader() = default;
+
+int Pc2Reader::num_points() const { return impl_->file.header.num_points; }
+int Pc2Reader::num_frames() const { return impl_->file.header.num_samples; }
+double Pc2Reader::start_frame() const { return impl_->file.header.start_frame; }
+double Pc2Reader::sample_rate() const { return impl_->file.header.sample_rate; }
+const std::string& Pc2Reader::path() const { return impl_->path; }
+
+FramePositions Pc2Reader::frame(int frame) {
+  Impl& m = *impl_;
+  if (frame < 0 || frame >= m.file.header.num_samples) {
+    throw ArgumentError(with_path(m.path, "frame " + std::to_string(frame) + " is out of range (the cache has " +
+                                              std::to_string(m.file.header.num_samples) + " frames)"));
   }
-  const std::uint64_t offset =
-      kHeaderBytes + std::uint64_t(frame) * std::uint64_t(file.header.num_points) * kPointBytes;
-  file.in.seekg(static_cast<std::streamoff>(offset));
-  return read_frame(file, frame, path);
+  if (frame != m.next) {
+    const std::uint64_t offset =
+        kHeaderBytes + std::uint64_t(frame) * std::uint64_t(m.file.header.num_points) * kPointBytes;
+    m.file.in.clear();
+    m.file.in.seekg(static_cast<std::streamoff>(offset));
+  }
+  FramePositions positions = read_frame(m.file, frame, m.path);
+  m.next = frame + 1;
+  return positions;
 }
 
 // ---------------------------------------------------------------------------

@@ -53,8 +53,33 @@ struct PointCache {
 /// (bad signature, version, sizes not matching the file length).
 PointCache read_pc2(const std::string& path);
 
-/// Reads one frame without loading the rest (for streaming analysis).
+/// Reads one frame without loading the rest.
 FramePositions read_pc2_frame(const std::string& path, int frame);
+
+/// Streams a PC2 file frame by frame with the file kept open: memory for
+/// one frame, whatever the cache's length (for analysis of long caches).
+/// The header is checked on opening (InputError as read_pc2).
+class Pc2Reader {
+ public:
+  explicit Pc2Reader(const std::string& path);
+  ~Pc2Reader();
+  Pc2Reader(const Pc2Reader&) = delete;
+  Pc2Reader& operator=(const Pc2Reader&) = delete;
+
+  int num_points() const;
+  int num_frames() const;
+  double start_frame() const;
+  double sample_rate() const;
+  const std::string& path() const;
+  /// Frame `frame` (0-based, < num_frames()), num_points x 3. Sequential
+  /// reads do not seek. Throws ArgumentError out of range, InputError when
+  /// the file cannot be read.
+  FramePositions frame(int frame);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// Writes `frames` as an OBJ sequence `<prefix>_0000.obj`, ... sharing the
 /// faces of `faces` (each a vertex-index polygon, 0-based). Every file is
