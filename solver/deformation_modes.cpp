@@ -1,0 +1,112 @@
+#include "deformation_modes.h"
+
+#include "mesh_ops/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace mrcloth {
+namespace {
+
+/// offset and scale of one feature column: normalised = (x - offset) / scale.
+std::pair<double, double> normalizer(const Eigen::VectorXd& x, FeatureNormalization normalization) {
+  double offset = 0.0, scale = 0.0;
+  if (normalization == FeatureNormalization::min_max) {
+    offset = x.minCoeff();
+    scale = x.maxCoeff() - offset;
+  } else {
+    offset = x.mean();
+    scale = std::sqrt((x.array() - offset).square().mean());
+  }
+  // A feature constant over the garment carries no information: leave it
+  // at 0 rather than divide by zero.
+  if (!(scale > 0.0)) scale = 1.0;
+  return {offset, scale};
+}
+
+}  // namespace
+
+std::string normalization_name(FeatureNormalization normalization) {
+  return normalization == FeatureNormalization::min_max ? "minmax" : "zscore";
+}
+
+FeatureNormalization normalization_from_name(const std::string& name) {
+  if (name == "minmax") return FeatureNormalization::min_max;
+  if (name == "zscore") return FeatureNormalization::z_score;
+  throw ArgumentError("unknown feature normalization '" + name + "'; expected minmax or zscore");
+}
+
+ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation,
+                             const ModeOptions& options) {
+  if (mean_curvature.size() != deviation.size()) {
+    throw ArgumentError("deformation_modes: " + std::to_string(mean_curvature.size()) + " mean curvatures but " +
+                        std::to_string(deviation.size()) + " deviations; expected one of each per vertex");
+  }
+  for (Eigen::Index v = 0; v < mean_curvature.size(); ++v) {
+    if (!std::isfinite(mean_curvature[v]) || !std::isfinite(deviation[v]))
+      throw ArgumentError("deformation_modes: the features of vertex " + std::to_string(v) +
+                          " are not finite; expected finite curvature features");
+  }
+  ModeReport report;
+  report.normalization = options.normalization;
+  report.seed = options.seed;
+  const Eigen::Index n = mean_curvature.size();
+  Eigen::MatrixXd features(n, 2);
+  features.col(0) = mean_curvature;
+  features.col(1) = deviation;
+  Eigen::MatrixXd normalized(n, 2);
+  for (int f = 0; f < 2; ++f) {
+    const auto [offset, scale] = normalizer(features.col(f), options.normalization);
+    report.offset[f] = offset;
+    report.scale[f] = scale;
+    normalized.col(f) = (features.col(f).array() - offset) / scale;
+  }
+
+  KMeansOptions k;
+  k.clusters = options.modes;
+  k.restarts = options.restarts;
+  k.max_iterations = options.max_iterations;
+  k.seed = options.seed;
+  const KMeansResult clusters = kmeans(normalized, k);
+  report.inertia = clusters.inertia;
+  report.restart = clusters.restart;
+  report.iterations = clusters.iterations;
+
+  // Centroids in the features' own units: the members' means.
+  const int h = options.modes;
+  Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(h, 2);
+  std::vector<int> sizes(static_cast<std::size_t>(h), 0);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const int c = clusters.labels[static_cast<std::size_t>(v)];
+    centroids.row(c) += features.row(v);
+    ++sizes[static_cast<std::size_t>(c)];
+  }
+  for (int c = 0; c < h; ++c) centroids.row(c) /= sizes[static_cast<std::size_t>(c)];
+
+  // Mode 1 is the least deformed: by centroid mean curvature, ties by deviation.
+  std::vector<int> order(static_cast<std::size_t>(h));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    if (centroids(a, 0) != centroids(b, 0)) return centroids(a, 0) < centroids(b, 0);
+    return centroids(a, 1) < centroids(b, 1);
+  });
+  std::vector<int> mode_of_cluster(static_cast<std::size_t>(h));
+  for (int m = 0; m < h; ++m) mode_of_cluster[static_cast<std::size_t>(order[static_cast<std::size_t>(m)])] = m + 1;
+
+  report.modes.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index v = 0; v < n; ++v)
+    report.modes[static_cast<std::size_t>(v)] = mode_of_cluster[static_cast<std::size_t>(clusters.labels[static_cast<std::size_t>(v)])];
+  report.sizes.resize(static_cast<std::size_t>(h));
+  report.centroids.resize(h, 2);
+  report.normalized_centroids.resize(h, 2);
+  for (int m = 0; m < h; ++m) {
+    const int c = order[static_cast<std::size_t>(m)];
+    report.sizes[static_cast<std::size_t>(m)] = sizes[static_cast<std::size_t>(c)];
+    report.centroids.row(m) = centroids.row(c);
+    report.normalized_centroids.row(m) = clusters.centroids.row(c);
+  }
+  return report;
+}
+
+}  // namespace mrcloth
