@@ -4,13 +4,16 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
+#include "mesh_ops/mode_mapping.h"
 #include "mesh_ops/quad_mesh.h"
 #include "mesh_ops/uniform_refine.h"
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
 #include "simulation_options.h"
+#include "solver/deformation_modes.h"
 #include "solver/dynamics_model.h"
+#include "solver/instance_curvature.h"
 #include "solver/implicit_integrator.h"
 #include "solver/point_cache.h"
 #include "solver/simulate.h"
@@ -295,6 +298,114 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
   });
 }
 
+QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, QVariant options) {
+  return guarded("extractModes", [&] {
+    const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
+    const QString path = script::toString(cachePath, QStringLiteral("cachePath"));
+    const script::Options given(options, QStringLiteral("extractModes options"),
+                                {QStringLiteral("clusters"), QStringLiteral("normalize"), QStringLiteral("seed"),
+                                 QStringLiteral("restarts"), QStringLiteral("skipFrames"), QStringLiteral("maxFrames")});
+    ModeOptions modes;
+    modes.modes = given.integerAtLeast(QStringLiteral("clusters"), modes.modes, 1);
+    modes.normalization = normalization_from_name(
+        given.choice(QStringLiteral("normalize"), QStringLiteral("minmax"), {QStringLiteral("minmax"), QStringLiteral("zscore")})
+            .toStdString());
+    modes.seed = static_cast<std::uint64_t>(given.integerAtLeast(QStringLiteral("seed"), 1, 0));
+    modes.restarts = given.integerAtLeast(QStringLiteral("restarts"), modes.restarts, 1);
+    CurvatureAnalysisOptions analysis;
+    analysis.skip_frames = given.integerAtLeast(QStringLiteral("skipFrames"), 0, 0);
+    analysis.max_frames = given.has(QStringLiteral("maxFrames"))
+                              ? given.integerAtLeast(QStringLiteral("maxFrames"), -1, 1)
+                              : -1;
+
+    QElapsedTimer timer;
+    timer.start();
+    const CurvaturePairs pairs = curvature_pairs(*input.mesh);
+    CurvatureFeatures features;
+    {
+      const Pc2Reader header(path.toStdString());  // for the job's length; checked again by the analysis
+      const int available = std::max(0, header.num_frames() - analysis.skip_frames);
+      const int total = analysis.max_frames > 0 ? std::min(available, analysis.max_frames) : available;
+      JobScope job(*this, QStringLiteral("extractModes"),
+                   QStringLiteral("curvature of %1 over %2 frames of %3").arg(describeObject(input)).arg(total).arg(path),
+                   std::max(1, total));
+      features = analyse_curvature(path.toStdString(), pairs, analysis, [&](int done, int) {
+        job.progress(done);
+        return !cancelRequested();
+      });
+    }
+    if (features.cancelled)
+      throw Error("extractModes: cancelled after " + std::to_string(features.frames) + " frames; the modes are unchanged");
+    const ModeReport report = deformation_modes(features.mean, features.deviation, modes);
+    // The computed modes become the mesh's mode layer (what refineAdaptive reads).
+    for (int m = 1; m <= modes.modes; ++m) {
+      std::vector<int> members;
+      for (std::size_t v = 0; v < report.modes.size(); ++v)
+        if (report.modes[v] == m) members.push_back(static_cast<int>(v));
+      set_modes(*input.mesh, members, m);
+    }
+
+    const auto rows = [](const Eigen::MatrixXd& matrix) {
+      QVariantList list;
+      for (Eigen::Index r = 0; r < matrix.rows(); ++r) list.append(QVariant(QVariantList{matrix(r, 0), matrix(r, 1)}));
+      return list;
+    };
+    QVariantList sizes;
+    for (const int size : report.sizes) sizes.append(size);
+    last_report_ = {{QStringLiteral("operation"), QStringLiteral("extractModes")},
+                    {QStringLiteral("source"), input.id},
+                    {QStringLiteral("cache"), path},
+                    {QStringLiteral("frames"), features.frames},
+                    {QStringLiteral("firstFrame"), features.first_frame},
+                    {QStringLiteral("vertices"), pairs.num_vertices},
+                    {QStringLiteral("clusters"), modes.modes},
+                    {QStringLiteral("normalize"), QString::fromStdString(normalization_name(report.normalization))},
+                    {QStringLiteral("seed"), static_cast<qulonglong>(report.seed)},
+                    {QStringLiteral("restarts"), modes.restarts},
+                    {QStringLiteral("restartKept"), report.restart},
+                    {QStringLiteral("iterations"), report.iterations},
+                    {QStringLiteral("inertia"), report.inertia},
+                    {QStringLiteral("sizes"), sizes},
+                    {QStringLiteral("centroids"), rows(report.centroids)},
+                    {QStringLiteral("normalizedCentroids"), rows(report.normalized_centroids)},
+                    {QStringLiteral("offset"), QVariantList{report.offset[0], report.offset[1]}},
+                    {QStringLiteral("scale"), QVariantList{report.scale[0], report.scale[1]}},
+                    {QStringLiteral("maxMeanCurvature"), features.mean.size() ? features.mean.maxCoeff() : 0.0},
+                    {QStringLiteral("milliseconds"), millisecondsSince(timer)}};
+    QStringList counts;
+    for (const int size : report.sizes) counts << QString::number(size);
+    emit log(LOGINFO, QStringLiteral("extractModes: %1, %2 frames: %3 modes of %4 vertices (%5)")
+                          .arg(describeObject(input)).arg(features.frames).arg(modes.modes).arg(pairs.num_vertices)
+                          .arg(counts.join(QStringLiteral(", "))));
+    return last_report_;
+  });
+}
+
+QVariantMap MultiresClothPlugin::mapModes(QVariant refinedId, QVariant coarseId, QVariant options) {
+  return guarded("mapModes", [&] {
+    const StoredObject& refined = store().get(script::toInt(refinedId, QStringLiteral("refinedId")));
+    const StoredObject& coarse = store().get(script::toInt(coarseId, QStringLiteral("coarseId")));
+    const script::Options given(options, QStringLiteral("mapModes options"), {QStringLiteral("method")});
+    const QString method = given.choice(QStringLiteral("method"), QStringLiteral("index"),
+                                        {QStringLiteral("index"), QStringLiteral("highest"), QStringLiteral("frequent")});
+    const ModeMapReport report = map_modes(*refined.mesh, *coarse.mesh, mode_mapping_from_name(method.toStdString()));
+    const int vertices = static_cast<int>(report.modes.size());
+    last_report_ = {{QStringLiteral("operation"), QStringLiteral("mapModes")},
+                    {QStringLiteral("source"), refined.id},
+                    {QStringLiteral("result"), coarse.id},
+                    {QStringLiteral("method"), method},
+                    {QStringLiteral("vertices"), vertices},
+                    {QStringLiteral("changed"), report.changed},
+                    {QStringLiteral("agreeHighest"), report.agree_highest},
+                    {QStringLiteral("agreeFrequent"), report.agree_frequent}};
+    emit log(LOGINFO, QStringLiteral("mapModes: %1 -> %2 by %3: %4 of %5 coarse vertices changed; the stable-index "
+                                     "mode is the cell's highest at %6, its most frequent at %7")
+                          .arg(describeObject(refined), describeObject(coarse), method).arg(report.changed)
+                          .arg(vertices).arg(report.agree_highest).arg(report.agree_frequent));
+    return last_report_;
+  });
+}
+
 QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   return guarded("recordInstance", [&] {
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
@@ -517,6 +628,29 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
             "steps per second >= fps = 120")}},
+      {QStringLiteral("extractModes(int id, string cachePath, object options = {}) -> object"),
+       QStringLiteral("Learns the deformation modes of a mesh from a recorded instance (paper section 4): per "
+                      "vertex, the bending curvature (1/m) over the cache's frames, its mean and population "
+                      "deviation, normalised and clustered with k-means; modes 1..clusters in order of mean "
+                      "curvature are written to the mesh's mode layer. Returns (and lastReport() keeps) the "
+                      "report: frames, firstFrame, vertices, clusters, normalize, seed, restarts, restartKept, "
+                      "iterations, inertia (normalised units), sizes (element m - 1: mode m), centroids and "
+                      "normalizedCentroids ([mean curvature, deviation] per mode, 1/m and normalised), offset and "
+                      "scale (normalised = (feature - offset) / scale), maxMeanCurvature, milliseconds."),
+       {QStringLiteral("id"), QStringLiteral("cachePath"), QStringLiteral("options")},
+       {id_text, QStringLiteral("a PC2 cache of this mesh's vertices (recordInstance's output), metres"),
+        QStringLiteral("{clusters: int >= 1 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
+                       "= 1, restarts: int >= 1 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
+      {QStringLiteral("mapModes(int refinedId, int coarseId, object options = {}) -> object"),
+       QStringLiteral("Writes the modes of a refined mesh (e.g. after extractModes) onto the coarse mesh it was "
+                      "refined from. index: coarse vertex i takes refined vertex i's mode (the paper's rule); "
+                      "highest / frequent: the highest / most frequent mode (ties: the higher) in its cell, the "
+                      "refined vertices in the quarters of its coarse faces nearest to it. Returns operation, "
+                      "source, result, method, vertices, changed, agreeHighest and agreeFrequent (coarse vertices "
+                      "where the index rule equals the cell's highest / most frequent mode)."),
+       {QStringLiteral("refinedId"), QStringLiteral("coarseId"), QStringLiteral("options")},
+       {QStringLiteral("the refined mesh, at rest"), QStringLiteral("the coarse mesh it was refined from (changed)"),
+        QStringLiteral("{method: \"index\" | \"highest\" | \"frequent\" = \"index\"}")}},
       {QStringLiteral("recordInstance(int id, object options) -> object"),
        QStringLiteral("Records the instance motion of the paper: simulate with `motion` (required) and `output` "
                       "(required, the PC2 cache), 200 frames by default, and also writes the rest mesh the cache "

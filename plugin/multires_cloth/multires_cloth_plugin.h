@@ -61,6 +61,8 @@ class MultiresClothPlugin : public QObject,
   void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
   QVariantMap simulate(QVariant id, QVariant options = QVariant());
   QVariantMap recordInstance(QVariant id, QVariant options = QVariant());
+  QVariantMap extractModes(QVariant id, QVariant cachePath, QVariant options = QVariant());
+  QVariantMap mapModes(QVariant refinedId, QVariant coarseId, QVariant options = QVariant());
 
  private:
   ObjectStore& store() const;
