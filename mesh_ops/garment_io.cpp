@@ -1,4 +1,5 @@
 #include "garment_io.h"
+#include "mode_painting.h"
 
 #include "atomic_file.h"
 #include "errors.h"
@@ -519,7 +520,10 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   QuadMesh& mesh = result.mesh;
   // The OM reader fills a stored property only if the mesh already has one
   // with that name (and a matching size), so the layers must exist first.
-  if (*format == Format::om) ensure_layers(mesh);
+  if (*format == Format::om) {
+    ensure_layers(mesh);
+    ensure_analysis_layers(mesh);
+  }
 
   CheckingImporter importer(mesh);
   OpenMesh::IO::Options io_options;

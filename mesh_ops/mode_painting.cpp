@@ -1,0 +1,308 @@
+#include "mode_painting.h"
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "mode_layer.h"
+
+#include <OpenMesh/Core/Utils/Property.hh>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <sstream>
+#include <utility>
+
+namespace mrcloth {
+namespace {
+
+constexpr const char* kPrefix = "mrcloth:";
+
+/// "mean_curvature" and "mrcloth:mean_curvature" name the same layer.
+std::string stored_name(const std::string& name) {
+  return name.rfind(kPrefix, 0) == 0 ? name : std::string(kPrefix) + name;
+}
+std::string shown_name(const std::string& name) {
+  return name.rfind(kPrefix, 0) == 0 ? name.substr(std::string(kPrefix).size()) : name;
+}
+
+void check_mode(int mode) {
+  if (mode < 0) throw ArgumentError("mode must be >= 0, got " + std::to_string(mode));
+}
+
+OpenMesh::VPropHandleT<int> computed_handle(QuadMesh& mesh) {
+  OpenMesh::VPropHandleT<int> handle;
+  if (!mesh.get_property_handle(handle, layer::computed_mode)) {
+    mesh.add_property(handle, layer::computed_mode);
+    for (const auto v : mesh.vertices()) mesh.property(handle, v) = 0;
+  }
+  mesh.property(handle).set_persistent(true);
+  return handle;
+}
+
+/// The persistent per-vertex double layers (mrcloth's, by stored name), in
+/// the order the mesh holds them.
+std::vector<std::string> double_layers(const QuadMesh& mesh) {
+  std::vector<std::string> names;
+  for (auto it = mesh.vprops_begin(); it != mesh.vprops_end(); ++it) {
+    const OpenMesh::BaseProperty* property = *it;
+    // R is the refinement's own scratch value, not an artist's layer.
+    if (!property || property->name().rfind(kPrefix, 0) != 0 || property->name() == layer::r_value) continue;
+    if (dynamic_cast<const OpenMesh::PropertyT<double>*>(property)) names.push_back(property->name());
+  }
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+std::string csv_number(double value) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
+  return error == std::errc() ? std::string(buffer, end) : std::string("nan");
+}
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) {
+    while (!field.empty() && (field.back() == '\r' || field.back() == ' ')) field.pop_back();
+    while (!field.empty() && field.front() == ' ') field.erase(field.begin());
+    fields.push_back(field);
+  }
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+}  // namespace
+
+void ensure_analysis_layers(QuadMesh& mesh) {
+  computed_handle(mesh);
+  for (const char* name : {layer::mean_curvature, layer::curvature_deviation}) {
+    OpenMesh::VPropHandleT<double> handle;
+    if (!mesh.get_property_handle(handle, name)) {
+      mesh.add_property(handle, name);
+      for (const auto v : mesh.vertices()) mesh.property(handle, v) = 0.0;
+    }
+    mesh.property(handle).set_persistent(true);
+  }
+}
+
+void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes) {
+  if (modes.size() != mesh.n_vertices()) {
+    throw ArgumentError("set_computed_modes: " + std::to_string(modes.size()) + " modes for " +
+                        std::to_string(mesh.n_vertices()) + " vertices; expected one per vertex");
+  }
+  for (std::size_t v = 0; v < modes.size(); ++v)
+    if (modes[v] < 1)
+      throw ArgumentError("set_computed_modes: vertex " + std::to_string(v) + " has mode " + std::to_string(modes[v]) +
+                          "; expected computed modes >= 1");
+  const auto computed = computed_handle(mesh);
+  const auto current = ensure_layers(mesh).mode;
+  for (const auto v : mesh.vertices()) {
+    mesh.property(computed, v) = modes[static_cast<std::size_t>(v.idx())];
+    mesh.property(current, v) = modes[static_cast<std::size_t>(v.idx())];
+  }
+}
+
+std::vector<int> computed_modes(const QuadMesh& mesh) {
+  std::vector<int> modes(mesh.n_vertices(), 0);
+  OpenMesh::VPropHandleT<int> handle;
+  if (!mesh.get_property_handle(handle, layer::computed_mode)) return modes;
+  for (const auto v : mesh.vertices()) modes[static_cast<std::size_t>(v.idx())] = mesh.property(handle, v);
+  return modes;
+}
+
+void set_vertex_layer(QuadMesh& mesh, const std::string& name, const std::vector<double>& values) {
+  const std::string stored = stored_name(name);
+  if (stored == layer::mode || stored == layer::computed_mode || stored == layer::r_value || stored == layer::hanging ||
+      stored == layer::parents)
+    throw ArgumentError("set_vertex_layer: '" + shown_name(stored) + "' is a reserved layer; choose another name");
+  if (values.size() != mesh.n_vertices()) {
+    throw ArgumentError("set_vertex_layer: " + std::to_string(values.size()) + " values for layer '" + shown_name(stored) +
+                        "' on " + std::to_string(mesh.n_vertices()) + " vertices; expected one per vertex");
+  }
+  OpenMesh::VPropHandleT<double> handle;
+  if (!mesh.get_property_handle(handle, stored)) mesh.add_property(handle, stored);
+  mesh.property(handle).set_persistent(true);
+  for (const auto v : mesh.vertices()) mesh.property(handle, v) = values[static_cast<std::size_t>(v.idx())];
+}
+
+std::vector<std::string> vertex_layer_names(const QuadMesh& mesh) {
+  std::vector<std::string> names{"mode"};
+  OpenMesh::VPropHandleT<int> computed;
+  if (mesh.get_property_handle(computed, layer::computed_mode)) names.push_back("computed_mode");
+  for (const std::string& name : double_layers(mesh)) names.push_back(shown_name(name));
+  return names;
+}
+
+std::vector<double> vertex_layer(const QuadMesh& mesh, const std::string& name) {
+  std::vector<double> values(mesh.n_vertices());
+  const std::string stored = stored_name(name);
+  OpenMesh::VPropHandleT<int> ints;
+  if ((stored == layer::mode || stored == layer::computed_mode) && mesh.get_property_handle(ints, stored)) {
+    for (const auto v : mesh.vertices()) values[static_cast<std::size_t>(v.idx())] = mesh.property(ints, v);
+    return values;
+  }
+  OpenMesh::VPropHandleT<double> doubles;
+  if (!mesh.get_property_handle(doubles, stored)) {
+    throw ArgumentError("the mesh has no per-vertex layer '" + shown_name(stored) + "'; it has " +
+                        joined(vertex_layer_names(mesh)));
+  }
+  for (const auto v : mesh.vertices()) values[static_cast<std::size_t>(v.idx())] = mesh.property(doubles, v);
+  return values;
+}
+
+std::size_t paint_modes_geodesic(QuadMesh& mesh, const std::vector<int>& seeds, double radius, int mode) {
+  check_mode(mode);
+  if (!(radius >= 0.0) || !std::isfinite(radius))
+    throw ArgumentError("brush radius must be a finite number >= 0 metres (got " + std::to_string(radius) + ")");
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (std::size_t i = 0; i < seeds.size(); ++i)
+    if (seeds[i] < 0 || seeds[i] >= n)
+      throw ArgumentError("seed vertex " + std::to_string(seeds[i]) + " (entry " + std::to_string(i) +
+                          ") is out of range; the mesh has " + std::to_string(n) + " vertices");
+  // Dijkstra along the edges, stopped at the radius.
+  std::vector<double> distance(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (const int s : seeds) {
+    distance[static_cast<std::size_t>(s)] = 0.0;
+    queue.push({0.0, s});
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[static_cast<std::size_t>(v)]) continue;
+    const auto handle = mesh.vertex_handle(static_cast<unsigned>(v));
+    for (const auto u : mesh.vv_range(handle)) {
+      const double next = d + (mesh.point(u) - mesh.point(handle)).norm();
+      if (next <= radius && next < distance[static_cast<std::size_t>(u.idx())]) {
+        distance[static_cast<std::size_t>(u.idx())] = next;
+        queue.push({next, u.idx()});
+      }
+    }
+  }
+  const auto layer_handle = ensure_layers(mesh).mode;
+  std::size_t painted = 0;
+  for (const auto v : mesh.vertices()) {
+    if (!(distance[static_cast<std::size_t>(v.idx())] <= radius)) continue;
+    mesh.property(layer_handle, v) = mode;
+    ++painted;
+  }
+  return painted;
+}
+
+std::size_t fill_modes_threshold(QuadMesh& mesh, const std::string& name, double threshold, int mode, bool above) {
+  check_mode(mode);
+  if (!std::isfinite(threshold)) throw ArgumentError("the fill threshold must be a finite number");
+  const std::vector<double> values = vertex_layer(mesh, name);
+  const auto layer_handle = ensure_layers(mesh).mode;
+  std::size_t filled = 0;
+  for (const auto v : mesh.vertices()) {
+    const double value = values[static_cast<std::size_t>(v.idx())];
+    if (!(above ? value >= threshold : value <= threshold)) continue;
+    mesh.property(layer_handle, v) = mode;
+    ++filled;
+  }
+  return filled;
+}
+
+std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids) {
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (std::size_t i = 0; i < vertex_ids.size(); ++i)
+    if (vertex_ids[i] < 0 || vertex_ids[i] >= n)
+      throw ArgumentError("vertex id " + std::to_string(vertex_ids[i]) + " (entry " + std::to_string(i) +
+                          ") is out of range; the mesh has " + std::to_string(n) + " vertices");
+  const std::vector<int> computed = computed_modes(mesh);
+  const auto layer_handle = ensure_layers(mesh).mode;
+  std::size_t changed = 0;
+  const auto erase = [&](int v) {
+    const int target = computed[static_cast<std::size_t>(v)] > 0 ? computed[static_cast<std::size_t>(v)] : kDefaultMode;
+    int& mode = mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(v)));
+    changed += mode != target;
+    mode = target;
+  };
+  if (vertex_ids.empty())
+    for (int v = 0; v < n; ++v) erase(v);
+  else
+    for (const int v : vertex_ids) erase(v);
+  return changed;
+}
+
+void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path) {
+  require_writable_target(path);
+  const std::vector<int> modes = get_modes(mesh);
+  const std::vector<int> computed = computed_modes(mesh);
+  const std::vector<std::string> extra = double_layers(mesh);
+  std::vector<std::vector<double>> columns;
+  for (const std::string& name : extra) columns.push_back(vertex_layer(mesh, name));
+  write_file_atomically(path, ".csv", [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << "vertex,x,y,z,mode,computed_mode";
+    for (const std::string& name : extra) out << ',' << shown_name(name);
+    out << '\n';
+    for (const auto v : mesh.vertices()) {
+      const auto i = static_cast<std::size_t>(v.idx());
+      const auto& p = mesh.point(v);
+      out << v.idx() << ',' << csv_number(p[0]) << ',' << csv_number(p[1]) << ',' << csv_number(p[2]) << ',' << modes[i]
+          << ',' << computed[i];
+      for (const auto& column : columns) out << ',' << csv_number(column[i]);
+      out << '\n';
+    }
+    out.flush();
+    return static_cast<bool>(out);
+  });
+}
+
+std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file for reading; expected a CSV file of vertex modes");
+  const auto fail = [&](int line, const std::string& problem, const std::string& expected) {
+    throw InputError(path + ":" + std::to_string(line) + ": " + problem + "; expected " + expected);
+  };
+  std::string text;
+  int line = 0;
+  if (!std::getline(in, text)) fail(1, "the file is empty", "a header line naming the vertex and mode columns");
+  ++line;
+  const std::vector<std::string> header = split_csv(text);
+  int vertex_column = -1, mode_column = -1;
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    if (header[c] == "vertex") vertex_column = static_cast<int>(c);
+    if (header[c] == "mode") mode_column = static_cast<int>(c);
+  }
+  if (vertex_column < 0 || mode_column < 0) fail(1, "the header has no 'vertex' or no 'mode' column", "vertex,mode,...");
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::vector<std::pair<int, int>> assignments;
+  const auto integer = [&](const std::string& field, const char* what) {
+    int value = 0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (error != std::errc() || end != field.data() + field.size() || field.empty())
+      fail(line, std::string(what) + " \"" + field + "\" is not an integer", std::string("an integer ") + what);
+    return value;
+  };
+  while (std::getline(in, text)) {
+    ++line;
+    if (text.empty() || text == "\r") continue;
+    const std::vector<std::string> fields = split_csv(text);
+    if (static_cast<int>(fields.size()) <= std::max(vertex_column, mode_column))
+      fail(line, std::to_string(fields.size()) + " fields", std::to_string(header.size()) + " as in the header");
+    const int vertex = integer(fields[static_cast<std::size_t>(vertex_column)], "vertex");
+    const int mode = integer(fields[static_cast<std::size_t>(mode_column)], "mode");
+    if (vertex < 0 || vertex >= n)
+      fail(line, "vertex " + std::to_string(vertex) + " is out of range", "a vertex below " + std::to_string(n));
+    if (mode < 0) fail(line, "mode " + std::to_string(mode) + " is negative", "a mode >= 0");
+    assignments.emplace_back(vertex, mode);
+  }
+  const auto layer_handle = ensure_layers(mesh).mode;
+  for (const auto& [vertex, mode] : assignments) mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(vertex))) = mode;
+  return assignments.size();
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,71 @@
+#pragma once
+// Mode painting beside the computed modes (SPEC stage 5): an artist's
+// brushes write the mode layer (what refinement reads); the modes an
+// analysis computed stay in their own layer, so any painted vertex can be
+// erased back to them. Per-vertex analysis values (mean curvature, its
+// deviation) are layers too, for threshold fills. All layers are
+// persistent OpenMesh properties: they save and load with the mesh (.om),
+// and as a plain CSV file other tools read.
+#include "quad_mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+
+namespace layer {
+inline constexpr const char* computed_mode = "mrcloth:computed_mode";              ///< vertex int: the analysis's mode, 0 = none
+inline constexpr const char* mean_curvature = "mrcloth:mean_curvature";            ///< vertex double, 1/m
+inline constexpr const char* curvature_deviation = "mrcloth:curvature_deviation";  ///< vertex double, 1/m
+}  // namespace layer
+
+/// Creates the analysis layers that .om files keep (computed_mode,
+/// mean_curvature, curvature_deviation; 0 where unset), persistent. The
+/// .om reader only fills layers that exist before reading, so load_garment
+/// calls this; other double layers travel in the CSV file.
+void ensure_analysis_layers(QuadMesh& mesh);
+
+/// Stores an analysis's modes (one per vertex, >= 1) as the computed layer
+/// and as the current modes (painting starts from them).
+void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes);
+
+/// The computed mode of every vertex (0 where none was computed; all 0 when
+/// the mesh has never been analysed).
+std::vector<int> computed_modes(const QuadMesh& mesh);
+
+/// Sets a persistent per-vertex double layer `name` (one value per vertex),
+/// creating it if needed. ArgumentError for a wrong count or a reserved name.
+void set_vertex_layer(QuadMesh& mesh, const std::string& name, const std::vector<double>& values);
+
+/// Values of a per-vertex layer: the double layers set above, or "mode" and
+/// "computed_mode" as numbers. ArgumentError naming the layers there are.
+std::vector<double> vertex_layer(const QuadMesh& mesh, const std::string& name);
+
+/// Names vertex_layer accepts on this mesh (mode first).
+std::vector<std::string> vertex_layer_names(const QuadMesh& mesh);
+
+/// Sets `mode` on every vertex whose shortest path along the mesh's edges
+/// (metres) from any of `seeds` is at most `radius`, the seeds included.
+/// Returns how many. ArgumentError for a bad seed, radius or mode.
+std::size_t paint_modes_geodesic(QuadMesh& mesh, const std::vector<int>& seeds, double radius, int mode);
+
+/// Sets `mode` on every vertex whose value in layer `name` is >= threshold
+/// (or <= with `above` false). Returns how many.
+std::size_t fill_modes_threshold(QuadMesh& mesh, const std::string& name, double threshold, int mode, bool above = true);
+
+/// Puts the given vertices (all of them when `vertex_ids` is empty) back to
+/// their computed modes (the default mode where none was computed).
+/// Returns how many changed.
+std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids = {});
+
+/// Writes "vertex,x,y,z,mode,computed_mode" plus one column per double
+/// layer, one row per vertex, atomically. OutputError naming the path.
+void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path);
+
+/// Reads modes from a CSV with a header naming a "vertex" and a "mode"
+/// column (any others ignored, e.g. write_vertex_layers_csv's) and sets them;
+/// vertices not listed keep theirs. InputError naming the file and line for
+/// anything malformed; nothing changes then. Returns how many were set.
+std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path);
+
+}  // namespace mrcloth

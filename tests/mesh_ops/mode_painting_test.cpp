@@ -1,0 +1,187 @@
+// Mode painting beside the computed modes: the geodesic brush against a
+// Manhattan-distance oracle on a grid, threshold fills on any layer,
+// erasing back to computed modes, and the layers through .om and CSV.
+#include "mesh_ops/mode_painting.h"
+
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/mode_layer.h"
+#include "test_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("mrcloth_painting_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Vertices of a 6 x 6 unit grid (7 x 7 vertices, index 7 y + x) with mode
+/// `mode` in `modes`.
+std::vector<int> with_mode(const std::vector<int>& modes, int mode) {
+  std::vector<int> ids;
+  for (std::size_t v = 0; v < modes.size(); ++v)
+    if (modes[v] == mode) ids.push_back(static_cast<int>(v));
+  return ids;
+}
+
+TEST(ModePainting, GeodesicBrushFollowsTheEdges) {
+  // On a grid of unit squares the shortest path along edges is the
+  // Manhattan distance: the brush must select exactly those within it.
+  QuadMesh grid = test::make_grid(6, 6, 1.0);
+  for (const double radius : {0.0, 0.99, 1.0, 1.5, 2.0, 3.7}) {
+    QuadMesh mesh = copy_mesh(grid);
+    const std::vector<int> seeds{7 * 3 + 3, 7 * 0 + 6};  // (3, 3) and the corner (6, 0)
+    const std::size_t painted = paint_modes_geodesic(mesh, seeds, radius, 4);
+    std::vector<int> expected;
+    for (int v = 0; v < 49; ++v) {
+      const int x = v % 7, y = v / 7;
+      const int d = std::min(std::abs(x - 3) + std::abs(y - 3), std::abs(x - 6) + std::abs(y - 0));
+      if (d <= radius + 1e-12) expected.push_back(v);
+    }
+    EXPECT_EQ(with_mode(get_modes(mesh), 4), expected) << "radius " << radius;
+    EXPECT_EQ(painted, expected.size());
+  }
+  QuadMesh mesh = copy_mesh(grid);
+  EXPECT_THROW(paint_modes_geodesic(mesh, {49}, 1.0, 2), ArgumentError);
+  EXPECT_THROW(paint_modes_geodesic(mesh, {0}, -1.0, 2), ArgumentError);
+  EXPECT_THROW(paint_modes_geodesic(mesh, {0}, 1.0, -2), ArgumentError);
+  EXPECT_EQ(paint_modes_geodesic(mesh, {}, 5.0, 2), 0u) << "no seeds, nothing painted";
+}
+
+TEST(ModePainting, ThresholdFillOnAnyLayer) {
+  QuadMesh mesh = test::make_grid(6, 6, 1.0);
+  std::vector<double> x(49);
+  for (int v = 0; v < 49; ++v) x[static_cast<std::size_t>(v)] = v % 7;
+  set_vertex_layer(mesh, "mean_curvature", x);
+  EXPECT_EQ(fill_modes_threshold(mesh, "mean_curvature", 4.0, 3), 21u) << "columns 4, 5, 6";
+  EXPECT_EQ(fill_modes_threshold(mesh, "mrcloth:mean_curvature", 0.0, 2, false), 7u) << "column 0; prefixed name";
+  const std::vector<int> modes = get_modes(mesh);
+  for (int v = 0; v < 49; ++v)
+    EXPECT_EQ(modes[static_cast<std::size_t>(v)], v % 7 >= 4 ? 3 : v % 7 == 0 ? 2 : 1) << v;
+  // The mode layer itself is a layer: fill where mode >= 3.
+  EXPECT_EQ(fill_modes_threshold(mesh, "mode", 3.0, 5), 21u);
+  try {
+    fill_modes_threshold(mesh, "wrinkles", 1.0, 2);
+    ADD_FAILURE() << "an unknown layer";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'wrinkles'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mean_curvature"), std::string::npos) << "lists the layers: " << e.what();
+  }
+  EXPECT_THROW(set_vertex_layer(mesh, "mode", x), ArgumentError) << "reserved";
+  EXPECT_THROW(set_vertex_layer(mesh, "extra", std::vector<double>(48)), ArgumentError) << "count";
+}
+
+TEST(ModePainting, EraseGoesBackToTheComputedModes) {
+  QuadMesh mesh = test::make_grid(6, 6, 1.0);
+  // Before any analysis, erasing goes back to the default mode.
+  set_modes(mesh, {3, 4}, 5);
+  EXPECT_EQ(erase_modes(mesh, {3}), 1u);
+  EXPECT_EQ(get_modes(mesh)[3], kDefaultMode);
+  EXPECT_EQ(get_modes(mesh)[4], 5);
+
+  std::vector<int> computed(49);
+  for (int v = 0; v < 49; ++v) computed[static_cast<std::size_t>(v)] = 1 + v % 3;
+  set_computed_modes(mesh, computed);
+  EXPECT_EQ(get_modes(mesh), computed) << "painting starts from the computed modes";
+  EXPECT_EQ(computed_modes(mesh), computed);
+  paint_modes_geodesic(mesh, {24}, 1.0, 7);  // 5 vertices
+  set_modes(mesh, {0}, 9);
+  EXPECT_EQ(erase_modes(mesh, {24, 25, 0}), 3u);
+  std::vector<int> modes = get_modes(mesh);
+  EXPECT_EQ(modes[24], computed[24]);
+  EXPECT_EQ(modes[0], computed[0]);
+  EXPECT_EQ(modes[17], 7) << "not erased";
+  EXPECT_EQ(erase_modes(mesh), 3u) << "the remaining painted vertices: 17, 23, 31";
+  EXPECT_EQ(get_modes(mesh), computed);
+  EXPECT_EQ(erase_modes(mesh), 0u);
+  EXPECT_THROW(erase_modes(mesh, {-1}), ArgumentError);
+  EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(49, 0)), ArgumentError);
+  EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(3, 1)), ArgumentError);
+}
+
+TEST(ModePainting, LayersRoundTripThroughOmAndCsv) {
+  QuadMesh mesh = test::make_grid(4, 3, 0.5);
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::vector<int> computed(static_cast<std::size_t>(n));
+  std::vector<double> mean(static_cast<std::size_t>(n)), deviation(static_cast<std::size_t>(n)), extra(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) {
+    computed[static_cast<std::size_t>(v)] = 1 + v % 3;
+    mean[static_cast<std::size_t>(v)] = 0.1 * v + 1.0 / 3.0;
+    deviation[static_cast<std::size_t>(v)] = std::sqrt(v + 0.5);
+    extra[static_cast<std::size_t>(v)] = -1e-300 * v;
+  }
+  set_computed_modes(mesh, computed);
+  set_vertex_layer(mesh, "mean_curvature", mean);
+  set_vertex_layer(mesh, "curvature_deviation", deviation);
+  set_vertex_layer(mesh, "my_weights", extra);
+  set_modes(mesh, {2, 5}, 6);
+  const std::vector<int> painted = get_modes(mesh);
+
+  const fs::path dir = temp_dir();
+  save_mesh(mesh, (dir / "layers.om").string());
+  QuadMesh loaded = load_garment((dir / "layers.om").string()).mesh;
+  EXPECT_EQ(get_modes(loaded), painted);
+  EXPECT_EQ(computed_modes(loaded), computed);
+  EXPECT_EQ(vertex_layer(loaded, "mean_curvature"), mean);
+  EXPECT_EQ(vertex_layer(loaded, "curvature_deviation"), deviation);
+  EXPECT_EQ(erase_modes(loaded), 2u) << "erasing after a reload still finds the computed modes";
+
+  // CSV: every layer, exact (17 significant digits), readable back.
+  write_vertex_layers_csv(mesh, (dir / "layers.csv").string());
+  std::ifstream in(dir / "layers.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "vertex,x,y,z,mode,computed_mode,mean_curvature,curvature_deviation,my_weights");
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, n);
+  QuadMesh other = test::make_grid(4, 3, 0.5);
+  EXPECT_EQ(read_modes_csv(other, (dir / "layers.csv").string()), static_cast<std::size_t>(n));
+  EXPECT_EQ(get_modes(other), painted);
+  for (const auto& name : vertex_layer_names(mesh)) EXPECT_NO_THROW(vertex_layer(mesh, name)) << name;
+}
+
+TEST(ModePainting, MalformedCsvNamesTheLine) {
+  const fs::path dir = temp_dir();
+  QuadMesh mesh = test::make_grid(2, 2, 1.0);  // 9 vertices
+  const auto expect_error = [&](const std::string& text, const std::string& fragment) {
+    const fs::path path = dir / "bad.csv";
+    std::ofstream(path) << text;
+    try {
+      read_modes_csv(mesh, path.string());
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("bad.csv"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(get_modes(mesh), std::vector<int>(9, kDefaultMode)) << "nothing changes on an error: " << text;
+  };
+  expect_error("", ":1: the file is empty");
+  expect_error("id,mode\n0,2\n", ":1: the header has no 'vertex'");
+  expect_error("vertex,mode\n0,2\n1,x\n", ":3: mode \"x\" is not an integer");
+  expect_error("vertex,mode\n0,2\n9,1\n", ":3: vertex 9 is out of range");
+  expect_error("vertex,mode\n0,-1\n", ":2: mode -1 is negative");
+  expect_error("vertex,mode\n0\n", ":2: 1 fields");
+  expect_error("vertex,mode\n1.5,2\n", ":2: vertex \"1.5\" is not an integer");
+  EXPECT_THROW(read_modes_csv(mesh, (dir / "missing.csv").string()), InputError);
+  // Extra columns and a header in any order are fine; unlisted vertices keep their modes.
+  std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()), 2u);
+  EXPECT_EQ(get_modes(mesh), (std::vector<int>{2, 1, 1, 1, 3, 1, 1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace mrcloth
