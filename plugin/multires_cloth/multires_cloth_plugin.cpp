@@ -5,6 +5,7 @@
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
 #include "mesh_ops/mode_mapping.h"
+#include "mesh_ops/mode_painting.h"
 #include "mesh_ops/quad_mesh.h"
 #include "mesh_ops/uniform_refine.h"
 #include "plugin/core/object_store.h"
@@ -140,16 +141,79 @@ int MultiresClothPlugin::paintModes(QVariant id, QVariant brush) {
   return guarded("paintModes", [&] {
     const StoredObject& object = store().get(script::toInt(id, QStringLiteral("id")));
     const script::Options options(brush, QStringLiteral("brush"),
-                                  {QStringLiteral("center"), QStringLiteral("radius"), QStringLiteral("mode")});
-    const auto center = options.vec3(QStringLiteral("center"));
-    const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+                                  {QStringLiteral("type"), QStringLiteral("center"), QStringLiteral("radius"),
+                                   QStringLiteral("mode"), QStringLiteral("seeds"), QStringLiteral("layer"),
+                                   QStringLiteral("threshold"), QStringLiteral("below")});
+    const QString type = options.choice(QStringLiteral("type"), QStringLiteral("sphere"),
+                                        {QStringLiteral("sphere"), QStringLiteral("geodesic"), QStringLiteral("threshold")});
     const int mode = script::toInt(options.required(QStringLiteral("mode")), QStringLiteral("option 'mode'"));
+    const auto only_for = [&](const QString& key, const QString& brush_type) {
+      if (options.has(key) && type != brush_type)
+        throw ArgumentError(QStringLiteral("option '%1' belongs to the %2 brush, not the %3 brush")
+                                .arg(key, brush_type, type).toStdString());
+    };
+    only_for(QStringLiteral("center"), QStringLiteral("sphere"));
+    only_for(QStringLiteral("seeds"), QStringLiteral("geodesic"));
+    only_for(QStringLiteral("layer"), QStringLiteral("threshold"));
+    only_for(QStringLiteral("threshold"), QStringLiteral("threshold"));
+    only_for(QStringLiteral("below"), QStringLiteral("threshold"));
+    if (type == QLatin1String("threshold") && options.has(QStringLiteral("radius")))
+      throw ArgumentError("option 'radius' belongs to the sphere and geodesic brushes, not the threshold brush");
 
-    const std::size_t painted =
-        paint_modes_sphere(*object.mesh, OpenMesh::Vec3d(center[0], center[1], center[2]), radius, mode);
-    emit log(LOGINFO, QStringLiteral("paintModes: %1 vertices of object %2 set to mode %3")
-                          .arg(painted).arg(object.id).arg(mode));
+    std::size_t painted = 0;
+    if (type == QLatin1String("sphere")) {
+      const auto center = options.vec3(QStringLiteral("center"));
+      const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+      painted = paint_modes_sphere(*object.mesh, OpenMesh::Vec3d(center[0], center[1], center[2]), radius, mode);
+    } else if (type == QLatin1String("geodesic")) {
+      const std::vector<int> seeds = script::toIntList(options.required(QStringLiteral("seeds")), QStringLiteral("option 'seeds'"));
+      const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+      painted = paint_modes_geodesic(*object.mesh, seeds, radius, mode);
+    } else {
+      const QString layer_name = script::toString(options.required(QStringLiteral("layer")), QStringLiteral("option 'layer'"));
+      const double threshold =
+          script::toNumber(options.required(QStringLiteral("threshold")), QStringLiteral("option 'threshold'"));
+      painted = fill_modes_threshold(*object.mesh, layer_name.toStdString(), threshold, mode,
+                                     !options.boolean(QStringLiteral("below"), false));
+    }
+    emit log(LOGINFO, QStringLiteral("paintModes: %1 brush, %2 vertices of object %3 set to mode %4")
+                          .arg(type).arg(painted).arg(object.id).arg(mode));
     return static_cast<int>(painted);
+  });
+}
+
+int MultiresClothPlugin::eraseModes(QVariant id, QVariant vertexIds) {
+  return guarded("eraseModes", [&] {
+    QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
+    const std::vector<int> vertices =
+        vertexIds.isValid() ? script::toIntList(vertexIds, QStringLiteral("vertexIds")) : std::vector<int>{};
+    return static_cast<int>(erase_modes(mesh, vertices));
+  });
+}
+
+QVariantList MultiresClothPlugin::getLayer(QVariant id, QVariant name) {
+  return guarded("getLayer", [&] {
+    const QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
+    const std::vector<double> values = vertex_layer(mesh, script::toString(name, QStringLiteral("name")).toStdString());
+    QVariantList list;
+    list.reserve(static_cast<qsizetype>(values.size()));
+    for (const double value : values) list.append(value);
+    return list;
+  });
+}
+
+void MultiresClothPlugin::saveLayers(QVariant id, QVariant path) {
+  guarded("saveLayers", [&] {
+    const QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
+    write_vertex_layers_csv(mesh, script::toString(path, QStringLiteral("path")).toStdString());
+    return 0;
+  });
+}
+
+int MultiresClothPlugin::loadModes(QVariant id, QVariant path) {
+  return guarded("loadModes", [&] {
+    QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
+    return static_cast<int>(read_modes_csv(mesh, script::toString(path, QStringLiteral("path")).toStdString()));
   });
 }
 
@@ -337,13 +401,14 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
     if (features.cancelled)
       throw Error("extractModes: cancelled after " + std::to_string(features.frames) + " frames; the modes are unchanged");
     const ModeReport report = deformation_modes(features.mean, features.deviation, modes);
-    // The computed modes become the mesh's mode layer (what refineAdaptive reads).
-    for (int m = 1; m <= modes.modes; ++m) {
-      std::vector<int> members;
-      for (std::size_t v = 0; v < report.modes.size(); ++v)
-        if (report.modes[v] == m) members.push_back(static_cast<int>(v));
-      set_modes(*input.mesh, members, m);
-    }
+    // The computed modes become the mesh's mode layer (what refineAdaptive
+    // reads) and its computed layer (what eraseModes goes back to); the
+    // features stay as layers for threshold brushes and exports.
+    set_computed_modes(*input.mesh, report.modes);
+    set_vertex_layer(*input.mesh, layer::mean_curvature,
+                     std::vector<double>(features.mean.data(), features.mean.data() + features.mean.size()));
+    set_vertex_layer(*input.mesh, layer::curvature_deviation,
+                     std::vector<double>(features.deviation.data(), features.deviation.data() + features.deviation.size()));
 
     const auto rows = [](const Eigen::MatrixXd& matrix) {
       QVariantList list;
@@ -557,9 +622,33 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("vertex indices in [0, vertices)"),
         QStringLiteral("mode to set, >= 0 (1 = least deformation, the default)")}},
       {QStringLiteral("paintModes(int id, object brush) -> int"),
-       QStringLiteral("Sets the mode of every vertex inside a sphere; returns the number of vertices painted."),
+       QStringLiteral("Sets the mode of the vertices a brush selects; returns how many. sphere: within radius of "
+                      "center; geodesic: within radius along the mesh's edges from any seed; threshold: where a "
+                      "per-vertex layer (getLayer) is >= threshold (<= with below)."),
        {QStringLiteral("id"), QStringLiteral("brush")},
-       {id_text, QStringLiteral("{center: [x, y, z] in m, radius: m (inclusive), mode: int >= 0}, all required")}},
+       {id_text, QStringLiteral("{type: \"sphere\" | \"geodesic\" | \"threshold\" = \"sphere\", mode: int >= 0; "
+                                "sphere: center [x, y, z] m, radius m (inclusive); geodesic: seeds int[], radius m; "
+                                "threshold: layer (e.g. \"mean_curvature\"), threshold, below: bool = false}")}},
+      {QStringLiteral("eraseModes(int id, int[] vertexIds = all) -> int"),
+       QStringLiteral("Puts painted vertices back to the modes extractModes computed (the default mode where none "
+                      "was); returns how many changed."),
+       {QStringLiteral("id"), QStringLiteral("vertexIds")},
+       {id_text, QStringLiteral("vertex indices; omitted: every vertex")}},
+      {QStringLiteral("getLayer(int id, string name) -> number[]"),
+       QStringLiteral("A per-vertex layer, indexed by vertex: mode, computed_mode (0 = none), mean_curvature and "
+                      "curvature_deviation (1/m, after extractModes)."),
+       {QStringLiteral("id"), QStringLiteral("name")},
+       {id_text, QStringLiteral("layer name; an unknown one lists those the mesh has")}},
+      {QStringLiteral("saveLayers(int id, string path)"),
+       QStringLiteral("Writes every per-vertex layer as CSV (vertex, x, y, z, mode, computed_mode, then the "
+                      "numeric layers), atomically. The .om format keeps the layers too."),
+       {QStringLiteral("id"), QStringLiteral("path")},
+       {id_text, QStringLiteral("a .csv path")}},
+      {QStringLiteral("loadModes(int id, string path) -> int"),
+       QStringLiteral("Sets modes from a CSV with vertex and mode columns (saveLayers' or any tool's); returns how "
+                      "many rows. A malformed file changes nothing and names its line."),
+       {QStringLiteral("id"), QStringLiteral("path")},
+       {id_text, QStringLiteral("a CSV path")}},
       {QStringLiteral("getModes(int id) -> int[]"),
        QStringLiteral("Returns the mode of every vertex, indexed by vertex."),
        {QStringLiteral("id")},

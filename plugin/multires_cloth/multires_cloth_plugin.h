@@ -56,6 +56,10 @@ class MultiresClothPlugin : public QObject,
   int setModes(QVariant id, QVariant vertexIds, QVariant mode);
   int paintModes(QVariant id, QVariant brush);
   QVariantList getModes(QVariant id);
+  int eraseModes(QVariant id, QVariant vertexIds = QVariant());
+  QVariantList getLayer(QVariant id, QVariant name);
+  void saveLayers(QVariant id, QVariant path);
+  int loadModes(QVariant id, QVariant path);
   int refineAdaptive(QVariant id, QVariant options = QVariant());
   QVariantMap lastReport();
   void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());

@@ -38,7 +38,7 @@ expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0, 0], radius: 1}
 expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0], radius: 1, mode: 2}), "ArgumentError",
              "option 'center' must be an array of 3 numbers");
 expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0, 0], radius: 1, mode: 2, size: 3}), "ArgumentError",
-             "unknown option 'size'", "accepted: center, radius, mode");
+             "unknown option 'size'", "accepted: type, center, radius, mode, seeds, layer, threshold, below");
 expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0, 0], radius: -1, mode: 2}), "ArgumentError",
              "multirescloth.paintModes: ");
 expectThrows(() => multirescloth.exportSurface(grid, tmpDir + "/x.ply", {colorBy: "levels"}), "ArgumentError",
