@@ -778,10 +778,31 @@ void export_surface(const QuadMesh& mesh, const std::string& path, const ExportO
   } else if (options.color_by == ColorBy::mode) {
     const auto mode = get_layers(mesh).mode;
     for (const auto v : mesh.all_vertices()) surface.colors.push_back(palette_color(mesh.property(mode, v)));
+  } else if (options.color_by == ColorBy::curvature) {
+    const std::vector<double> curvature = vertex_layer(mesh, layer::mean_curvature);
+    const double largest = curvature.empty() ? 0.0 : *std::max_element(curvature.begin(), curvature.end());
+    for (const double k : curvature) surface.colors.push_back(sequential_color(largest > 0.0 ? k / largest : 0.0));
   }
   if (options.triangulate) triangulate(surface);
   write_file_atomically(path, lower_extension(path),
                    [&](const std::string& file) { return write_text(file, surface, format); });
+}
+
+std::array<unsigned char, 3> sequential_color(double t) {
+  // Matplotlib's viridis at 9 evenly spaced stops, linearly interpolated.
+  static constexpr std::array<std::array<double, 3>, 9> kStops{{
+      {68, 1, 84}, {71, 44, 122}, {59, 81, 139}, {44, 113, 142}, {33, 144, 141},
+      {39, 173, 129}, {92, 200, 99}, {170, 220, 50}, {253, 231, 37},
+  }};
+  if (!(t > 0.0)) t = 0.0;  // also NaN
+  if (t > 1.0) t = 1.0;
+  const double at = t * (kStops.size() - 1);
+  const std::size_t i = std::min(kStops.size() - 2, static_cast<std::size_t>(at));
+  const double f = at - static_cast<double>(i);
+  std::array<unsigned char, 3> rgb{};
+  for (std::size_t c = 0; c < 3; ++c)
+    rgb[c] = static_cast<unsigned char>(std::lround(kStops[i][c] + f * (kStops[i + 1][c] - kStops[i][c])));
+  return rgb;
 }
 
 std::array<unsigned char, 3> palette_color(int value) {

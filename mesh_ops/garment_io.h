@@ -36,10 +36,11 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options = {}
 /// unknown extension.
 void save_mesh(const QuadMesh& mesh, const std::string& path);
 
-enum class ColorBy { none, level, mode };
+enum class ColorBy { none, level, mode, curvature };
 
 struct ExportOptions {
-  ColorBy color_by = ColorBy::none;  ///< vertex colours: by level (of the vertex) or by mode
+  ColorBy color_by = ColorBy::none;  ///< vertex colours: by level (of the vertex), by mode, or by the
+                                     ///< mean_curvature layer (sequential_color of value / the largest; needs the layer)
   bool triangulate = false;          ///< fan-split polygons; forced for formats that need triangles
 };
 
@@ -50,5 +51,9 @@ void export_surface(const QuadMesh& mesh, const std::string& path, const ExportO
 
 /// Fixed, distinguishable colour for a mode or level value (RGB, 0..255).
 std::array<unsigned char, 3> palette_color(int value);
+
+/// Perceptually ordered colour for t in [0, 1] (viridis: dark purple at 0,
+/// yellow at 1; clamped outside), RGB 0..255.
+std::array<unsigned char, 3> sequential_color(double t);
 
 }  // namespace mrcloth

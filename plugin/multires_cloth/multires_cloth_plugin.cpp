@@ -59,6 +59,7 @@ QString describeObject(const StoredObject& object) {
 ColorBy toColorBy(const QString& name) {
   if (name == QLatin1String("level")) return ColorBy::level;
   if (name == QLatin1String("mode")) return ColorBy::mode;
+  if (name == QLatin1String("curvature")) return ColorBy::curvature;
   return ColorBy::none;
 }
 
@@ -281,7 +282,8 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
                                 {QStringLiteral("colorBy"), QStringLiteral("triangulate")});
     ExportOptions settings;
     settings.color_by = toColorBy(given.choice(QStringLiteral("colorBy"), QStringLiteral("none"),
-                                               {QStringLiteral("level"), QStringLiteral("mode"), QStringLiteral("none")}));
+                                               {QStringLiteral("level"), QStringLiteral("mode"), QStringLiteral("curvature"),
+                                                QStringLiteral("none")}));
     settings.triangulate = given.boolean(QStringLiteral("triangulate"), settings.triangulate);
 
     export_surface(*object.mesh, file.toStdString(), settings);
@@ -670,7 +672,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        QStringLiteral("Writes the active surface to .obj or .ply (atomically), optionally with vertex colours."),
        {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
        {id_text, QStringLiteral("output file; the extension picks the format"),
-        QStringLiteral("{colorBy: \"level\" | \"mode\" | \"none\" = \"none\", triangulate: bool = false}")}},
+        QStringLiteral("{colorBy: \"level\" | \"mode\" | \"curvature\" (mean curvature after extractModes, viridis "
+                       "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false}")}},
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -181,6 +182,52 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";
   EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()), 2u);
   EXPECT_EQ(get_modes(mesh), (std::vector<int>{2, 1, 1, 1, 3, 1, 1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace mrcloth
+
+namespace mrcloth {
+namespace {
+
+TEST(ModePainting, CurvatureColoursInAPly) {
+  // Vertex colours by mean curvature: viridis from 0 to the largest value,
+  // read back from the exported PLY at known vertices.
+  EXPECT_EQ(sequential_color(0.0), (std::array<unsigned char, 3>{68, 1, 84}));
+  EXPECT_EQ(sequential_color(1.0), (std::array<unsigned char, 3>{253, 231, 37}));
+  EXPECT_EQ(sequential_color(0.5), (std::array<unsigned char, 3>{33, 144, 141}));
+  EXPECT_EQ(sequential_color(-3.0), sequential_color(0.0));
+  EXPECT_EQ(sequential_color(std::nan("")), sequential_color(0.0));
+  EXPECT_EQ(sequential_color(7.0), sequential_color(1.0));
+
+  QuadMesh mesh = test::make_grid(2, 2, 1.0);
+  std::vector<double> curvature(9, 0.0);
+  curvature[4] = 8.0;  // the largest
+  curvature[8] = 4.0;  // half of it
+  set_vertex_layer(mesh, "mean_curvature", curvature);
+  const fs::path path = temp_dir() / "curvature.ply";
+  ExportOptions options;
+  options.color_by = ColorBy::curvature;
+  export_surface(mesh, path.string(), options);
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line) && line != "end_header") {
+  }
+  std::vector<std::array<int, 3>> colours;
+  for (int v = 0; v < 9 && std::getline(in, line); ++v) {
+    std::istringstream fields(line);
+    double x, y, z;
+    std::array<int, 3> rgb{};
+    fields >> x >> y >> z >> rgb[0] >> rgb[1] >> rgb[2];
+    colours.push_back(rgb);
+  }
+  ASSERT_EQ(colours.size(), 9u);
+  EXPECT_EQ(colours[0], (std::array<int, 3>{68, 1, 84}));
+  EXPECT_EQ(colours[4], (std::array<int, 3>{253, 231, 37}));
+  EXPECT_EQ(colours[8], (std::array<int, 3>{33, 144, 141}));
+  QuadMesh bare = test::make_grid(1, 1, 1.0);
+  EXPECT_THROW(export_surface(bare, (temp_dir() / "bare.ply").string(), options), ArgumentError)
+      << "no curvature layer: nothing to colour by";
 }
 
 }  // namespace

@@ -52,6 +52,13 @@ expectEqual(multirescloth.eraseModes(grid), painted.filter((m, v) => m !== compu
 expectEqual(multirescloth.getModes(grid), computed, "erased back to the computed modes");
 expectEqual(report.sizes.reduce((a, b) => a + b, 0), 16, "sizes");
 
+// Exports coloured by mode and by mean curvature (PLY vertex colours).
+for (const colorBy of ["mode", "curvature"]) {
+  const ply = tmpDir + "/grid_" + colorBy + ".ply";
+  multirescloth.exportSurface(grid, ply, {colorBy: colorBy});
+  if (!core.fileExists(ply)) throw new Error("no PLY coloured by " + colorBy);
+}
+
 // CSV: save, change, load back.
 multirescloth.setModes(grid, [5, 6], 8);
 const saved = multirescloth.getModes(grid);

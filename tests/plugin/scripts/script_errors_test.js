@@ -42,7 +42,7 @@ expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0, 0], radius: 1,
 expectThrows(() => multirescloth.paintModes(grid, {center: [0, 0, 0], radius: -1, mode: 2}), "ArgumentError",
              "multirescloth.paintModes: ");
 expectThrows(() => multirescloth.exportSurface(grid, tmpDir + "/x.ply", {colorBy: "levels"}), "ArgumentError",
-             "option 'colorBy' must be one of \"level\", \"mode\", \"none\", got the string \"levels\"");
+             "option 'colorBy' must be one of \"level\", \"mode\", \"curvature\", \"none\", got the string \"levels\"");
 expectThrows(() => multirescloth.exportSurface(grid, tmpDir + "/x.ply", {color: "level"}), "ArgumentError",
              "unknown option 'color'", "accepted: colorBy, triangulate");
 expectThrows(() => core.loadObject(dataDir + "/grid3x3.obj", {unit: "dm"}), "ArgumentError",
