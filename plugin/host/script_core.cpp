@@ -1,6 +1,7 @@
 #include "script_core.h"
 
 #include "host_log.h"
+#include "mesh_ops/atomic_file.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/lumped_mass.h"
@@ -178,6 +179,18 @@ void ScriptCore::makePath(QVariant path) {
   });
 }
 
+void ScriptCore::writeTextFile(QVariant path, QVariant text) {
+  guarded("writeTextFile", [&] {
+    const std::string file = script::toString(path, QStringLiteral("path")).toStdString();
+    const QByteArray bytes = script::toString(text, QStringLiteral("text")).toUtf8();
+    require_writable_target(file);
+    write_file_atomically(file, "", [&](const std::string& temporary) {
+      QFile out(QString::fromStdString(temporary));
+      return out.open(QIODevice::WriteOnly) && out.write(bytes) == bytes.size() && out.flush();
+    });
+  });
+}
+
 bool ScriptCore::fileExists(QVariant path) {
   return guarded("fileExists", [&] { return QFileInfo::exists(script::toString(path, QStringLiteral("path"))); });
 }
@@ -315,6 +328,11 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Creates the folder and any missing parents (no error if it exists)."),
        {QStringLiteral("path")},
        {QStringLiteral("folder to create")}},
+      {QStringLiteral("writeTextFile(string path, string text)"),
+       QStringLiteral("Writes text (UTF-8) to a file atomically: it appears complete or not at all, replacing "
+                      "any file there (OutputError naming the path if its folder is missing)."),
+       {QStringLiteral("path"), QStringLiteral("text")},
+       {QStringLiteral("file to write"), QStringLiteral("its contents, e.g. JSON.stringify(report)")}},
       {QStringLiteral("fileExists(string path) -> bool"),
        QStringLiteral("Returns whether the file or folder exists."),
        {QStringLiteral("path")},

@@ -56,6 +56,7 @@ class ScriptCore : public QObject, public ScriptInterface {
   bool fileExists(QVariant path);
   double fileSize(QVariant path);
   bool filesEqual(QVariant pathA, QVariant pathB);
+  void writeTextFile(QVariant path, QVariant text);
   bool include(QVariant path);
 
  private:

@@ -80,4 +80,8 @@ expectThrows(() => multirescloth.paintModes(grid, {type: "lasso", mode: 2}), "Ar
 expectThrows(() => multirescloth.getLayer(grid, "nothing"), "ArgumentError", "no per-vertex layer 'nothing'");
 expectThrows(() => multirescloth.loadModes(grid, tmpDir + "/missing.csv"), "InputError", "missing.csv");
 expectEqual(multirescloth.getModes(grid), saved, "refusals change nothing");
+// core.writeTextFile: atomic, UTF-8; a missing folder is an OutputError.
+core.writeTextFile(tmpDir + "/note.json", JSON.stringify({modes: report.sizes}) + "\n");
+expectEqual(core.fileSize(tmpDir + "/note.json"), JSON.stringify({modes: report.sizes}).length + 1, "text file size");
+expectThrows(() => core.writeTextFile(tmpDir + "/no/such/folder/x.txt", "x"), "OutputError", "x.txt");
 print("painting: ok");
