@@ -7,7 +7,10 @@
 // per frame whatever the cloth did, and recording 200 frames of 11088
 // vertices would take minutes.
 //
-// Usage: bench_analysis [--frames N]
+// Usage: bench_analysis [--frames N] [--cache FILE]
+//   --cache: time a recorded instance of the same mesh instead (e.g.
+//   analyse_instance.js's skirthelper_instance.pc2: real cloth bends
+//   harder than the synthetic waves, a different mix of inverse sincs).
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/uniform_refine.h"
 #include "solver/deformation_modes.h"
@@ -34,10 +37,12 @@ double ms_since(Clock::time_point start) {
 
 int main(int argc, char** argv) {
   int frames = 200;
+  std::string recorded;
   for (int a = 1; a + 1 < argc; a += 2) {
     if (std::string(argv[a]) == "--frames") frames = std::atoi(argv[a + 1]);
+    else if (std::string(argv[a]) == "--cache") recorded = argv[a + 1];
     else {
-      std::fprintf(stderr, "unknown option %s\nusage: bench_analysis [--frames N]\n", argv[a]);
+      std::fprintf(stderr, "unknown option %s\nusage: bench_analysis [--frames N] [--cache FILE]\n", argv[a]);
       return 2;
     }
   }
@@ -53,8 +58,9 @@ int main(int argc, char** argv) {
   const int n = static_cast<int>(mesh.n_vertices());
 
   const std::filesystem::path cache_path =
-      std::filesystem::temp_directory_path() / ("mrcloth_bench_analysis_" + std::to_string(n) + ".pc2");
-  {
+      !recorded.empty() ? std::filesystem::path(recorded)
+                        : std::filesystem::temp_directory_path() / ("mrcloth_bench_analysis_" + std::to_string(n) + ".pc2");
+  if (recorded.empty()) {
     Pc2Writer writer(cache_path.string(), n);
     FramePositions frame(n, 3);
     for (int t = 0; t < frames; ++t) {
@@ -66,6 +72,8 @@ int main(int argc, char** argv) {
       writer.add_frame(frame);
     }
     writer.finish();
+  } else {
+    frames = Pc2Reader(recorded).num_frames();
   }
 
   auto start = Clock::now();
@@ -77,10 +85,11 @@ int main(int argc, char** argv) {
   start = Clock::now();
   const ModeReport modes = deformation_modes(features.mean, features.deviation);
   const double modes_ms = ms_since(start);
-  std::filesystem::remove(cache_path);
+  if (recorded.empty()) std::filesystem::remove(cache_path);
 
-  std::printf("instance analysis of %s refined twice: %d vertices, %zu bend pairs, %d frames (synthetic cache), one core\n\n",
-              have_shared ? "the shared skirt" : "the default skirt (shared data absent)", n, pairs.i.size(), frames);
+  std::printf("instance analysis of %s refined twice: %d vertices, %zu bend pairs, %d frames (%s), one core\n\n",
+              have_shared ? "the shared skirt" : "the default skirt (shared data absent)", n, pairs.i.size(), frames,
+              recorded.empty() ? "synthetic cache" : recorded.c_str());
   std::printf("| stage | ms | ms per 100 frames |\n|---|---|---|\n");
   std::printf("| bend pairs | %.1f | |\n", pairs_ms);
   std::printf("| curvature features (streamed PC2) | %.1f | %.1f |\n", features_ms, 100.0 * features_ms / frames);
