@@ -109,8 +109,10 @@ int main(int argc, char** argv) {
     skirt_points.row(v.idx()) = (Eigen::Vector3d(coarse.point(v)[0], coarse.point(v)[1], coarse.point(v)[2]) + offset).transpose();
   clear_capsules_for_garment(rig, motion, start, skinned.joint_rest, skirt_points);
   // As the plugin does by default: bridges between the legs for a skirt
-  // (to the ankles for this one), for both body kinds.
-  const double reach = automatic_leg_bridges(static_cast<int>(boundary_loops(coarse).size()), skirt_points, motion.skeleton);
+  // (to the ankles for this one), for both body kinds; judged, as there,
+  // with the skirt where base.obj puts it in the skeleton's rest space.
+  const Eigen::MatrixX3d rest_space = skirt_points.rowwise() - (offset - skinned.obj_offset).transpose();
+  const double reach = automatic_leg_bridges(static_cast<int>(boundary_loops(coarse).size()), rest_space, motion.skeleton);
   CapsuleRig bridges = make_capsule_rig(motion.skeleton);
   if (reach > 0.0) {
     add_leg_bridges(rig, motion.skeleton, reach);

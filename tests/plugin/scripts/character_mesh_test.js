@@ -1,7 +1,8 @@
 // The shared MakeHuman skirt helper (decimetres, modelled on base.obj) worn
 // by the skinned MakeHuman body walking the CMU instance clip 07_06 (CMU
-// units): body "mesh", place "makehuman", 0.5 s of pre-roll, then 1 s of
-// motion. Skipped (exit 77) when ../shared/data is absent.
+// units): body "mesh", place "makehuman", 0.5 s of pre-roll, then 2 s of
+// motion; then the same on capsules fitted to that body, and the
+// knee-length skirt on them. Skipped (exit 77) when ../shared/data is absent.
 // Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
@@ -14,7 +15,7 @@ skipUnlessFiles([garment, clip, makehuman + "/base.obj"]);
 core.makePath(tmpDir);
 const skirt = core.loadObject(garment, {units: "dm"});
 const info = core.objectInfo(skirt);
-const frames = 30, pc2 = tmpDir + "/skirthelper_07_06.pc2";
+const frames = 60, pc2 = tmpDir + "/skirthelper_07_06.pc2";
 const body = {type: "mesh", obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
               weights: makehuman + "/rigs/default_weights.mhw"};
 const report = multirescloth.simulate(skirt, {
@@ -30,8 +31,8 @@ const summary = "frames " + report.frames + ", preroll " + report.preroll.frames
 print("character mesh: " + summary);
 expectEqual([report.frames, report.nonFinite, report.cancelled, report.preroll.nonFinite], [frames, false, false, false],
             "run completed");
-expectEqual([report.body, report.motionUnits, report.place, report.preroll.frames], ["mesh", "cmu", "makehuman", 15],
-            "character fields");
+expectEqual([report.body, report.motionUnits, report.place, report.preroll.frames, report.legBridges],
+            ["mesh", "cmu", "makehuman", 15, 2], "character fields (bridges to the ankles: the skirt reaches below the knees)");
 if (!(report.pinnedVertices > 0)) throw new Error("no waist pinned");
 if (!(report.maxWaistError <= 1e-9)) throw new Error("maxWaistError " + report.maxWaistError + " > 1e-9 m");
 // The pre-roll starts from the body's A-pose, which base.obj and the skirt
@@ -40,15 +41,28 @@ if (!(report.maxWaistError <= 1e-9)) throw new Error("maxWaistError " + report.m
 expectAtMost(report.preroll.initialPenetration, 0.004, "initial penetration in the A-pose");
 // On the mesh body the waist follows the skin under it (the MakeHuman waist
 // bends with the lower back): pinned rigidly to the pelvis it ended 10 mm
-// inside the body. 3.6 mm measured (the hands brush the hips); issue 4's
-// target is 2 mm.
+// inside the body. 5.2 mm measured over 2 s (the hands brush the hips);
+// issue 4's target is 2 mm.
 expectEqual(report.waistFollows, "skin", "the waist follows the skin on the mesh body");
-expectAtMost(report.maxPenetration, 0.005, "penetration during the motion");
+expectAtMost(report.maxPenetration, 0.006, "penetration during the motion");
 // Known limit (issue 4, open): the ankle-length skirt's hem (1.42 m) is
 // narrower than 07_06's stride needs around the ankles, so the walk
-// stretches it; stretch is reported here, not yet bounded.
-print("character mesh: maxStretch " + report.maxStretch + " (not yet bounded; see the README's known limits)");
+// stretches it at the hem: 251 % measured; the stated bound is 400 %.
+expectAtMost(report.maxStretch, 4.0, "stretch (the hem too narrow for the stride)");
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
+
+// The same skirt on capsules fitted to the body (bridges to the ankles too).
+const onCapsules = multirescloth.simulate(core.loadObject(garment, {units: "dm"}), {
+  motion: {path: clip, units: "cmu"}, body: Object.assign({}, body, {type: "capsules"}), place: "makehuman",
+  preroll: 0.5, frames: frames});
+print("character mesh: the shared skirt on fitted capsules: maxStretch " + onCapsules.maxStretch.toFixed(3) +
+      ", maxPenetration " + (1000 * onCapsules.maxPenetration).toFixed(2) + " mm");
+expectEqual([onCapsules.frames, onCapsules.nonFinite, onCapsules.body, onCapsules.legBridges], [frames, false, "capsules", 2],
+            "the shared skirt on capsules");
+if (!(onCapsules.maxWaistError <= 1e-9)) throw new Error("capsules: maxWaistError " + onCapsules.maxWaistError);
+// Measured 4.2 mm and 313 % (the hem, as on the mesh body).
+expectAtMost(onCapsules.maxPenetration, 0.006, "the shared skirt on capsules: penetration");
+expectAtMost(onCapsules.maxStretch, 4.0, "the shared skirt on capsules: stretch");
 
 // Capsules fitted to the same body, under the knee-length skirt: the fit
 // centres them in the limbs (twins across the pelvis and chest) and shrinks
@@ -67,9 +81,10 @@ if (core.fileExists(kneeSkirt)) {
   // Before the centring fit and the shrink it started 62 mm inside them.
   expectAtMost(caps.preroll.initialPenetration, 0.004, "capsules: initial penetration");
   if (!(caps.maxWaistError <= 1e-9)) throw new Error("capsules: maxWaistError " + caps.maxWaistError);
-  // Measured 9.6 mm (the swinging forearm through the pinned waistband) and
-  // 77 % (the waistband's 5 mm edges); bounds against regressions (645 %
-  // before this session), issue 4's 2 mm target not yet met.
+  // Measured over 2 s: 9.6 mm (the swinging forearm through the pinned
+  // waistband) and 77 % (the waistband's 5 mm edges); bounds against
+  // regressions (645 % before the fitted, centred capsules), issue 4's 2 mm
+  // target not yet met.
   expectAtMost(caps.maxPenetration, 0.012, "capsules: penetration");
   expectAtMost(caps.maxStretch, 1.0, "capsules: stretch");
 }
