@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
   const SkinnedBody skinned = load_makehuman_body(mh, motion.skeleton);
 
   CapsuleRig rig = make_capsule_rig(motion.skeleton);
-  fit_capsule_radii(rig, motion.skeleton, skinned.rest_vertices, skinned.weights, skinned.joint_rest);
+  fit_capsules_to_body(rig, motion.skeleton, skinned);  // as the plugin fits them
 
   const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
   QuadMesh high = copy_mesh(coarse);

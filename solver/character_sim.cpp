@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace mrcloth {
 namespace {
@@ -116,6 +117,18 @@ void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, c
   options.body_joints = body.joint_rest;
   options.waist_weights = waist_skin_weights(body, skin(body, motion.skeleton, reference_pose(motion, options)),
                                              pinned_rows(model, model.rest));
+}
+
+void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const SkinnedBody& body,
+                          const std::map<std::string, std::pair<double, double>>& overrides) {
+  fit_capsule_radii(rig, skeleton, body.rest_vertices, body.weights, body.joint_rest);
+  std::vector<BoneCapsule> kept;
+  for (BoneCapsule bone : rig.bones) {
+    const auto it = overrides.find(skeleton.joints[static_cast<std::size_t>(bone.joint)].name);
+    if (it != overrides.end()) std::tie(bone.radius_head, bone.radius_tail) = it->second;
+    if (bone.radius_head > 0.0 || bone.radius_tail > 0.0) kept.push_back(bone);
+  }
+  rig.bones = std::move(kept);
 }
 
 int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,

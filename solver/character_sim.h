@@ -7,6 +7,7 @@
 #include "simulate.h"
 #include "skeleton.h"
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -116,6 +117,13 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
 /// options.body_joints. No pinned vertices: nothing to set.
 void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, const Motion& motion,
                         const DynamicsModel& model);
+
+/// Fits the rig's radii to `body` (fit_capsule_radii about its own joints),
+/// then lets `overrides` (joint name -> head, tail radius in metres) win
+/// over the fit as they win over the defaults, and drops the bones left
+/// without radius (0 removes a joint's capsule).
+void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const SkinnedBody& body,
+                          const std::map<std::string, std::pair<double, double>>& overrides = {});
 
 /// Shrinks the capsules a garment starts inside of (clear_capsules_of),
 /// posed as the run starts: the reference pose on `body_joints` (the

@@ -331,16 +331,8 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
     rig_options.radii = request.radii;
     CapsuleRig rig = make_capsule_rig(skeleton, rig_options);
     if (skinned) {
-      fit_capsule_radii(rig, skeleton, skinned->rest_vertices, skinned->weights, skinned->joint_rest);
+      fit_capsules_to_body(rig, skeleton, *skinned, request.radii);
       character.fittedCapsules = true;
-      // The overrides win over the fit, as they win over the defaults.
-      std::vector<BoneCapsule> kept;
-      for (BoneCapsule bone : rig.bones) {
-        const auto it = request.radii.find(skeleton.joints[bone.joint].name);
-        if (it != request.radii.end()) std::tie(bone.radius_head, bone.radius_tail) = it->second;
-        if (bone.radius_head > 0.0 || bone.radius_tail > 0.0) kept.push_back(bone);
-      }
-      rig.bones = std::move(kept);
     }
     // The garment must start outside every capsule: shrink those it starts
     // inside (fitted capsules stand out of a body wherever it is narrower

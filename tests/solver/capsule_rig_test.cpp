@@ -624,6 +624,27 @@ TEST(CapsuleRig, LegBridgesSpanTheLegsAtHalfBones) {
   }
 }
 
+TEST(CapsuleRig, FitToABodyLetsOverridesWinAndDropsEmptyBones) {
+  // An empty body leaves the fit at the defaults (FitKeepsRadiiWithoutVertices);
+  // the overrides then replace a bone's radii, and (0, 0) removes it.
+  const Skeleton skeleton = cmu_like();
+  CapsuleRig rig = make_capsule_rig(skeleton);
+  const CapsuleRig defaults = rig;
+  SkinnedBody body;
+  body.rest_vertices = Eigen::MatrixX3d(0, 3);
+  const std::string thigh = "LeftUpLeg", shin = "RightLeg";
+  fit_capsules_to_body(rig, skeleton, body, {{thigh, {0.08, 0.06}}, {shin, {0.0, 0.0}}});
+  ASSERT_EQ(rig.bones.size() + 1, defaults.bones.size()) << "one bone removed";
+  for (const BoneCapsule& bone : rig.bones) {
+    const std::string& name = skeleton.joints[static_cast<std::size_t>(bone.joint)].name;
+    EXPECT_NE(name, shin);
+    if (name == thigh) {
+      EXPECT_EQ(bone.radius_head, 0.08);
+      EXPECT_EQ(bone.radius_tail, 0.06);
+    }
+  }
+}
+
 TEST(CapsuleRig, AutomaticLegBridgesByLoopsAndHemHeight) {
   // Reach 1 (knees) for a two-loop garment whose lowest point is at or
   // above the knees' rest height, 2 (ankles) below it, 0 for other loop
