@@ -5,11 +5,8 @@
 // ../shared/data is absent. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
-const garment = sharedDir + "/garments/makehuman/skirthelper.obj";
-const clip = sharedDir + "/motions/cmu_mb/07_06.bvh";
-const makehuman = sharedDir + "/bodies/makehuman";
 core.include("test_asserts.js");
-skipUnlessFiles([garment, clip, makehuman + "/base.obj"]);
+const {garment, clip, body} = sharedMakeHuman(sharedDir, "skirthelper.obj", "capsules");
 
 core.makePath(tmpDir);
 const coarse = core.loadObject(garment, {units: "dm"});
@@ -18,8 +15,7 @@ expectEqual(core.objectInfo(high).vertices, 11088, "the shared skirt refined twi
 const frames = 8, pc2 = tmpDir + "/instance_short.pc2";
 const record = multirescloth.recordInstance(high, {
   motion: {path: clip, units: "cmu"}, place: "makehuman", preroll: 0.2, frames: frames, fps: 60, output: pc2,
-  body: {type: "capsules", obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
-         weights: makehuman + "/rigs/default_weights.mhw"}});
+  body: body});
 expectEqual([record.frames, record.nonFinite], [frames, false], "the recording");
 expectEqual(core.fileSize(pc2), 32 + frames * 11088 * 12, "PC2 size");
 

@@ -6,18 +6,13 @@
 // Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
-const garment = sharedDir + "/garments/makehuman/skirthelper.obj";
-const clip = sharedDir + "/motions/cmu_mb/07_06.bvh";
-const makehuman = sharedDir + "/bodies/makehuman";
 core.include("test_asserts.js");
-skipUnlessFiles([garment, clip, makehuman + "/base.obj"]);
+const {garment, clip, body} = sharedMakeHuman(sharedDir, "skirthelper.obj", "mesh");
 
 core.makePath(tmpDir);
 const skirt = core.loadObject(garment, {units: "dm"});
 const info = core.objectInfo(skirt);
 const frames = 60, pc2 = tmpDir + "/skirthelper_07_06.pc2";
-const body = {type: "mesh", obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
-              weights: makehuman + "/rigs/default_weights.mhw"};
 const report = multirescloth.simulate(skirt, {
   motion: {path: clip, units: "cmu"}, body: body, place: "makehuman", preroll: 0.5, frames: frames, output: pc2});
 

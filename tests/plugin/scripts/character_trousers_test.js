@@ -4,22 +4,17 @@
 // ../shared/data is absent. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
-const garment = sharedDir + "/garments/makehuman/male_casualsuit04_pants_on_base.obj";
-const clip = sharedDir + "/motions/cmu_mb/07_06.bvh";
-const makehuman = sharedDir + "/bodies/makehuman";
 core.include("test_asserts.js");
-skipUnlessFiles([garment, clip, makehuman + "/base.obj"]);
+const {garment, clip, body: files} = sharedMakeHuman(sharedDir, "male_casualsuit04_pants_on_base.obj", "mesh");
 
 core.makePath(tmpDir);
 const frames = 60;
-const files = {obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
-               weights: makehuman + "/rigs/default_weights.mhw"};
 for (const type of ["mesh", "capsules"]) {
   const trousers = core.loadObject(garment, {units: "dm"});
   const info = core.objectInfo(trousers);
   const pc2 = tmpDir + "/trousers_07_06_" + type + ".pc2";
   const report = multirescloth.recordInstance(trousers, {
-    motion: {path: clip, units: "cmu"}, body: Object.assign({type: type}, files), place: "makehuman",
+    motion: {path: clip, units: "cmu"}, body: Object.assign({}, files, {type: type}), place: "makehuman",
     preroll: 0.5, frames: frames, output: pc2});
   print("character trousers (" + type + "): initialPenetration " + (1000 * report.preroll.initialPenetration).toFixed(2) +
         " mm, maxPenetration " + (1000 * report.maxPenetration).toFixed(2) + " mm, maxStretch " +

@@ -62,3 +62,18 @@ function skipUnlessFiles(paths) {
       core.exitApplication(77);
     }
 }
+
+/// The shared MakeHuman inputs a character test needs: the garment file
+/// (decimetres), CMU 07_06 and the body's files as a `body` option of type
+/// `bodyType`. Skips the script (exit 77) unless all of them exist.
+function sharedMakeHuman(sharedDir, garmentFile, bodyType) {
+  const makehuman = sharedDir + "/bodies/makehuman";
+  const inputs = {
+    garment: sharedDir + "/garments/makehuman/" + garmentFile,
+    clip: sharedDir + "/motions/cmu_mb/07_06.bvh",
+    body: {type: bodyType, obj: makehuman + "/base.obj", skeleton: makehuman + "/rigs/cmu_mb.mhskel",
+           weights: makehuman + "/rigs/default_weights.mhw"},
+  };
+  skipUnlessFiles([inputs.garment, inputs.clip, inputs.body.obj, inputs.body.skeleton, inputs.body.weights]);
+  return inputs;
+}
