@@ -27,7 +27,7 @@ constexpr double kSeries[kSeriesTerms] = {
     -1.0 / 8841761993739701954543616000000.0, 1.0 / 8222838654177922817725562880000000.0};
 
 /// 1 - sinc(x) and its slope (sin x - x cos x) / x^2 (> 0 on (0, pi]),
-/// together: one sin/cos pair per Newton step.
+/// together, for a Newton step.
 struct Residual {
   double value, slope;
 };
@@ -66,19 +66,12 @@ double newton_start(double s) {
 
 double one_minus_sinc(double x) {
   x = std::abs(x);
-  if (x < kSeriesBelow) {
-    // sum_n (-1)^(n+1) x^(2n) / (2n+1)!, to n = 10: the next term is below
-    // 1e-19 of the sum for x < 1.
-    const double y = x * x;
-    constexpr double c[] = {1.0 / 6.0,           -1.0 / 120.0,          1.0 / 5040.0,
-                            -1.0 / 362880.0,     1.0 / 39916800.0,      -1.0 / 6227020800.0,
-                            1.0 / 1307674368000.0, -1.0 / 355687428096000.0, 1.0 / 121645100408832000.0,
-                            -1.0 / 51090942171709440000.0};
-    double sum = 0.0;
-    for (int k = 9; k >= 0; --k) sum = sum * y + c[k];
-    return sum * y;
-  }
-  return 1.0 - std::sin(x) / x;
+  if (x >= kSeriesBelow) return 1.0 - std::sin(x) / x;
+  // The series to n = 10: the next term is below 1e-19 of the sum for x < 1.
+  const double y = x * x;
+  double sum = 0.0;
+  for (int n = 10; n >= 1; --n) sum = sum * y + kSeries[n - 1];
+  return sum * y;
 }
 
 double inverse_sinc(double ratio) {
