@@ -106,6 +106,7 @@ class CapsuleBody : public CollisionScene {
   double penetration(const Eigen::Vector3d& p) const override;
   bool empty() const override { return colliders_.empty(); }
   const std::vector<Collider>& colliders() const { return colliders_; }
+  const CapsuleRig& rig() const { return rig_; }
 
  private:
   CapsuleRig rig_;

@@ -74,6 +74,17 @@ void SkinnedPosedBody::set_pose(const Pose& pose) {
 
 const CollisionScene& SkinnedPosedBody::scene() const { return *scene_; }
 
+BodySurface SkinnedPosedBody::surface(const Pose& pose) const {
+  BodySurface surface;
+  surface.vertices = skin(body_, skeleton_, pose);
+  surface.faces.reserve(body_.triangles.size());
+  for (const Eigen::Vector3i& t : body_.triangles) surface.faces.push_back({t[0], t[1], t[2]});
+  if (bridges_)
+    append_surface(surface, capsule_surface(posed_capsules(bridges_->rig(),
+                                                           proportioned_pose(skeleton_, body_.joint_rest, pose))));
+  return surface;
+}
+
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = rest_pose(motion.skeleton);
   const Pose first = pose_at(motion, options.motion_start);
@@ -245,6 +256,25 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
   const double knee_height =
       std::max(rest.position(skeleton.find("LeftLeg")).y(), rest.position(skeleton.find("RightLeg")).y());
   return placed_points.col(1).minCoeff() >= knee_height ? 1.0 : 2.0;
+}
+
+void write_body_cache(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
+                      const std::string& cache_path, const std::string& obj_path) {
+  check(options, motion);
+  std::unique_ptr<Pc2Writer> writer;
+  BodySurface first;
+  for (int f = 0; f < options.frames; ++f) {
+    // The garment's output frame f is taken after (f + 1) frame intervals of the motion.
+    const double time = options.preroll_seconds + static_cast<double>(f + 1) / options.fps;
+    BodySurface surface = body.surface(character_pose(motion, time, options));
+    if (!writer) writer = std::make_unique<Pc2Writer>(cache_path, static_cast<int>(surface.vertices.rows()));
+    writer->add_frame(surface.vertices);
+    if (f == 0) first = std::move(surface);
+  }
+  if (!writer) return;
+  writer->finish();
+  // After the cache, so a failed cache leaves no rest mesh without it.
+  if (!obj_path.empty()) write_obj(obj_path, first.vertices, first.faces);
 }
 
 }  // namespace mrcloth

@@ -4,6 +4,7 @@
 // to the first motion frame, then the motion, recorded frame by frame.
 #include "body_capsules.h"
 #include "body_skinned_mesh.h"
+#include "body_surface.h"
 #include "simulate.h"
 #include "skeleton.h"
 
@@ -20,6 +21,9 @@ class PosedBody {
   virtual ~PosedBody() = default;
   virtual void set_pose(const Pose& pose) = 0;
   virtual const CollisionScene& scene() const = 0;
+  /// The body's surface in `pose`, for drawing (same faces for every pose;
+  /// the collision state is untouched).
+  virtual BodySurface surface(const Pose& pose) const = 0;
 };
 
 /// Capsules along the bones (CapsuleRig), posed by FK; with `joint_rest`
@@ -31,6 +35,9 @@ class CapsulePosedBody : public PosedBody {
       : body_(std::move(rig), skeleton), skeleton_(skeleton), joint_rest_(std::move(joint_rest)) {}
   void set_pose(const Pose& pose) override { body_.pose(proportioned_pose(skeleton_, joint_rest_, pose)); }
   const CollisionScene& scene() const override { return body_; }
+  BodySurface surface(const Pose& pose) const override {
+    return capsule_surface(posed_capsules(body_.rig(), proportioned_pose(skeleton_, joint_rest_, pose)));
+  }
 
  private:
   CapsuleBody body_;
@@ -48,6 +55,7 @@ class SkinnedPosedBody : public PosedBody {
   ~SkinnedPosedBody() override;
   void set_pose(const Pose& pose) override;
   const CollisionScene& scene() const override;
+  BodySurface surface(const Pose& pose) const override;  ///< the skinned mesh, then the bridges
 
  private:
   class MeshAndBridges;
@@ -154,5 +162,11 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
                                          PosedBody& body, const CharacterRunOptions& options,
                                          const SimulationProgress& progress = {},
                                          std::vector<Positions>* frames_out = nullptr);
+
+/// The body at every output frame of a character run (the times the
+/// garment's cache holds) as a PC2 cache at `cache_path`, and its first
+/// frame as the OBJ rest mesh at `obj_path` (empty: none). Atomic.
+void write_body_cache(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
+                      const std::string& cache_path, const std::string& obj_path);
 
 }  // namespace mrcloth

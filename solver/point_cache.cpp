@@ -379,16 +379,21 @@ std::vector<std::string> write_obj_sequence(const std::string& prefix, const std
   paths.reserve(frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::string path = sequence_path(prefix, k, frames.size());
-    const std::string text = obj_text(frames[k], faces);
-    write_file_atomically(path, ".obj", [&](const std::string& temporary) {
-      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      out.close();
-      return !out.fail();
-    });
+    write_obj(path, frames[k], faces);
     paths.push_back(path);
   }
   return paths;
+}
+
+void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces) {
+  check_obj_sequence(path, {positions}, faces);
+  const std::string text = obj_text(positions, faces);
+  write_file_atomically(path, ".obj", [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.close();
+    return !out.fail();
+  });
 }
 
 }  // namespace mrcloth

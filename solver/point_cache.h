@@ -87,4 +87,8 @@ class Pc2Reader {
 std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
                                             const std::vector<std::vector<int>>& faces);
 
+/// Writes one OBJ mesh (positions #points x 3, faces as 0-based vertex-index
+/// polygons) atomically: the rest mesh beside a cache. Throws OutputError.
+void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces);
+
 }  // namespace mrcloth

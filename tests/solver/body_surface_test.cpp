@@ -1,0 +1,135 @@
+// Drawing surfaces of collision bodies: tessellated capsules lie on the
+// exact capsule, are closed and face outwards; the body cache holds the
+// body at the garment cache's frame times.
+#include "solver/body_surface.h"
+#include "solver/character_sim.h"
+#include "solver/point_cache.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace mrcloth {
+namespace {
+
+Collider capsule(Eigen::Vector3d a, Eigen::Vector3d b, double ra, double rb) {
+  Collider c;
+  c.shape = CapsuleCollider{a, b, ra, rb};
+  return c;
+}
+
+/// Edge -> how many faces use it in each direction.
+std::map<std::pair<int, int>, int> directed_edges(const BodySurface& s) {
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& face : s.faces)
+    for (std::size_t k = 0; k < face.size(); ++k) ++edges[{face[k], face[(k + 1) % face.size()]}];
+  return edges;
+}
+
+/// Signed volume of a closed polygon surface (fans from vertex 0 of each face).
+double signed_volume(const BodySurface& s) {
+  double volume = 0.0;
+  for (const auto& face : s.faces)
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+      const Eigen::Vector3d a = s.vertices.row(face[0]), b = s.vertices.row(face[k]), c = s.vertices.row(face[k + 1]);
+      volume += a.dot(b.cross(c)) / 6.0;
+    }
+  return volume;
+}
+
+TEST(CapsuleSurface, CountsForOneCapsule) {
+  const int segments = 12, rings = 3;
+  const BodySurface s = capsule_surface({capsule({0, 0, 0}, {0, 1, 0}, 0.2, 0.1)}, segments, rings);
+  // Two poles, and 2 (rings + 1) profile points minus the poles as rings.
+  EXPECT_EQ(s.vertices.rows(), 2 + (2 * (rings + 1) - 2) * segments);
+  // Per segment: two pole triangles and one quad between each pair of rings.
+  EXPECT_EQ(s.faces.size(), static_cast<std::size_t>(segments * (2 + (2 * (rings + 1) - 3))));
+}
+
+TEST(CapsuleSurface, VerticesLieOnTheExactTaperedCapsule) {
+  const std::vector<Collider> capsules = {capsule({0.1, 0.2, 0.3}, {0.4, 0.9, -0.2}, 0.15, 0.05),
+                                          capsule({0, 0, 0}, {0, 0, 0.5}, 0.08, 0.08),
+                                          capsule({1, 0, 0}, {1, 0.3, 0}, 0.05, 0.2)};
+  const BodySurface s = capsule_surface(capsules, 16, 4);
+  ASSERT_EQ(s.vertices.rows(), 3 * (2 + 8 * 16));
+  const int per_capsule = 2 + 8 * 16;
+  for (Eigen::Index v = 0; v < s.vertices.rows(); ++v) {
+    const Collider& c = capsules[static_cast<std::size_t>(v / per_capsule)];
+    EXPECT_NEAR(query_surface(c, s.vertices.row(v).transpose()).distance, 0.0, 1e-12) << "vertex " << v;
+  }
+}
+
+TEST(CapsuleSurface, ClosedAndOutwardFacing) {
+  const std::vector<Collider> capsules = {capsule({0, 0, 0}, {0.3, 0.5, 0.1}, 0.12, 0.04),
+                                          capsule({2, 0, 0}, {2, 1, 0}, 0.1, 0.1)};
+  const BodySurface s = capsule_surface(capsules, 10, 2);
+  // Closed and consistently oriented: every directed edge once, its reverse once.
+  for (const auto& [edge, count] : directed_edges(s)) {
+    EXPECT_EQ(count, 1) << edge.first << "-" << edge.second;
+    const auto reverse = directed_edges(s).count({edge.second, edge.first});
+    EXPECT_EQ(reverse, 1u) << edge.first << "-" << edge.second;
+  }
+  // Outward: positive volume, below the exact volume of the (convex) capsules and near it.
+  const double pi = 3.14159265358979323846;
+  const double cylinder = pi * 0.1 * 0.1 * 1.0 + 4.0 / 3.0 * pi * 0.001;
+  const BodySurface second = capsule_surface({capsules[1]}, 64, 16);
+  EXPECT_GT(signed_volume(second), 0.97 * cylinder);
+  EXPECT_LT(signed_volume(second), cylinder);
+  EXPECT_GT(signed_volume(s), 0.0);
+}
+
+TEST(CapsuleSurface, NestedSpheresGiveTheLargerSphere) {
+  const BodySurface s = capsule_surface({capsule({0, 0, 0}, {0, 0.01, 0}, 0.2, 0.05)}, 8, 2);
+  for (Eigen::Index v = 0; v < s.vertices.rows(); ++v)
+    EXPECT_NEAR(s.vertices.row(v).norm(), 0.2, 1e-12) << "vertex " << v;
+}
+
+TEST(CapsuleSurface, PlanesAndSpheresAreSkippedAndBadCountsRefused) {
+  Collider plane;
+  plane.shape = PlaneCollider{};
+  EXPECT_EQ(capsule_surface({plane}).vertices.rows(), 0);
+  EXPECT_THROW(capsule_surface({}, 2, 1), std::exception);
+  EXPECT_THROW(capsule_surface({}, 8, 0), std::exception);
+}
+
+TEST(CapsuleSurface, AppendShiftsIndices) {
+  BodySurface a = capsule_surface({capsule({0, 0, 0}, {0, 1, 0}, 0.1, 0.1)}, 4, 1);
+  const BodySurface b = capsule_surface({capsule({1, 0, 0}, {1, 1, 0}, 0.1, 0.1)}, 4, 1);
+  const BodySurface both = capsule_surface({capsule({0, 0, 0}, {0, 1, 0}, 0.1, 0.1),
+                                            capsule({1, 0, 0}, {1, 1, 0}, 0.1, 0.1)}, 4, 1);
+  append_surface(a, b);
+  EXPECT_EQ(a.vertices, both.vertices);
+  EXPECT_EQ(a.faces, both.faces);
+}
+
+TEST(BodyCache, HoldsTheBodyAtTheGarmentsFrameTimes) {
+  const Motion motion = read_bvh(std::string(MRCLOTH_RESOURCES) + "/characters/walk_instance.bvh");
+  CapsulePosedBody body(make_capsule_rig(motion.skeleton), motion.skeleton);
+  CharacterRunOptions options;
+  options.frames = 5;
+  options.fps = 30.0;
+  options.preroll_seconds = 0.5;
+  const auto folder = std::filesystem::path(std::getenv("MRCLOTH_TEST_TMP") ? std::getenv("MRCLOTH_TEST_TMP") : ".");
+  std::filesystem::create_directories(folder);
+  const std::string cache = (folder / "body_cache_test.pc2").string();
+  const std::string obj = (folder / "body_cache_test.obj").string();
+  std::remove(obj.c_str());
+  write_body_cache(motion, body, options, cache, obj);
+  const PointCache read = read_pc2(cache);
+  ASSERT_EQ(read.frames.size(), 5u);
+  for (int f = 0; f < 5; ++f) {
+    const BodySurface expected = body.surface(character_pose(motion, 0.5 + (f + 1) / 30.0, options));
+    ASSERT_EQ(read.num_points, expected.vertices.rows());
+    // PC2 stores floats.
+    EXPECT_LT((read.frames[static_cast<std::size_t>(f)] - expected.vertices).cwiseAbs().maxCoeff(), 1e-6) << f;
+  }
+  EXPECT_TRUE(std::filesystem::exists(obj));
+}
+
+}  // namespace
+}  // namespace mrcloth
