@@ -106,6 +106,17 @@ QuadMesh copy_mesh(const QuadMesh& mesh) {
   return copy;
 }
 
+std::vector<std::vector<int>> active_face_polygons(const QuadMesh& mesh) {
+  std::vector<std::vector<int>> faces;
+  faces.reserve(mesh.n_faces());
+  for (const auto face : mesh.faces()) {
+    std::vector<int> polygon;
+    for (const auto vertex : mesh.fv_range(face)) polygon.push_back(vertex.idx());
+    faces.push_back(std::move(polygon));
+  }
+  return faces;
+}
+
 }  // namespace mrcloth
 
 namespace OpenMesh::IO {

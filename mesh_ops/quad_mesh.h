@@ -89,6 +89,10 @@ std::vector<std::size_t> vertices_per_level(const QuadMesh& mesh);
 /// Number of vertices flagged hanging.
 std::size_t count_hanging(const QuadMesh& mesh);
 
+/// Every active face as its polygon of vertex indices (hanging vertices
+/// included), in face order: for OBJ sequences and previews.
+std::vector<std::vector<int>> active_face_polygons(const QuadMesh& mesh);
+
 /// A deep copy including every property (OpenMesh's assignment copies properties).
 QuadMesh copy_mesh(const QuadMesh& mesh);
 

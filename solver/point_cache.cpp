@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <system_error>
 
 namespace mrcloth {
@@ -394,6 +396,53 @@ void write_obj(const std::string& path, const FramePositions& positions, const s
     out.close();
     return !out.fail();
   });
+}
+
+ObjMesh read_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open");
+  std::vector<Eigen::Vector3d> points;
+  ObjMesh mesh;
+  std::string line;
+  int line_number = 0;
+  const auto fail = [&](const std::string& what) {
+    throw InputError(path + ":" + std::to_string(line_number) + ": " + what);
+  };
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::istringstream fields(line);
+    std::string tag;
+    fields >> tag;
+    if (tag == "v") {
+      Eigen::Vector3d p;
+      if (!(fields >> p.x() >> p.y() >> p.z())) fail("expected 'v x y z'");
+      points.push_back(p);
+    } else if (tag == "f") {
+      std::vector<int> face;
+      std::string corner;
+      while (fields >> corner) {
+        std::size_t used = 0;
+        long index = 0;
+        try {
+          index = std::stol(corner, &used);
+        } catch (const std::exception&) {
+          fail("expected a vertex index, got '" + corner + "'");
+        }
+        if (used < corner.size() && corner[used] != '/') fail("expected a vertex index, got '" + corner + "'");
+        const long count = static_cast<long>(points.size());
+        const long zero_based = index > 0 ? index - 1 : count + index;
+        if (index == 0 || zero_based < 0 || zero_based >= count)
+          fail("vertex index " + std::to_string(index) + " out of range (" + std::to_string(count) +
+               " vertices so far)");
+        face.push_back(static_cast<int>(zero_based));
+      }
+      if (face.size() < 3) fail("a face needs at least 3 vertices");
+      mesh.faces.push_back(std::move(face));
+    }
+  }
+  mesh.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t k = 0; k < points.size(); ++k) mesh.positions.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
+  return mesh;
 }
 
 }  // namespace mrcloth

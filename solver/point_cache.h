@@ -91,4 +91,16 @@ std::vector<std::string> write_obj_sequence(const std::string& prefix, const std
 /// polygons) atomically: the rest mesh beside a cache. Throws OutputError.
 void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces);
 
+/// An OBJ file's vertices and polygons (what write_obj writes).
+struct ObjMesh {
+  FramePositions positions;               ///< #points x 3
+  std::vector<std::vector<int>> faces;    ///< 0-based vertex indices
+};
+
+/// Reads the `v` and `f` lines of an OBJ file (face corners may be written
+/// v, v/t, v//n or v/t/n; negative indices count from the end); other lines
+/// are ignored. Throws InputError naming the file and line for a malformed
+/// or out-of-range entry.
+ObjMesh read_obj(const std::string& path);
+
 }  // namespace mrcloth

@@ -339,5 +339,42 @@ TEST(ObjSequence, RefusesInconsistentInputBeforeWritingAnything) {
   EXPECT_TRUE(write_obj_sequence(prefix, {}, {}).empty());
 }
 
+TEST(Obj, WriteThenReadGivesTheSamePolygons) {
+  const fs::path dir = empty_folder("obj_round_trip");
+  const FramePositions positions = random_frames(1, 6, 3).front();
+  const std::vector<std::vector<int>> faces = {{0, 1, 2}, {2, 3, 4, 5}, {5, 4, 1}};
+  const std::string path = (dir / "mesh.obj").string();
+  write_obj(path, positions, faces);
+  const ObjMesh read = read_obj(path);
+  EXPECT_EQ(read.faces, faces);
+  ASSERT_EQ(read.positions.rows(), 6);
+  // write_obj keeps 9 significant digits: the float precision of the PC2 it goes with.
+  EXPECT_LT((read.positions - positions).cwiseAbs().maxCoeff(), 1e-8 * positions.cwiseAbs().maxCoeff());
+  EXPECT_EQ(folder_contents(dir), std::vector<std::string>{"mesh.obj"});
+}
+
+TEST(Obj, ReadsCornerFormsAndNegativeIndicesAndIgnoresOtherLines) {
+  const fs::path dir = empty_folder("obj_forms");
+  std::ofstream((dir / "forms.obj").string()) << "# comment\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\n"
+                                                 "vt 0 0\nf 1/1/1 2//1 3/1\nf -3 -2 -1\n";
+  const ObjMesh read = read_obj((dir / "forms.obj").string());
+  EXPECT_EQ(read.faces, (std::vector<std::vector<int>>{{0, 1, 2}, {0, 1, 2}}));
+  EXPECT_EQ(read.positions.rows(), 3);
+}
+
+TEST(Obj, MalformedLinesAreNamed) {
+  const fs::path dir = empty_folder("obj_bad");
+  const auto write = [&](const std::string& text) {
+    std::ofstream((dir / "bad.obj").string()) << text;
+    return (dir / "bad.obj").string();
+  };
+  expect_error<InputError>([&] { read_obj(write("v 0 0 0\nv 1 x 0\n")); }, {"bad.obj:2:", "v x y z"});
+  expect_error<InputError>([&] { read_obj(write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")); },
+                           {"bad.obj:4:", "vertex index 4 out of range"});
+  expect_error<InputError>([&] { read_obj(write("v 0 0 0\nv 1 0 0\nf 1 2\n")); }, {"bad.obj:3:", "at least 3"});
+  expect_error<InputError>([&] { read_obj(write("v 0 0 0\nf a b c\n")); }, {"bad.obj:2:", "'a'"});
+  expect_error<InputError>([&] { read_obj((dir / "missing.obj").string()); }, {"missing.obj", "cannot open"});
+}
+
 }  // namespace
 }  // namespace mrcloth
