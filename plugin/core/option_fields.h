@@ -1,9 +1,9 @@
 #pragma once
 // Strict reading of one options object (the top level of simulate's options
 // or a nested one such as "material", "colliders[1]", "motion", "body"),
-// shared by simulation_options.cpp and character_options.cpp. Errors name
+// shared by the plugins (simulate's options, the preview options). Errors name
 // the full key: "option 'colliders[1].radius' must be a number > 0, got the
-// number -1". Internal to the plugin.
+// number -1".
 #include "mesh_ops/errors.h"
 #include "plugin/core/script_values.h"
 

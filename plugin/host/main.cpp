@@ -12,7 +12,7 @@
 #include "script_api.h"
 #include "script_core.h"
 
-#include <QCoreApplication>
+#include <QGuiApplication>
 #include <QJSEngine>
 
 #include <cstdio>
@@ -56,7 +56,20 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
 }  // namespace
 
 int main(int argc, char* argv[]) {
-  QCoreApplication application(argc, argv);
+  // A GUI application for fonts and images (previews), on Qt's offscreen
+  // platform: the host never opens a window and needs no display or GPU.
+  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  // The offscreen platform never uses the runtime folder that Qt warns about
+  // on machines without a login session (batch jobs, CI); keep stderr for
+  // what matters. The host log's handler takes over once it exists.
+  const QtMessageHandler default_handler = qInstallMessageHandler(nullptr);
+  static QtMessageHandler forward = default_handler;
+  qInstallMessageHandler([](QtMsgType type, const QMessageLogContext& context, const QString& message) {
+    if (message.startsWith(QLatin1String("QStandardPaths: XDG_RUNTIME_DIR not set"))) return;
+    if (forward) forward(type, context, message);
+    else std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
+  });
+  QGuiApplication application(argc, argv);
   QCoreApplication::setApplicationName(QStringLiteral("mrcloth"));
   QCoreApplication::setApplicationVersion(QStringLiteral(MRCLOTH_VERSION));
 
@@ -76,7 +89,7 @@ int main(int argc, char* argv[]) {
     std::printf("mrcloth %s\n", MRCLOTH_VERSION);
     return 0;
   }
-  if (!command.api && command.scriptPath.isEmpty()) {
+  if (!command.api && !command.pipeline && command.scriptPath.isEmpty()) {
     std::fputs("[error] nothing to do: give a script with -b <script.js>, or --api, or --help\n\n", stderr);
     printUsage(stderr);
     return 2;
@@ -88,6 +101,7 @@ int main(int argc, char* argv[]) {
   PluginRegistry plugins(log, store);
   plugins.loadFolder(command.pluginFolder.isEmpty() ? PluginRegistry::defaultFolder() : command.pluginFolder);
   ScriptCore core(store, log, command.scriptArguments);
+  if (command.pipeline) command.scriptPath = core.resourcePath() + QStringLiteral("/scripts/pipeline.js");
   core.setScriptPath(command.scriptPath);
 
   if (command.api) {

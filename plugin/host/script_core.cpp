@@ -191,6 +191,25 @@ void ScriptCore::writeTextFile(QVariant path, QVariant text) {
   });
 }
 
+QString ScriptCore::readTextFile(QVariant path) {
+  return guarded("readTextFile", [&] {
+    const QString name = script::toString(path, QStringLiteral("path"));
+    QFile in(existingFile(name).filePath());
+    if (!in.open(QIODevice::ReadOnly)) throw InputError(name.toStdString() + ": cannot read (" + in.errorString().toStdString() + ")");
+    return QString::fromUtf8(in.readAll());
+  });
+}
+
+bool ScriptCore::fileReadable(QVariant path) {
+  return guarded("fileReadable", [&] {
+    const QFileInfo info(script::toString(path, QStringLiteral("path")));
+    if (!info.isFile()) return false;
+    // isReadable() trusts permission bits; opening is what counts.
+    QFile file(info.filePath());
+    return file.open(QIODevice::ReadOnly);
+  });
+}
+
 bool ScriptCore::fileExists(QVariant path) {
   return guarded("fileExists", [&] { return QFileInfo::exists(script::toString(path, QStringLiteral("path"))); });
 }
@@ -333,6 +352,15 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "any file there (OutputError naming the path if its folder is missing)."),
        {QStringLiteral("path"), QStringLiteral("text")},
        {QStringLiteral("file to write"), QStringLiteral("its contents, e.g. JSON.stringify(report)")}},
+      {QStringLiteral("readTextFile(string path) -> string"),
+       QStringLiteral("Returns a text file's contents (UTF-8), e.g. for JSON.parse (InputError if it is missing or "
+                      "unreadable)."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file to read")}},
+      {QStringLiteral("fileReadable(string path) -> bool"),
+       QStringLiteral("Returns whether the path is a file this process can open for reading."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file")}},
       {QStringLiteral("fileExists(string path) -> bool"),
        QStringLiteral("Returns whether the file or folder exists."),
        {QStringLiteral("path")},

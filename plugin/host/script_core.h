@@ -57,6 +57,8 @@ class ScriptCore : public QObject, public ScriptInterface {
   double fileSize(QVariant path);
   bool filesEqual(QVariant pathA, QVariant pathB);
   void writeTextFile(QVariant path, QVariant text);
+  QString readTextFile(QVariant path);
+  bool fileReadable(QVariant path);
   bool include(QVariant path);
 
  private:

@@ -229,7 +229,7 @@ Motion withoutFirstFrame(const Motion& motion) {
 QStringList characterOptionKeys() {
   return {QStringLiteral("motion"), QStringLiteral("body"),    QStringLiteral("place"),
           QStringLiteral("waist"),  QStringLiteral("preroll"), QStringLiteral("stepRate"),
-          QStringLiteral("skipFirst")};
+          QStringLiteral("skipFirst"), QStringLiteral("bodyOutput")};
 }
 
 CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {

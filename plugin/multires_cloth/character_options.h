@@ -4,7 +4,7 @@
 // checked strictly, then the BVH motion, the collision body and the garment
 // placement they ask for, loaded for solver/character_sim.h. The waist
 // (`waist` / `pins`) is parsed with the other pins in simulation_options.cpp.
-#include "option_fields.h"
+#include "plugin/core/option_fields.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/body_skinned_mesh.h"
 #include "solver/character_sim.h"
@@ -62,6 +62,7 @@ struct CharacterRequest {
   GarmentPlacement place = GarmentPlacement::none;
   double prerollSeconds = 1.0;
   double stepRate = 120.0;      ///< time steps per second
+  QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
 };
 
 /// The top-level keys only a character run accepts (each needs `motion`).
@@ -109,7 +110,8 @@ QString placementName(GarmentPlacement place);
 /// msPerFrame {dynamics, collision, total}, initialPenetration, maxPenetration,
 /// nonFinite}, maxWaistError, body, motion, motionUnits, motionStart,
 /// motionDuration, skipFirst, place, stepRate, placement [dx, dy, dz], legBridges,
-/// capsulesShrunk, waistFollows ("pelvis" | "skin").
+/// capsulesShrunk, waistFollows ("pelvis" | "skin"); with bodyOutput,
+/// bodyCache and bodyMesh (added by the caller once written).
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const LoadedCharacter& character, const CharacterRunOptions& run);
 

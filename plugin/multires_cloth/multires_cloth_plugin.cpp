@@ -8,6 +8,7 @@
 #include "mesh_ops/mode_painting.h"
 #include "mesh_ops/quad_mesh.h"
 #include "mesh_ops/uniform_refine.h"
+#include "plugin/core/job_scope.h"
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
@@ -30,26 +31,6 @@
 namespace mrcloth {
 namespace {
 
-/// Announces a job of `steps` steps to the host for as long as it is alive,
-/// so that a job that throws is still reported finished.
-class JobScope {
- public:
-  JobScope(ProcessInterface& process, QString id, const QString& description, int steps = 1)
-      : process_(process), id_(std::move(id)), steps_(steps) {
-    process_.startJob(id_, description, 0, steps_);
-  }
-  ~JobScope() { process_.finishJob(id_); }
-  void progress(int steps_done) { process_.setJobState(id_, steps_done); }
-  void done() { process_.setJobState(id_, steps_); }
-  JobScope(const JobScope&) = delete;
-  JobScope& operator=(const JobScope&) = delete;
-
- private:
-  ProcessInterface& process_;
-  QString id_;
-  int steps_;
-};
-
 double millisecondsSince(const QElapsedTimer& timer) { return static_cast<double>(timer.nsecsElapsed()) / 1e6; }
 
 QString describeObject(const StoredObject& object) {
@@ -63,6 +44,21 @@ ColorBy toColorBy(const QString& name) {
   return ColorBy::none;
 }
 
+/// `<folder>/<name>.obj` for a cache `<folder>/<name>.pc2`: where a cache's rest mesh goes.
+QString restMeshPath(const std::string& cache_path) {
+  const QFileInfo cache(QString::fromStdString(cache_path));
+  return cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
+}
+
+/// The mesh a cache animates, as OBJ beside it (Blender's Mesh Cache
+/// modifier goes on this mesh); empty when there is no cache.
+QString writeRestMesh(const QuadMesh& mesh, const std::string& cache_path) {
+  if (cache_path.empty()) return {};
+  const QString path = restMeshPath(cache_path);
+  export_surface(mesh, path.toStdString());
+  return path;
+}
+
 /// The counts every refinement report shares, read from the refined mesh.
 QVariantMap meshCounts(const QuadMesh& mesh) {
   return {{QStringLiteral("vertices"), static_cast<qlonglong>(mesh.n_vertices())},
@@ -70,18 +66,6 @@ QVariantMap meshCounts(const QuadMesh& mesh) {
           {QStringLiteral("hangingNodes"), static_cast<qlonglong>(count_hanging(mesh))},
           {QStringLiteral("verticesPerLevel"), script::toVariantList(vertices_per_level(mesh))},
           {QStringLiteral("facesPerLevel"), script::toVariantList(faces_per_level(mesh))}};
-}
-
-/// Every active face as its polygon (hanging vertices included), for OBJ sequences.
-std::vector<std::vector<int>> activeFaces(const QuadMesh& mesh) {
-  std::vector<std::vector<int>> faces;
-  faces.reserve(mesh.n_faces());
-  for (const auto face : mesh.faces()) {
-    std::vector<int> polygon;
-    for (const auto vertex : mesh.fv_range(face)) polygon.push_back(vertex.idx());
-    faces.push_back(std::move(polygon));
-  }
-  return faces;
 }
 
 }  // namespace
@@ -322,8 +306,9 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     // Like the PC2 cache, the other outputs exist only for a complete run.
     QStringList obj_files;
     if (complete && !request.objSequence.isEmpty())
-      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, activeFaces(*input.mesh)))
+      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*input.mesh)))
         obj_files << QString::fromStdString(file);
+    const QString rest_mesh = complete ? writeRestMesh(*input.mesh, report.cache_path) : QString();
     int result = 0;
     if (complete && request.updateObject) {
       auto simulated = std::make_shared<QuadMesh>(
@@ -335,7 +320,8 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     last_report_.insert({{QStringLiteral("operation"), QStringLiteral("simulate")},
                          {QStringLiteral("source"), input.id},
                          {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
-                         {QStringLiteral("objFiles"), obj_files}});
+                         {QStringLiteral("objFiles"), obj_files},
+                         {QStringLiteral("restMesh"), rest_mesh}});
     if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
     if (report.initial_penetration > 0.0)
@@ -484,7 +470,6 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
-  const bool record = slot == QLatin1String("recordInstance");
   const LoadedCharacter character = loadCharacter(wanted, *input.mesh);
   const Motion& motion = *character.motion;
 
@@ -553,13 +538,13 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // Like the PC2 cache, the other outputs exist only for a complete run.
   QStringList obj_files;
   if (complete && !request.objSequence.isEmpty())
-    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, activeFaces(*garment)))
+    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*garment)))
       obj_files << QString::fromStdString(file);
-  QString rest_mesh;
-  if (complete && record) {
-    const QFileInfo cache(QString::fromStdString(motion_report.cache_path));
-    rest_mesh = cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
-    export_surface(*garment, rest_mesh.toStdString());
+  const QString rest_mesh = complete ? writeRestMesh(*garment, motion_report.cache_path) : QString();
+  QString body_mesh;
+  if (complete && !wanted.bodyOutput.isEmpty()) {
+    body_mesh = restMeshPath(wanted.bodyOutput.toStdString());
+    write_body_cache(motion, *character.body, run, wanted.bodyOutput.toStdString(), body_mesh.toStdString());
   }
   int result = 0;
   if (complete && request.updateObject) {
@@ -574,7 +559,9 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                        {QStringLiteral("source"), input.id},
                        {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
                        {QStringLiteral("objFiles"), obj_files}});
-  if (record) last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
+  last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
+  if (!body_mesh.isEmpty())
+    last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
   if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
   if (report.preroll.initial_penetration > 0.0)
@@ -719,7 +706,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
-            "steps per second >= fps = 120")}},
+            "steps per second >= fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
+            "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool). With output, the rest mesh "
+            "is written beside the cache as <name>.obj (restMesh in the report)")}},
       {QStringLiteral("extractModes(int id, string cachePath, object options = {}) -> object"),
        QStringLiteral("Learns the deformation modes of a mesh from a recorded instance (paper section 4): per "
                       "vertex, the bending curvature (1/m) over the cache's frames, its mean and population "

@@ -1,6 +1,6 @@
 #include "simulation_options.h"
 
-#include "option_fields.h"
+#include "plugin/core/option_fields.h"
 
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
@@ -245,7 +245,13 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 
   request.objSequence = checkedOutputPath(fields, QStringLiteral("objSequence"));
   request.updateObject = fields.boolean(QStringLiteral("updateObject"), request.updateObject);
-  if (character) request.character = parseCharacterOptions(fields, sim.fps);
+  if (character) {
+    request.character = parseCharacterOptions(fields, sim.fps);
+    request.character->bodyOutput = checkedOutputPath(fields, QStringLiteral("bodyOutput"));
+    if (QFileInfo(request.character->bodyOutput).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
+      fail(QStringLiteral("option 'bodyOutput' must be the body's PC2 cache (e.g. body.pc2), not an .obj: its rest "
+                          "mesh is written beside it as <name>.obj, got \"%1\"").arg(request.character->bodyOutput));
+  }
   return request;
 }
 

@@ -1,0 +1,386 @@
+#include "preview_plugin.h"
+
+#include "mesh_ops/errors.h"
+#include "plugin/core/job_scope.h"
+#include "plugin/core/object_store.h"
+#include "plugin/core/option_fields.h"
+#include "plugin/core/script_errors.h"
+#include "plugin/core/script_values.h"
+#include "plugin/render/camera.h"
+#include "plugin/render/charts.h"
+#include "plugin/render/contact_sheet.h"
+#include "plugin/render/image_io.h"
+#include "plugin/render/legend.h"
+#include "plugin/render/rasterize.h"
+#include "preview_scene.h"
+
+#include <QFileInfo>
+#include <QImage>
+#include <QDir>
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mrcloth {
+namespace {
+
+using options::Fields;
+
+/// What one render call asks for.
+struct RenderRequest {
+  int width = 800;
+  int height = 800;
+  render::Preset camera = render::Preset::front;
+  render::Projection projection = render::Projection::perspective;
+  ColorBy color_by = ColorBy::none;
+  bool wireframe = true;
+  bool legend = true;
+  QString title;
+  QString cache;            ///< garment cache; empty: the mesh's own points
+  QString body_cache;       ///< body cache; empty: no body
+  QString body_mesh;        ///< its rest OBJ (default: beside the cache)
+  int supersample = 2;
+  double margin = 0.08;
+  bool fit_all = false;     ///< fit the body too (default: the garment only)
+};
+
+const QStringList kRenderKeys = {QStringLiteral("width"),  QStringLiteral("height"),  QStringLiteral("camera"),
+                                 QStringLiteral("projection"), QStringLiteral("colorBy"), QStringLiteral("wireframe"),
+                                 QStringLiteral("legend"), QStringLiteral("title"),   QStringLiteral("cache"),
+                                 QStringLiteral("frame"),  QStringLiteral("body"),    QStringLiteral("supersample"),
+                                 QStringLiteral("margin"), QStringLiteral("fit")};
+
+QStringList presetNames() {
+  QStringList names;
+  for (const std::string& name : render::preset_names()) names << QString::fromStdString(name);
+  return names;
+}
+
+RenderRequest parseRenderOptions(const Fields& fields) {
+  RenderRequest request;
+  request.width = fields.integerAtLeast(QStringLiteral("width"), request.width, 16);
+  request.height = fields.integerAtLeast(QStringLiteral("height"), request.height, 16);
+  if (request.width > 8192 || request.height > 8192)
+    options::fail(QStringLiteral("option 'width' and 'height' must be at most 8192 pixels"));
+  request.camera = render::parse_preset(
+      fields.choice(QStringLiteral("camera"), QStringLiteral("front"), presetNames()).toStdString());
+  request.projection = fields.choice(QStringLiteral("projection"), QStringLiteral("perspective"),
+                                     {QStringLiteral("perspective"), QStringLiteral("orthographic")}) ==
+                               QLatin1String("orthographic")
+                           ? render::Projection::orthographic
+                           : render::Projection::perspective;
+  const QString color_by = fields.choice(QStringLiteral("colorBy"), QStringLiteral("none"),
+                                         {QStringLiteral("none"), QStringLiteral("mode"), QStringLiteral("level"),
+                                          QStringLiteral("curvature")});
+  request.color_by = color_by == QLatin1String("mode")        ? ColorBy::mode
+                     : color_by == QLatin1String("level")     ? ColorBy::level
+                     : color_by == QLatin1String("curvature") ? ColorBy::curvature
+                                                              : ColorBy::none;
+  request.wireframe = fields.boolean(QStringLiteral("wireframe"), request.wireframe);
+  request.legend = fields.boolean(QStringLiteral("legend"), request.legend);
+  request.title = fields.string(QStringLiteral("title"));
+  request.supersample = fields.integerAtLeast(QStringLiteral("supersample"), request.supersample, 1);
+  if (request.supersample > 4) options::fail(QStringLiteral("option 'supersample' must be 1 .. 4"));
+  request.margin = fields.numberFrom(QStringLiteral("margin"), request.margin, 0.0, false);
+  if (request.margin >= 0.45) options::fail(QStringLiteral("option 'margin' must be below 0.45 (a fraction of the image)"));
+  request.fit_all = fields.choice(QStringLiteral("fit"), QStringLiteral("garment"),
+                                  {QStringLiteral("garment"), QStringLiteral("all")}) == QLatin1String("all");
+  if (fields.has(QStringLiteral("cache")))
+    request.cache = options::existingInputFile(fields.string(QStringLiteral("cache")), fields.label(QStringLiteral("cache")));
+  if (fields.has(QStringLiteral("body"))) {
+    const Fields body(fields.required(QStringLiteral("body")), QStringLiteral("body"),
+                      {QStringLiteral("cache"), QStringLiteral("mesh")});
+    request.body_cache = options::existingInputFile(body.string(QStringLiteral("cache")), body.label(QStringLiteral("cache")));
+    const QFileInfo cache(request.body_cache);
+    request.body_mesh = body.has(QStringLiteral("mesh"))
+                            ? body.string(QStringLiteral("mesh"))
+                            : cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
+    options::existingInputFile(request.body_mesh, body.label(QStringLiteral("mesh")));
+  }
+  return request;
+}
+
+/// One picture: the garment (and body) at `frame`, framed by `framing`
+/// when given (a steady camera across a sequence), else by the garment.
+QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame,
+                   const std::optional<render::BoundingBox>& framing = std::nullopt) {
+  const Eigen::MatrixX3d positions =
+      request.cache.isEmpty()
+          ? Eigen::MatrixX3d()
+          : preview::cache_frame(request.cache.toStdString(), frame, static_cast<int>(mesh.n_vertices()));
+  preview::GarmentLayer garment = preview::garment_layer(mesh, positions, request.color_by);
+  garment.surface.wireframe = request.wireframe;
+  render::Scene scene;
+  scene.surfaces.push_back(garment.surface);
+  if (!request.body_cache.isEmpty())
+    scene.surfaces.push_back(
+        preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), frame));
+
+  render::Camera camera = render::preset_camera(request.camera, request.projection);
+  const render::BoundingBox box = framing ? *framing : request.fit_all ? render::bounds(scene) : render::bounds(garment.surface);
+  render::fit(camera, box, request.width, request.height, request.margin);
+  render::RenderOptions options;
+  options.width = request.width;
+  options.height = request.height;
+  options.supersample = request.supersample;
+  QImage image = render::render(scene, camera, options);
+  if (request.legend) {
+    render::draw_legend(image, garment.legend, render::Corner::top_right);
+    if (garment.color_bar) render::draw_color_bar(image, *garment.color_bar, render::Corner::bottom_right);
+  }
+  if (!request.title.isEmpty()) render::draw_title(image, request.title);
+  return image;
+}
+
+/// std::runtime_error / invalid_argument from the render library are the
+/// script's output or argument errors.
+template <class Body>
+auto translateRenderErrors(Body&& body) -> decltype(body()) {
+  try {
+    return body();
+  } catch (const std::invalid_argument& error) {
+    throw ArgumentError(error.what());
+  } catch (const std::logic_error& error) {
+    throw Error(error.what());
+  } catch (const Error&) {
+    throw;
+  } catch (const std::runtime_error& error) {
+    throw OutputError(error.what());
+  }
+}
+
+void savePng(const QImage& image, const QString& path) {
+  translateRenderErrors([&] { render::save_png(image, path.toStdString()); });
+}
+
+std::vector<double> numberList(const QVariant& value, const QString& what) {
+  std::vector<double> numbers;
+  const QVariantList list = script::toList(value, what);
+  for (qsizetype k = 0; k < list.size(); ++k)
+    numbers.push_back(script::toNumber(list[k], QStringLiteral("%1[%2]").arg(what).arg(k)));
+  return numbers;
+}
+
+render::ChartOptions chartSize(const Fields& fields) {
+  render::ChartOptions options;
+  options.width = fields.integerAtLeast(QStringLiteral("width"), options.width, 100);
+  options.height = fields.integerAtLeast(QStringLiteral("height"), options.height, 100);
+  return options;
+}
+
+}  // namespace
+
+template <class Body>
+auto PreviewPlugin::guarded(const char* slot, Body&& body) -> decltype(body()) {
+  return runScriptSlot(this, scriptObjectName(name()) + QLatin1Char('.') + QLatin1String(slot),
+                       [&] { return translateRenderErrors(std::forward<Body>(body)); });
+}
+
+QString PreviewPlugin::description() const {
+  return QStringLiteral("Off-screen PNG previews: renders of meshes and caches, contact sheets, charts");
+}
+
+QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) {
+  return guarded("render", [&] {
+    if (!store_) throw Error("the plugin has no object store (it must be loaded by the mrcloth host)");
+    const StoredObject& object = store_->get(script::toInt(id, QStringLiteral("id")));
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const Fields fields(options, QString(), kRenderKeys, QStringLiteral("render options"));
+    const RenderRequest request = parseRenderOptions(fields);
+    const int frame = fields.integerAtLeast(QStringLiteral("frame"), 0, 0);
+    if (fields.has(QStringLiteral("frame")) && request.cache.isEmpty())
+      options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
+    const QImage image = renderFrame(*object.mesh, request, frame);
+    savePng(image, file);
+    return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), image.width()},
+                       {QStringLiteral("height"), image.height()}, {QStringLiteral("frame"), frame}};
+  });
+}
+
+QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVariant options) {
+  return guarded("renderSequence", [&] {
+    if (!store_) throw Error("the plugin has no object store (it must be loaded by the mrcloth host)");
+    const StoredObject& object = store_->get(script::toInt(id, QStringLiteral("id")));
+    const QString stem = script::toString(prefix, QStringLiteral("prefix"));
+    QStringList keys = kRenderKeys;
+    keys.removeAll(QStringLiteral("frame"));
+    keys << QStringLiteral("frames");
+    const Fields fields(options, QString(), keys, QStringLiteral("renderSequence options"));
+    const RenderRequest request = parseRenderOptions(fields);
+    if (request.cache.isEmpty()) options::fail(QStringLiteral("missing option 'cache': the PC2 whose frames are drawn"));
+    const int count = preview::cache_frames(request.cache.toStdString());
+    std::vector<int> frames;
+    if (fields.has(QStringLiteral("frames"))) {
+      frames = script::toIntList(fields.required(QStringLiteral("frames")), fields.label(QStringLiteral("frames")));
+      for (const int f : frames)
+        if (f < 0 || f >= count)
+          options::fail(QStringLiteral("option 'frames': frame %1 is out of range (the cache has %2 frames)").arg(f).arg(count));
+    } else {
+      for (int f = 0; f < count; ++f) frames.push_back(f);
+    }
+    if (!QFileInfo(stem).absoluteDir().exists())
+      throw OutputError(QStringLiteral("%1: folder '%2' does not exist").arg(stem, QFileInfo(stem).absolutePath()).toStdString());
+
+    // One camera for the whole sequence: framed on the garment over every frame drawn.
+    render::BoundingBox framing;
+    for (const int f : frames) {
+      const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(object.mesh->n_vertices()));
+      for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
+    }
+    QVariantList files;
+    JobScope job(*this, QStringLiteral("renderSequence"),
+                 QStringLiteral("%1 frames of %2").arg(frames.size()).arg(QFileInfo(request.cache).fileName()),
+                 static_cast<int>(frames.size()));
+    const int digits = std::max(4, static_cast<int>(std::to_string(count).size()));
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      if (cancelRequested()) throw Error("cancelled");
+      const QString file = QStringLiteral("%1_%2.png").arg(stem).arg(frames[k], digits, 10, QLatin1Char('0'));
+      savePng(renderFrame(*object.mesh, request, frames[k], framing), file);
+      files << file;
+      job.progress(static_cast<int>(k + 1));
+    }
+    return files;
+  });
+}
+
+QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant options) {
+  return guarded("contactSheet", [&] {
+    const QVariantList list = script::toList(images, QStringLiteral("images"));
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const Fields fields(options, QString(), {QStringLiteral("columns"), QStringLiteral("captions"), QStringLiteral("title")},
+                        QStringLiteral("contactSheet options"));
+    std::vector<QImage> pictures;
+    for (qsizetype k = 0; k < list.size(); ++k) {
+      const QString image_path = options::existingInputFile(script::toString(list[k], QStringLiteral("images[%1]").arg(k)),
+                                                           QStringLiteral("images[%1]").arg(k));
+      QImage image(image_path);
+      if (image.isNull()) throw InputError(image_path.toStdString() + ": not an image Qt can read");
+      pictures.push_back(image);
+    }
+    std::vector<QString> captions;
+    if (fields.has(QStringLiteral("captions"))) {
+      const QVariantList texts = script::toList(fields.required(QStringLiteral("captions")), fields.label(QStringLiteral("captions")));
+      for (qsizetype k = 0; k < texts.size(); ++k)
+        captions.push_back(script::toString(texts[k], QStringLiteral("captions[%1]").arg(k)));
+    }
+    render::ContactSheetOptions sheet;
+    sheet.columns = fields.integerAtLeast(QStringLiteral("columns"), 0, 0);
+    sheet.title = fields.string(QStringLiteral("title"));
+    const QImage result = render::contact_sheet(pictures, captions, sheet);
+    savePng(result, file);
+    return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), result.width()},
+                       {QStringLiteral("height"), result.height()}};
+  });
+}
+
+void PreviewPlugin::lineChart(QVariant path, QVariant chart) {
+  guarded("lineChart", [&] {
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const Fields fields(chart, QString(),
+                        {QStringLiteral("title"), QStringLiteral("xLabel"), QStringLiteral("yLabel"),
+                         QStringLiteral("series"), QStringLiteral("width"), QStringLiteral("height")},
+                        QStringLiteral("lineChart chart"));
+    render::LineChart line;
+    line.title = fields.string(QStringLiteral("title"));
+    line.x_label = fields.string(QStringLiteral("xLabel"));
+    line.y_label = fields.string(QStringLiteral("yLabel"));
+    const QVariantList series = script::toList(fields.required(QStringLiteral("series")), fields.label(QStringLiteral("series")));
+    for (qsizetype k = 0; k < series.size(); ++k) {
+      const QString key = QStringLiteral("series[%1]").arg(k);
+      const Fields one(series[k], key, {QStringLiteral("name"), QStringLiteral("x"), QStringLiteral("y")});
+      const std::vector<double> y = numberList(one.required(QStringLiteral("y")), one.key(QStringLiteral("y")));
+      std::vector<double> x;
+      if (one.has(QStringLiteral("x"))) {
+        x = numberList(one.required(QStringLiteral("x")), one.key(QStringLiteral("x")));
+        if (x.size() != y.size())
+          options::fail(QStringLiteral("%1: x has %2 values, y has %3").arg(key).arg(x.size()).arg(y.size()));
+      } else {
+        for (std::size_t i = 0; i < y.size(); ++i) x.push_back(static_cast<double>(i));
+      }
+      render::LineSeries s;
+      s.name = one.string(QStringLiteral("name"));
+      for (std::size_t i = 0; i < y.size(); ++i) s.points.emplace_back(x[i], y[i]);
+      line.series.push_back(s);
+    }
+    savePng(render::draw_line_chart(line, chartSize(fields)), file);
+  });
+}
+
+void PreviewPlugin::barChart(QVariant path, QVariant chart) {
+  guarded("barChart", [&] {
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const Fields fields(chart, QString(),
+                        {QStringLiteral("title"), QStringLiteral("xLabel"), QStringLiteral("yLabel"),
+                         QStringLiteral("categories"), QStringLiteral("series"), QStringLiteral("width"),
+                         QStringLiteral("height")},
+                        QStringLiteral("barChart chart"));
+    render::BarChart bars;
+    bars.title = fields.string(QStringLiteral("title"));
+    bars.category_label = fields.string(QStringLiteral("xLabel"));
+    bars.value_label = fields.string(QStringLiteral("yLabel"));
+    if (fields.has(QStringLiteral("categories"))) {
+      const QVariantList names = script::toList(fields.required(QStringLiteral("categories")), fields.label(QStringLiteral("categories")));
+      for (qsizetype k = 0; k < names.size(); ++k)
+        bars.categories.push_back(script::toString(names[k], QStringLiteral("categories[%1]").arg(k)));
+    }
+    const QVariantList series = script::toList(fields.required(QStringLiteral("series")), fields.label(QStringLiteral("series")));
+    for (qsizetype k = 0; k < series.size(); ++k) {
+      const QString key = QStringLiteral("series[%1]").arg(k);
+      const Fields one(series[k], key, {QStringLiteral("name"), QStringLiteral("values")});
+      render::BarSeries s;
+      s.name = one.string(QStringLiteral("name"));
+      s.values = numberList(one.required(QStringLiteral("values")), one.key(QStringLiteral("values")));
+      bars.series.push_back(s);
+    }
+    savePng(render::draw_bar_chart(bars, chartSize(fields)), file);
+  });
+}
+
+QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
+  const QString render_options = QStringLiteral(
+      "{width, height: pixels = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
+      "projection: \"perspective\" | \"orthographic\" = \"perspective\", colorBy: \"none\" | \"mode\" | \"level\" | "
+      "\"curvature\" = \"none\" (with a legend or colour bar), wireframe: bool = true (the active faces' edges, "
+      "T-nodes included), legend: bool = true, title: string = none, cache: PC2 of this mesh = none (its frame "
+      "is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
+      "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction = 0.08, "
+      "supersample: 1 .. 4 = 2}");
+  const QString chart_size = QStringLiteral("width, height: pixels = 800 x 500");
+  return {
+      {QStringLiteral("render(int id, string path, object options = {}) -> object"),
+       QStringLiteral("Renders the object (at rest, or at a frame of its cache) off-screen, shaded, to a PNG "
+                      "(written atomically). Returns {file, width, height, frame}."),
+       {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
+       {QStringLiteral("object id"), QStringLiteral("PNG file to write (its folder must exist)"), render_options}},
+      {QStringLiteral("renderSequence(int id, string prefix, object options) -> string[]"),
+       QStringLiteral("Renders frames of the object's cache to <prefix>_0000.png ... with one camera fitted to "
+                      "the garment over all of them; returns the files. Cancellable (Ctrl-C)."),
+       {QStringLiteral("id"), QStringLiteral("prefix"), QStringLiteral("options")},
+       {QStringLiteral("object id"), QStringLiteral("path prefix of the PNG files"),
+        QStringLiteral("as render's, with cache required and frames: int[] = every frame instead of frame")}},
+      {QStringLiteral("contactSheet(string[] images, string path, object options = {}) -> object"),
+       QStringLiteral("Composes images in a grid with captions and a title into one PNG; returns {file, width, "
+                      "height}."),
+       {QStringLiteral("images"), QStringLiteral("path"), QStringLiteral("options")},
+       {QStringLiteral("image files (PNG, ...)"), QStringLiteral("PNG file to write"),
+        QStringLiteral("{columns: int >= 0 = 0 (0: about square), captions: string[] = none, title: string = none}")}},
+      {QStringLiteral("lineChart(string path, object chart)"),
+       QStringLiteral("Draws a line chart to a PNG."),
+       {QStringLiteral("path"), QStringLiteral("chart")},
+       {QStringLiteral("PNG file to write"),
+        QStringLiteral("{title, xLabel, yLabel: strings, series: [{name, y: number[], x: number[] = 0, 1, ...}], ") +
+            chart_size + QLatin1Char('}')}},
+      {QStringLiteral("barChart(string path, object chart)"),
+       QStringLiteral("Draws a grouped bar chart to a PNG."),
+       {QStringLiteral("path"), QStringLiteral("chart")},
+       {QStringLiteral("PNG file to write"),
+        QStringLiteral("{title, xLabel, yLabel: strings, categories: string[], series: [{name, values: number[] (one "
+                       "per category)}], ") +
+            chart_size + QLatin1Char('}')}},
+  };
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,58 @@
+#pragma once
+// The "Preview" plugin: pictures a garment artist can look at, made
+// headless. Renders of a mesh or of any frame of its cache (shaded, with the
+// quad wireframe, coloured by mode, level or curvature with a legend, on its
+// body), frame sequences, contact sheets and report charts, all as PNG
+// written atomically. Every slot is a thin adapter over plugin/render and
+// preview_scene.h.
+#include "plugin/interfaces/base_interface.h"
+#include "plugin/interfaces/load_save_interface.h"
+#include "plugin/interfaces/logging_interface.h"
+#include "plugin/interfaces/process_interface.h"
+#include "plugin/interfaces/script_interface.h"
+
+#include <QObject>
+#include <QVariant>
+#include <QVariantList>
+#include <QVariantMap>
+
+namespace mrcloth {
+
+class PreviewPlugin : public QObject,
+                      public BaseInterface,
+                      public LoggingInterface,
+                      public LoadSaveInterface,
+                      public ProcessInterface,
+                      public ScriptInterface {
+  Q_OBJECT
+  Q_PLUGIN_METADATA(IID "mrcloth.BaseInterface/1.0")
+  Q_INTERFACES(mrcloth::BaseInterface mrcloth::LoggingInterface mrcloth::LoadSaveInterface
+                   mrcloth::ProcessInterface mrcloth::ScriptInterface)
+
+ signals:
+  void log(Logtype type, QString message) override;
+  void startJob(QString jobId, QString description, int min, int max) override;
+  void setJobState(QString jobId, int value) override;
+  void finishJob(QString jobId) override;
+
+ public:
+  QString name() const override { return QStringLiteral("Preview"); }
+  QString description() const override;
+  void setObjectStore(ObjectStore* store) override { store_ = store; }
+  QList<SlotDescription> slotDescriptions() const override;
+
+ public slots:
+  QVariantMap render(QVariant id, QVariant path, QVariant options = QVariant());
+  QVariantList renderSequence(QVariant id, QVariant prefix, QVariant options = QVariant());
+  QVariantMap contactSheet(QVariant images, QVariant path, QVariant options = QVariant());
+  void lineChart(QVariant path, QVariant chart);
+  void barChart(QVariant path, QVariant chart);
+
+ private:
+  template <class Body>
+  auto guarded(const char* slot, Body&& body) -> decltype(body());
+
+  ObjectStore* store_ = nullptr;
+};
+
+}  // namespace mrcloth

@@ -1,0 +1,110 @@
+#include "preview_scene.h"
+
+#include "mesh_ops/errors.h"
+#include "mesh_ops/mode_painting.h"
+#include "solver/point_cache.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+
+namespace mrcloth::preview {
+namespace {
+
+QColor to_qcolor(const std::array<unsigned char, 3>& rgb) { return QColor(rgb[0], rgb[1], rgb[2]); }
+
+/// The garment's colour when it is coloured by nothing: a light cloth blue.
+const QColor kClothColor(176, 196, 222);
+const QColor kBodyColor(205, 200, 195);
+
+}  // namespace
+
+GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positions, ColorBy color_by) {
+  const auto vertex_count = static_cast<Eigen::Index>(mesh.n_vertices());
+  if (positions.rows() != 0 && positions.rows() != vertex_count)
+    throw ArgumentError("the positions have " + std::to_string(positions.rows()) + " points, the mesh has " +
+                        std::to_string(vertex_count) + " vertices");
+  GarmentLayer result;
+  render::Surface& surface = result.surface;
+  if (positions.rows() != 0) {
+    surface.positions = positions;
+  } else {
+    surface.positions.resize(vertex_count, 3);
+    for (const auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      surface.positions.row(v.idx()) << p[0], p[1], p[2];
+    }
+  }
+  surface.faces = active_face_polygons(mesh);
+  surface.color = kClothColor;
+
+  switch (color_by) {
+    case ColorBy::none:
+      break;
+    case ColorBy::mode: {
+      const Layers layers = get_layers(mesh);
+      std::set<int> present;
+      for (const auto v : mesh.vertices()) {
+        const int mode = mesh.property(layers.mode, v);
+        surface.vertex_colors.push_back(to_qcolor(palette_color(mode)));
+        present.insert(mode);
+      }
+      for (const int mode : present)
+        result.legend.push_back({to_qcolor(palette_color(mode)), QStringLiteral("mode %1").arg(mode)});
+      break;
+    }
+    case ColorBy::level: {
+      const Layers layers = get_layers(mesh);
+      std::map<int, int> faces_per_level;
+      for (const auto f : mesh.faces()) {
+        const int level = mesh.property(layers.level, f);
+        surface.face_colors.push_back(to_qcolor(palette_color(level)));
+        ++faces_per_level[level];
+      }
+      for (const auto& [level, count] : faces_per_level)
+        result.legend.push_back({to_qcolor(palette_color(level)), QStringLiteral("level %1 (%2 faces)").arg(level).arg(count)});
+      break;
+    }
+    case ColorBy::curvature: {
+      const std::vector<double> curvature = vertex_layer(mesh, layer::mean_curvature);
+      const double largest = curvature.empty() ? 0.0 : *std::max_element(curvature.begin(), curvature.end());
+      for (const double k : curvature)
+        surface.vertex_colors.push_back(to_qcolor(sequential_color(largest > 0.0 ? k / largest : 0.0)));
+      render::ColorBar bar;
+      bar.color_map = [](double t) { return to_qcolor(sequential_color(t)); };
+      bar.min_value = 0.0;
+      bar.max_value = largest;
+      bar.label = QStringLiteral("mean curvature (1/m)");
+      result.color_bar = bar;
+      break;
+    }
+  }
+  return result;
+}
+
+Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expected_points) {
+  Pc2Reader reader(cache_path);
+  if (expected_points >= 0 && reader.num_points() != expected_points)
+    throw ArgumentError(cache_path + ": the cache has " + std::to_string(reader.num_points()) +
+                        " points, the mesh has " + std::to_string(expected_points) + " vertices");
+  if (frame < 0 || frame >= reader.num_frames())
+    throw ArgumentError(cache_path + ": frame " + std::to_string(frame) + " out of range (the cache has " +
+                        std::to_string(reader.num_frames()) + " frames, 0 .. " + std::to_string(reader.num_frames() - 1) +
+                        ")");
+  return reader.frame(frame);
+}
+
+int cache_frames(const std::string& cache_path) { return Pc2Reader(cache_path).num_frames(); }
+
+render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame) {
+  const ObjMesh mesh = read_obj(obj_path);
+  render::Surface surface;
+  surface.positions = cache_frame(cache_path, frame, static_cast<int>(mesh.positions.rows()));
+  surface.faces = mesh.faces;
+  surface.color = kBodyColor;
+  surface.wireframe = false;
+  return surface;
+}
+
+}  // namespace mrcloth::preview

@@ -1,0 +1,44 @@
+#pragma once
+// From mrcloth's data to what the renderer draws: a garment (an object of
+// the store, at rest or at a frame of its PC2 cache) coloured by one of its
+// layers, with the legend that explains the colours, and a body from its
+// cache (the rest OBJ and PC2 that simulate's bodyOutput writes).
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/quad_mesh.h"
+#include "plugin/render/legend.h"
+#include "plugin/render/scene.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mrcloth::preview {
+
+/// A garment ready to draw and the key to its colours.
+struct GarmentLayer {
+  render::Surface surface;
+  std::vector<render::LegendEntry> legend;  ///< modes or levels present; empty for none / curvature
+  std::optional<render::ColorBar> color_bar;  ///< curvature only: 0 .. the largest mean curvature, 1/m
+};
+
+/// The active faces of `mesh` at `positions` (#vertices x 3, metres; empty:
+/// the mesh's own points) coloured by `color_by`: modes and curvature per
+/// vertex (the mesh's mode / mean_curvature layers), levels per face, with
+/// the palette of the PLY exports (palette_color, sequential_color).
+/// Throws ArgumentError when positions do not match the vertex count, and
+/// when curvature is asked of a mesh without the mean_curvature layer.
+GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positions, ColorBy color_by);
+
+/// The positions of frame `frame` (0-based) of a PC2 cache; InputError
+/// naming the file for a bad cache, ArgumentError for a frame out of range
+/// or a point count other than `expected_points` (when >= 0).
+Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expected_points = -1);
+
+/// Number of frames in a PC2 cache.
+int cache_frames(const std::string& cache_path);
+
+/// A body drawn in grey without wireframe: the faces of `obj_path` (a rest
+/// OBJ written beside a body cache) at frame `frame` of `cache_path`.
+render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame);
+
+}  // namespace mrcloth::preview
