@@ -16,6 +16,23 @@ void setScript(CommandLine& command, const QString& path) {
 
 CommandLine parseCommandLine(const QStringList& arguments) {
   CommandLine command;
+  // `mrcloth pipeline [options]`: the host's own -q/--quiet and --plugins
+  // are taken out; everything else is the pipeline script's to check.
+  if (!arguments.isEmpty() && arguments.front() == QLatin1String("pipeline")) {
+    command.pipeline = true;
+    for (qsizetype i = 1; i < arguments.size(); ++i) {
+      const QString& argument = arguments[i];
+      if (argument == QLatin1String("-q") || argument == QLatin1String("--quiet")) {
+        command.quiet = true;
+      } else if (argument == QLatin1String("--plugins")) {
+        if (i + 1 >= arguments.size() || arguments[i + 1].isEmpty()) fail(QStringLiteral("option '--plugins' needs a value"));
+        command.pluginFolder = arguments[++i];
+      } else {
+        command.scriptArguments << argument;
+      }
+    }
+    return command;
+  }
   for (qsizetype i = 0; i < arguments.size(); ++i) {
     const QString& argument = arguments[i];
     // "--name=value" and "--name value" are both accepted for options with a value.
@@ -62,11 +79,14 @@ CommandLine parseCommandLine(const QStringList& arguments) {
 QString usageText() {
   return QStringLiteral(
       "Usage: mrcloth [options] -b <script.js> [-- <script arguments>...]\n"
+      "       mrcloth pipeline [-q] [pipeline options]   (mrcloth pipeline --help lists them)\n"
       "       mrcloth --api\n"
       "\n"
       "Runs mrcloth scripts headless: garments as multi-resolution quad meshes whose\n"
       "refinement is driven by deformation modes. The script sees the object `core`\n"
       "and one object per plugin (\"Multires Cloth\" as `multirescloth`); see --api.\n"
+      "`mrcloth pipeline` runs the whole method (resources/scripts/pipeline.js): from a\n"
+      "coarse garment and motions to multi-resolution meshes, caches, previews and a report.\n"
       "\n"
       "Options:\n"
       "  -b, --batch <script.js>  run the script and exit: 0 when it runs to the end,\n"

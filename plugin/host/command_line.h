@@ -22,6 +22,7 @@ struct CommandLine {
   bool help = false;            ///< -h/--help
   bool api = false;             ///< --api/--help-api
   bool version = false;         ///< --version
+  bool pipeline = false;        ///< `mrcloth pipeline ...`: run resources/scripts/pipeline.js with scriptArguments
 };
 
 /// Parses the arguments after the program name. Throws UsageError for an

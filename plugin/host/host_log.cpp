@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include <unistd.h>
+
 namespace mrcloth {
 namespace {
 
@@ -11,6 +13,18 @@ const HostLog* g_message_target = nullptr;
 
 /// Progress lines of a long job come at most this often (plus its last step).
 constexpr qint64 kProgressIntervalNs = 1'000'000'000;
+/// A bar on a terminal redraws in place, so it may update more often.
+constexpr qint64 kBarIntervalNs = 100'000'000;
+constexpr int kBarWidth = 24;
+
+/// A bar when stderr is a terminal, plain lines otherwise (logs, pipes, CI);
+/// MRCLOTH_PROGRESS=bar or =lines overrides.
+bool progressBarWanted() {
+  const QByteArray forced = qgetenv("MRCLOTH_PROGRESS");
+  if (forced == "bar") return true;
+  if (forced == "lines") return false;
+  return isatty(fileno(stderr)) != 0;
+}
 
 /// "5.8 s", "2 min 05 s", "1 h 02 min".
 QString formatDuration(double seconds) {
@@ -46,7 +60,7 @@ void routeQtMessage(QtMsgType type, const QMessageLogContext& context, const QSt
 
 }  // namespace
 
-HostLog::HostLog(bool quiet, QObject* parent) : QObject(parent), quiet_(quiet) {}
+HostLog::HostLog(bool quiet, QObject* parent) : QObject(parent), quiet_(quiet), bar_(progressBarWanted()) {}
 
 HostLog::~HostLog() {
   if (handler_installed_) {
@@ -63,6 +77,7 @@ void HostLog::installMessageHandler() {
 
 void HostLog::line(bool to_stdout, const QString& prefix, const QString& text) const {
   const QByteArray bytes = (prefix + text + QLatin1Char('\n')).toUtf8();
+  clearBar();
   if (to_stdout) {
     std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stdout);
   } else {
@@ -71,6 +86,21 @@ void HostLog::line(bool to_stdout, const QString& prefix, const QString& text) c
     std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stderr);
     std::fflush(stderr);
   }
+}
+
+void HostLog::clearBar() const {
+  if (!bar_shown_) return;
+  std::fputs("\r\033[K", stderr);  // carriage return, erase to the end of the line
+  std::fflush(stderr);
+  bar_shown_ = false;
+}
+
+void HostLog::drawBar(const QString& text) const {
+  const QByteArray bytes = (QStringLiteral("\r\033[K[job] ") + text).toUtf8();
+  std::fflush(stdout);
+  std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stderr);
+  std::fflush(stderr);
+  bar_shown_ = true;
 }
 
 void HostLog::out(const QString& text) const { line(true, {}, text); }
@@ -115,13 +145,20 @@ void HostLog::onSetJobState(QString jobId, int value) {
   const int total = job.max - job.min;
   if (quiet_ || total <= 1) return;
   const bool last = value >= job.max;
-  if (!last && job.printed_ns >= 0 && now - job.printed_ns < kProgressIntervalNs) return;
-  if (!last && job.printed_ns < 0 && now < kProgressIntervalNs) return;  // short jobs print only their end
+  const qint64 interval = bar_ ? kBarIntervalNs : kProgressIntervalNs;
+  if (!last && job.printed_ns >= 0 && now - job.printed_ns < interval) return;
+  if (!last && job.printed_ns < 0 && now < interval) return;  // short jobs print only their end
   job.printed_ns = now;
 
   const int done = value - job.min;
   QString text = QStringLiteral("%1: %2/%3 (%4%)").arg(jobId).arg(done).arg(total)
                      .arg(100.0 * done / total, 0, 'f', 0);
+  if (bar_) {
+    const int filled = static_cast<int>(static_cast<qint64>(kBarWidth) * done / total);
+    text = QStringLiteral("%1: [%2%3] %4/%5 (%6%)").arg(jobId, QString(filled, QLatin1Char('#')),
+                                                         QString(kBarWidth - filled, QLatin1Char('.')))
+               .arg(done).arg(total).arg(100.0 * done / total, 0, 'f', 0);
+  }
   // Rate from the first state on, so that set-up before it (a factorisation)
   // does not make the estimate pessimistic; from the start until then.
   const bool since_first = value > job.first_state && now > job.first_state_ns;
@@ -132,7 +169,10 @@ void HostLog::onSetJobState(QString jobId, int value) {
     text += QStringLiteral(", %1/s").arg(formatRate(rate));
     if (!last) text += QStringLiteral(", ETA %1").arg(formatDuration((job.max - value) / rate));
   }
-  line(false, QStringLiteral("[job] "), text);
+  if (bar_ && !last)
+    drawBar(text);
+  else
+    line(false, QStringLiteral("[job] "), text);
 }
 
 void HostLog::onFinishJob(QString jobId) {

@@ -3,7 +3,8 @@
 //  - script output (print, console.log/info, core.print, LOGOUT) -> stdout, unprefixed;
 //  - "[info] ..." and "[job] ..." -> stderr, hidden by --quiet; a job with
 //    more than one step prints "<id>: 12/60 (20%), 8.3/s, ETA 5.8 s" at most
-//    once a second and at its last step;
+//    once a second and at its last step; when stderr is a terminal, as a bar
+//    redrawn in place instead (MRCLOTH_PROGRESS=bar|lines overrides);
 //  - "[warn] ..." and "[error] ..." -> stderr, always.
 // Keeping stdout for script output only lets a script's printed results be
 // piped and compared (the script tests do).
@@ -54,8 +55,12 @@ class HostLog : public QObject {
     qint64 printed_ns = -1;       ///< timer reading of the last progress line
   };
   void line(bool to_stdout, const QString& prefix, const QString& text) const;
+  void drawBar(const QString& text) const;  ///< the progress line, redrawn in place
+  void clearBar() const;                    ///< erases a drawn bar before another line
 
   bool quiet_;
+  bool bar_;                       ///< progress as a bar on a terminal
+  mutable bool bar_shown_ = false; ///< a bar is on the terminal's last line
   bool handler_installed_ = false;
   QHash<QString, Job> jobs_;
 };

@@ -48,3 +48,27 @@ TEST(CommandLine, ErrorsNameTheArgument) {
 
 }  // namespace
 }  // namespace mrcloth
+
+namespace mrcloth {
+namespace {
+
+TEST(CommandLine, PipelineTakesTheHostsOptionsAndForwardsTheRest) {
+  const CommandLine command = parseCommandLine(
+      {QStringLiteral("pipeline"), QStringLiteral("--levels"), QStringLiteral("1"), QStringLiteral("-q"),
+       QStringLiteral("--plugins"), QStringLiteral("p"), QStringLiteral("--out"), QStringLiteral("o"),
+       QStringLiteral("--help")});
+  EXPECT_TRUE(command.pipeline);
+  EXPECT_TRUE(command.quiet);
+  EXPECT_FALSE(command.help);  // the pipeline's own --help
+  EXPECT_EQ(command.pluginFolder, QStringLiteral("p"));
+  EXPECT_EQ(command.scriptArguments, (QStringList{QStringLiteral("--levels"), QStringLiteral("1"),
+                                                  QStringLiteral("--out"), QStringLiteral("o"),
+                                                  QStringLiteral("--help")}));
+  EXPECT_TRUE(command.scriptPath.isEmpty());
+  EXPECT_THROW(parseCommandLine({QStringLiteral("pipeline"), QStringLiteral("--plugins")}), UsageError);
+  // Only as the first argument.
+  EXPECT_FALSE(parseCommandLine({QStringLiteral("-q"), QStringLiteral("pipeline")}).pipeline);
+}
+
+}  // namespace
+}  // namespace mrcloth

@@ -1,0 +1,571 @@
+// mrcloth pipeline: the whole method in one run, through the public
+// scripting API only (`mrcloth pipeline [options]` runs this same file).
+//
+//   coarse garment -> uniform refinement (high-resolution mesh)
+//   -> instance: the high-resolution garment on the instance motion (PC2)
+//   -> deformation modes from its curvature, mapped onto the coarse garment
+//   -> adaptive refinement, one multi-resolution mesh per threshold delta
+//   -> every test motion on: coarse, each multi-resolution mesh, high, and a
+//      uniform mesh of about the multi-resolution vertex count
+//   -> meshes (.om, PLY), caches (PC2 + rest OBJ, body caches), previews,
+//      plots, report.md and report.json
+//
+// Every stage writes its files atomically and then a record in
+// <out>/stages/<stage>.json; with --resume a stage whose record and files
+// exist is not run again. Ctrl-C stops between steps (exit 130) and leaves
+// only complete files. Run `mrcloth pipeline --help` for the options.
+"use strict";
+
+const resources = core.resourcePath();
+const USAGE = [
+  "Usage: mrcloth pipeline [options]        (or: mrcloth -b pipeline.js -- [options])",
+  "",
+  "Runs the whole method: refine, record the instance, extract and map modes, refine",
+  "adaptively, simulate every test motion on every model, export, render and report.",
+  "Without options it runs on the embedded default (skirt, mannequin, walks).",
+  "",
+  "Inputs:",
+  "  --garment FILE         coarse quad garment (.obj/.om/...) [embedded default skirt]",
+  "  --units U              the garment's units: m, dm, cm, mm, inch [m; dm with --makehuman]",
+  "  --makehuman DIR        a MakeHuman body folder (base.obj, rigs/cmu_mb.mhskel,",
+  "                         rigs/default_weights.mhw): fits the capsules, or is the body",
+  "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
+  "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
+  "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
+  "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
+  "  --motion-units U       m, cmu, dm, cm, mm, inch: the BVH files' units [m]",
+  "Method:",
+  "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
+  "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
+  "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [8,10]",
+  "  --material M           cotton | denim | silk [cotton]",
+  "  --fps F                output frames per second, > 0 [30]",
+  "  --instance-frames N    recorded instance frames, >= 2 [200]",
+  "  --test-frames N        frames per test motion, >= 1 [60]",
+  "  --preroll S            seconds from the rest pose to each motion's start, >= 0 [1]",
+  "Output:",
+  "  --out DIR              output folder, created if missing [pipeline_out]",
+  "  --resume               skip stages whose outputs are complete (same options only)",
+  "  --size WxH             preview image size in pixels [800x800]",
+  "  --sequence             also render every frame of each test motion's multi-resolution run",
+  "  -q, --quiet            no progress (host option)",
+  "  -h, --help             this text",
+].join("\n");
+
+// --- Options -----------------------------------------------------------------
+
+function pipelineError(message) {
+  const error = new Error("pipeline: " + message);
+  error.name = "ArgumentError";
+  return error;
+}
+
+const DEFAULTS = {
+  garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", body: "capsules", place: null,
+  instance: resources + "/characters/walk_instance.bvh",
+  test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
+  levels: 2, modes: 3, delta: [8, 10], material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
+  preroll: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, help: false,
+};
+const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--help": "help", "-h": "help"};
+const VALUED = {
+  "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
+  "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
+  "--modes": "modes", "--delta": "delta", "--material": "material", "--fps": "fps",
+  "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
+  "--size": "size",
+};
+const UNITS = ["m", "dm", "cm", "mm", "inch"];
+
+function integerOption(name, text, least) {
+  const value = Number(text);
+  if (!/^[+]?\d+$/.test(text.trim()) || value < least)
+    throw pipelineError("option " + name + ": expected an integer >= " + least + ", got \"" + text + "\"");
+  return value;
+}
+function numberOption(name, text, least, strictly) {
+  const value = Number(text);
+  if (text.trim() === "" || !isFinite(value) || (strictly ? value <= least : value < least))
+    throw pipelineError("option " + name + ": expected a number " + (strictly ? "> " : ">= ") + least + ", got \"" +
+                        text + "\"");
+  return value;
+}
+function choiceOption(name, text, choices) {
+  if (choices.indexOf(text) < 0)
+    throw pipelineError("option " + name + ": expected one of " + choices.join(", ") + ", got \"" + text + "\"");
+  return text;
+}
+
+/// Parses `--name value`, `--name=value` and flags; the last of a repeated
+/// option wins except --test, which accumulates.
+function parseOptions(args) {
+  const options = Object.assign({}, DEFAULTS);
+  let tests = null;
+  for (let i = 0; i < args.length; ++i) {
+    const argument = args[i];
+    const equals = argument.startsWith("--") ? argument.indexOf("=") : -1;
+    const name = equals < 0 ? argument : argument.slice(0, equals);
+    if (FLAGS[name] !== undefined) {
+      if (equals >= 0) throw pipelineError("option " + name + " takes no value");
+      options[FLAGS[name]] = true;
+      continue;
+    }
+    const key = VALUED[name];
+    if (key === undefined)
+      throw pipelineError((argument.startsWith("-") ? "unknown option " : "unexpected argument ") + "\"" + argument +
+                          "\" (mrcloth pipeline --help lists the options)");
+    let text;
+    if (equals >= 0) text = argument.slice(equals + 1);
+    else if (i + 1 < args.length) text = args[++i];
+    else throw pipelineError("option " + name + " needs a value");
+    switch (key) {
+      case "levels": options.levels = integerOption(name, text, 1); break;
+      case "modes": options.modes = integerOption(name, text, 1); break;
+      case "instanceFrames": options.instanceFrames = integerOption(name, text, 2); break;
+      case "testFrames": options.testFrames = integerOption(name, text, 1); break;
+      case "fps": options.fps = numberOption(name, text, 0, true); break;
+      case "preroll": options.preroll = numberOption(name, text, 0, false); break;
+      case "delta": {
+        const values = text.split(",").map((part) => numberOption(name, part, 0, true));
+        options.delta = values.filter((value, k) => values.indexOf(value) === k);
+        break;
+      }
+      case "test":
+        if (tests === null) tests = [];
+        for (const part of text.split(",")) {
+          if (part === "") throw pipelineError("option " + name + ": empty file name in \"" + text + "\"");
+          tests.push(part);
+        }
+        break;
+      case "units": options.units = choiceOption(name, text, UNITS); break;
+      case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch"]); break;
+      case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
+      case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
+      case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
+      case "size": {
+        const match = /^(\d+)x(\d+)$/.exec(text);
+        if (!match || Number(match[1]) < 64 || Number(match[2]) < 64 || Number(match[1]) > 8192 || Number(match[2]) > 8192)
+          throw pipelineError("option " + name + ": expected WIDTHxHEIGHT in pixels, 64..8192 each, got \"" + text + "\"");
+        options.size = [Number(match[1]), Number(match[2])];
+        break;
+      }
+      default:
+        if (text === "") throw pipelineError("option " + name + ": empty value");
+        options[key] = text;
+    }
+  }
+  if (tests !== null) options.test = tests;
+  if (options.units === null) options.units = options.makehuman ? "dm" : "m";
+  if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
+  if (options.body === "mesh" && !options.makehuman)
+    throw pipelineError("option --body mesh needs --makehuman DIR (the skinned MakeHuman body)");
+  if (options.place === "makehuman" && !options.makehuman)
+    throw pipelineError("option --place makehuman needs --makehuman DIR (the body the garment was modelled on)");
+  return options;
+}
+
+/// Every input must exist and be readable before any work starts.
+function checkInputs(options) {
+  const inputs = [["--garment", options.garment], ["--instance", options.instance]];
+  for (const test of options.test) inputs.push(["--test", test]);
+  if (options.makehuman)
+    for (const file of makehumanFiles(options.makehuman)) inputs.push(["--makehuman", file]);
+  for (const [name, path] of inputs) {
+    if (!core.fileExists(path)) throw pipelineError("option " + name + ": no such file: " + path);
+    if (!core.fileReadable(path)) throw pipelineError("option " + name + ": cannot read " + path);
+  }
+}
+
+function makehumanFiles(folder) {
+  return [folder + "/base.obj", folder + "/rigs/cmu_mb.mhskel", folder + "/rigs/default_weights.mhw"];
+}
+
+// --- Files and stages ------------------------------------------------------------
+
+function baseName(path) {
+  return path.split("/").pop().replace(/\.[^.]*$/, "");
+}
+
+/// What decides the results: a resumed run must have been started with the same.
+function resultOptions(options) {
+  const copy = Object.assign({}, options);
+  delete copy.resume;
+  delete copy.help;
+  delete copy.out;
+  return copy;
+}
+
+class Stages {
+  constructor(out, options, total) {
+    this.out = out;
+    this.total = total;  // stages this run has, for the "[k/total]" in progress lines
+    this.folder = out + "/stages";
+    this.resume = options.resume;
+    this.skipped = [];
+    this.ran = [];
+    core.makePath(this.folder);
+    const configPath = this.folder + "/options.json";
+    const wanted = JSON.stringify(resultOptions(options));
+    if (this.resume && core.fileExists(configPath)) {
+      const previous = core.readTextFile(configPath);
+      if (previous !== wanted) {
+        const before = JSON.parse(previous), now = JSON.parse(wanted);
+        const differing = Object.keys(now).filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key]));
+        throw pipelineError("--resume: " + out + " holds a run with other options (" + differing.join(", ") +
+                            "); run without --resume or use another --out");
+      }
+    }
+    core.writeTextFile(configPath, wanted);
+  }
+
+  /// Runs `work` (which returns the stage's record) unless resuming finds
+  /// the record and every file in `outputs` (relative to the output folder).
+  run(name, outputs, work) {
+    const recordPath = this.folder + "/" + name + ".json";
+    const label = "pipeline [" + (this.ran.length + this.skipped.length + 1) + "/" + this.total + "] " + name;
+    if (this.resume && core.fileExists(recordPath) && outputs.every((file) => core.fileExists(this.out + "/" + file))) {
+      core.log(label + ": complete from an earlier run, skipped");
+      this.skipped.push(name);
+      return JSON.parse(core.readTextFile(recordPath));
+    }
+    core.log(label + " ...");
+    const started = Date.now();
+    const record = work();
+    record.stageSeconds = (Date.now() - started) / 1000;
+    record.outputs = outputs;
+    core.writeTextFile(recordPath, JSON.stringify(record, null, 1) + "\n");
+    this.ran.push(name);
+    return record;
+  }
+}
+
+// --- The run ---------------------------------------------------------------------
+
+const options = parseOptions(core.scriptArguments());
+if (options.help) {
+  print(USAGE);
+} else {
+  checkInputs(options);
+  runPipeline(options);
+}
+
+function runPipeline(options) {
+  const out = options.out;
+  core.makePath(out);
+  for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
+  // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and
+  // one simulation per test motion and model (the equal-size uniform mesh counted).
+  const stages = new Stages(out, options, 6 + options.test.length * (3 + options.delta.length));
+  const started = Date.now();
+
+  const makehuman = options.makehuman ? makehumanFiles(options.makehuman) : null;
+  const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2]}
+                         : options.body;
+  const motion = (path) => ({path: path, units: options.motionUnits});
+  const onCharacter = (frames, output, bodyOutput) => {
+    const settings = {motion: null, body: body, place: options.place, frames: frames, fps: options.fps,
+                      preroll: options.preroll, material: options.material, output: out + "/" + output};
+    if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
+    return settings;
+  };
+  const simulationNumbers = (report) => ({
+    vertices: report.vertices, frames: report.frames, msPerFrame: report.msPerFrame,
+    perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxPenetration: report.maxPenetration,
+    maxWaistError: report.maxWaistError, nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
+  });
+  const mustFinish = (what, report) => {
+    if (report.cancelled) throw new Error("pipeline: " + what + " was cancelled");
+    if (report.nonFinite) throw new Error("pipeline: " + what + " became non-finite (NaN); nothing was written");
+  };
+
+  // Stage 1: the coarse garment and the high-resolution mesh.
+  const coarse = core.loadObject(options.garment, {units: options.units});
+  const coarseInfo = core.objectInfo(coarse);
+  const highRecord = stages.run("refine-uniform", ["meshes/high.om", "meshes/high_by_level.ply"], () => {
+    const id = multirescloth.refineUniform(coarse, options.levels);
+    const report = multirescloth.lastReport();
+    core.saveObject(id, out + "/meshes/high.om");
+    multirescloth.exportSurface(id, out + "/meshes/high_by_level.ply", {colorBy: "level"});
+    core.deleteObject(id);
+    return {vertices: report.vertices, faces: report.faces, verticesPerLevel: report.verticesPerLevel,
+            milliseconds: report.milliseconds};
+  });
+  let high = core.loadObject(out + "/meshes/high.om");
+
+  // Stage 2: the instance.
+  const instanceRecord = stages.run("instance", ["caches/instance_high.pc2", "caches/instance_high.obj",
+                                                 "caches/instance_body.pc2", "caches/instance_body.obj"], () => {
+    const settings = onCharacter(options.instanceFrames, "caches/instance_high.pc2", "caches/instance_body.pc2");
+    settings.motion = motion(options.instance);
+    const wall = Date.now();
+    const report = multirescloth.recordInstance(high, settings);
+    mustFinish("the instance", report);
+    const numbers = simulationNumbers(report);
+    numbers.seconds = (Date.now() - wall) / 1000;
+    numbers.motion = options.instance;
+    return numbers;
+  });
+
+  // Stage 3: modes, extracted on the high-resolution mesh and mapped to the coarse one.
+  const modesRecord = stages.run("modes", ["meshes/high_modes.om", "meshes/coarse_modes.om",
+                                           "meshes/high_by_mode.ply", "meshes/high_by_curvature.ply",
+                                           "meshes/coarse_by_mode.ply", "meshes/coarse_layers.csv"], () => {
+    const extraction = multirescloth.extractModes(high, out + "/caches/instance_high.pc2", {clusters: options.modes});
+    const mapping = multirescloth.mapModes(high, coarse, {method: "index"});
+    core.saveObject(high, out + "/meshes/high_modes.om");
+    core.saveObject(coarse, out + "/meshes/coarse_modes.om");
+    multirescloth.exportSurface(high, out + "/meshes/high_by_mode.ply", {colorBy: "mode"});
+    multirescloth.exportSurface(high, out + "/meshes/high_by_curvature.ply", {colorBy: "curvature"});
+    multirescloth.exportSurface(coarse, out + "/meshes/coarse_by_mode.ply", {colorBy: "mode"});
+    multirescloth.saveLayers(coarse, out + "/meshes/coarse_layers.csv");
+    return {sizes: extraction.sizes, centroids: extraction.centroids, milliseconds: extraction.milliseconds,
+            frames: extraction.frames, normalize: extraction.normalize, inertia: extraction.inertia,
+            coarseVerticesPerMode: core.objectInfo(coarse).verticesPerMode, mapping: {
+              method: mapping.method, changed: mapping.changed, agreeHighest: mapping.agreeHighest,
+              agreeFrequent: mapping.agreeFrequent}};
+  });
+  const coarseModes = core.loadObject(out + "/meshes/coarse_modes.om");
+  core.deleteObject(high);
+  high = core.loadObject(out + "/meshes/high_modes.om");
+
+  // Stage 4: one multi-resolution mesh per delta.
+  const multiNames = options.delta.map((delta) => "multires_d" + String(delta).replace(".", "p"));
+  const multiFiles = [];
+  for (const name of multiNames) multiFiles.push("meshes/" + name + ".om", "meshes/" + name + "_by_level.ply",
+                                                 "meshes/" + name + "_by_mode.ply");
+  const multiRecord = stages.run("refine-adaptive", multiFiles, () => {
+    const meshes = [];
+    options.delta.forEach((delta, k) => {
+      const id = multirescloth.refineAdaptive(coarseModes, {delta: delta, maxLevel: options.levels + 1});
+      const report = multirescloth.lastReport();
+      const stem = out + "/meshes/" + multiNames[k];
+      core.saveObject(id, stem + ".om");
+      multirescloth.exportSurface(id, stem + "_by_level.ply", {colorBy: "level"});
+      multirescloth.exportSurface(id, stem + "_by_mode.ply", {colorBy: "mode"});
+      core.deleteObject(id);
+      meshes.push({name: multiNames[k], delta: delta, vertices: report.vertices, faces: report.faces,
+                   hangingNodes: report.hangingNodes, verticesPerLevel: report.verticesPerLevel,
+                   facesPerLevel: report.facesPerLevel, passes: report.passes,
+                   facesRefinedForBalance: report.facesRefinedForBalance, milliseconds: report.milliseconds});
+    });
+    return {meshes: meshes};
+  });
+
+  // Stage 5: the uniform level nearest (in ratio) the first multi-resolution mesh's vertex count.
+  const target = multiRecord.meshes[0].vertices;
+  const uniformRecord = stages.run("refine-equal", ["meshes/uniform_equal.om"], () => {
+    let best = null;
+    for (let level = 0; level <= options.levels; ++level) {
+      const id = level === 0 ? coarse : multirescloth.refineUniform(coarse, level);
+      const vertices = core.objectInfo(id).vertices;
+      const error = Math.abs(Math.log(vertices / target));
+      if (best === null || error < best.error) best = {level: level, vertices: vertices, error: error};
+      if (level > 0) {
+        if (best.level === level) core.saveObject(id, out + "/meshes/uniform_equal.om");
+        core.deleteObject(id);
+      }
+    }
+    if (best.level === 0) core.saveObject(coarse, out + "/meshes/uniform_equal.om");
+    return {level: best.level, vertices: best.vertices, target: target};
+  });
+
+  // Stage 6: every test motion on every model.
+  const models = [{name: "coarse", file: "meshes/coarse_modes.om", vertices: coarseInfo.vertices}];
+  multiRecord.meshes.forEach((mesh) => models.push({name: mesh.name, file: "meshes/" + mesh.name + ".om",
+                                                    vertices: mesh.vertices}));
+  models.push({name: "high", file: "meshes/high_modes.om", vertices: highRecord.vertices});
+  // The nearest uniform level may be the coarse or the high-resolution mesh itself: no second run of it.
+  if (uniformRecord.level > 0 && uniformRecord.level < options.levels)
+    models.push({name: "uniform_L" + uniformRecord.level, file: "meshes/uniform_equal.om",
+                 vertices: uniformRecord.vertices});
+  stages.total = 6 + options.test.length * models.length;
+  const runs = [];
+  for (const test of options.test) {
+    const motionName = baseName(test);
+    models.forEach((model, k) => {
+      const cache = "caches/" + model.name + "_" + motionName + ".pc2";
+      const bodyCache = k === 0 ? "caches/body_" + motionName + ".pc2" : null;
+      const files = [cache, cache.replace(/\.pc2$/, ".obj")];
+      if (bodyCache) files.push(bodyCache, bodyCache.replace(/\.pc2$/, ".obj"));
+      const record = stages.run("simulate-" + model.name + "-" + motionName, files, () => {
+        const id = core.loadObject(out + "/" + model.file);
+        const settings = onCharacter(options.testFrames, cache, bodyCache);
+        settings.motion = motion(test);
+        const report = multirescloth.simulate(id, settings);
+        core.deleteObject(id);
+        mustFinish(model.name + " on " + motionName, report);
+        return simulationNumbers(report);
+      });
+      runs.push({model: model.name, modelFile: model.file, motion: motionName, cache: cache,
+                 bodyCache: "caches/body_" + motionName + ".pc2", numbers: record});
+    });
+  }
+
+  // Stage 7: previews and plots.
+  const previewRecord = stages.run("previews", previewFiles(options, models, multiNames), () =>
+      renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord));
+
+  // Stage 8: the report (always rewritten: it is cheap and reflects this run).
+  const report = {
+    mrcloth: "pipeline", options: resultOptions(options), garment: {file: options.garment, vertices: coarseInfo.vertices,
+                                                                   faces: coarseInfo.faces, area: coarseInfo.area},
+    table1Instance: {vertices: highRecord.vertices, frames: instanceRecord.frames, seconds: instanceRecord.seconds,
+                     msPerFrame: instanceRecord.msPerFrame, maxStretch: instanceRecord.maxStretch,
+                     maxPenetration: instanceRecord.maxPenetration, motion: baseName(options.instance)},
+    table2Refinement: [{model: "high", vertices: highRecord.vertices, verticesPerLevel: highRecord.verticesPerLevel,
+                        milliseconds: highRecord.milliseconds}].concat(
+        multiRecord.meshes.map((mesh) => ({model: mesh.name, delta: mesh.delta, vertices: mesh.vertices,
+                                           hangingNodes: mesh.hangingNodes, verticesPerLevel: mesh.verticesPerLevel,
+                                           milliseconds: mesh.milliseconds}))),
+    modes: modesRecord,
+    uniformEqual: uniformRecord,
+    table3: runs.map((run) => ({motion: run.motion, model: run.model, vertices: run.numbers.vertices,
+                                dynamicsMs: run.numbers.msPerFrame.dynamics,
+                                collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
+                                maxStretch: run.numbers.maxStretch, maxPenetration: run.numbers.maxPenetration,
+                                cache: run.cache})),
+    previews: previewRecord.images,
+    stages: {ran: stages.ran, skipped: stages.skipped},
+    seconds: (Date.now() - started) / 1000,
+  };
+  core.writeTextFile(out + "/report.json", JSON.stringify(report, null, 1) + "\n");
+  core.writeTextFile(out + "/report.md", reportMarkdown(report));
+  print("pipeline: " + runs.length + " runs of " + models.length + " models; report " + out + "/report.md (" +
+        stages.ran.length + " stages run, " + stages.skipped.length + " resumed) in " +
+        report.seconds.toFixed(1) + " s");
+}
+
+// --- Previews --------------------------------------------------------------------
+
+function previewFiles(options, models, multiNames) {
+  const files = ["previews/modes_coarse.png", "previews/modes_high.png", "previews/curvature_high.png",
+                 "plots/time_per_frame.png", "plots/vertices_per_level.png", "plots/mode_histogram.png"];
+  for (const name of multiNames) files.push("previews/levels_" + name + ".png");
+  for (const test of options.test) files.push("previews/sheet_" + baseName(test) + ".png");
+  return files;
+}
+
+function renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord) {
+  const size = {width: options.size[0], height: options.size[1]};
+  const cellSize = {width: Math.max(64, Math.round(size.width / 2)), height: Math.max(64, Math.round(size.height / 2))};
+  core.makePath(out + "/previews/frames");
+  const images = [];
+  const still = (file, meshFile, colorBy, camera, title) => {
+    const id = core.loadObject(out + "/" + meshFile);
+    preview.render(id, out + "/" + file, Object.assign({colorBy: colorBy, camera: camera, title: title}, size));
+    core.deleteObject(id);
+    images.push({file: file, title: title});
+  };
+  still("previews/modes_coarse.png", "meshes/coarse_modes.om", "mode", "three_quarter", "modes on the coarse garment");
+  still("previews/modes_high.png", "meshes/high_modes.om", "mode", "three_quarter", "modes of the instance");
+  still("previews/curvature_high.png", "meshes/high_modes.om", "curvature", "three_quarter",
+        "mean bending curvature of the instance");
+  multiNames.forEach((name) => still("previews/levels_" + name + ".png", "meshes/" + name + ".om", "level", "front",
+                                     name + ": refinement levels"));
+
+  // Per test motion: the models side by side at three frames, on the body.
+  for (const test of options.test) {
+    const motionName = baseName(test);
+    const frames = [Math.floor(options.testFrames / 3), Math.floor(2 * options.testFrames / 3), options.testFrames - 1];
+    const cells = [], captions = [];
+    for (const run of runs.filter((r) => r.motion === motionName)) {
+      const id = core.loadObject(out + "/" + run.modelFile);
+      for (const frame of frames) {
+        const file = out + "/previews/frames/" + run.model + "_" + motionName + "_f" + frame + ".png";
+        preview.render(id, file, {cache: out + "/" + run.cache, frame: frame, colorBy: "level", camera: "front",
+                                  width: cellSize.width, height: cellSize.height,
+                                  body: {cache: out + "/" + run.bodyCache}});
+        cells.push(file);
+        captions.push(run.model + ", frame " + frame);
+      }
+      if (options.sequence && run.model === multiNames[0])
+        preview.renderSequence(id, out + "/previews/frames/sequence_" + run.model + "_" + motionName, {
+          cache: out + "/" + run.cache, colorBy: "level", camera: "front", width: cellSize.width,
+          height: cellSize.height,
+          body: {cache: out + "/" + run.bodyCache}});
+      core.deleteObject(id);
+    }
+    const sheet = "previews/sheet_" + motionName + ".png";
+    preview.contactSheet(cells, out + "/" + sheet, {columns: frames.length, captions: captions,
+                                                    title: motionName + ": models (rows) at frames " + frames.join(", ")});
+    images.push({file: sheet, title: motionName + ": every model at three frames"});
+  }
+
+  // Plots.
+  preview.lineChart(out + "/plots/time_per_frame.png", {
+    title: "time per frame", xLabel: "frame", yLabel: "ms (dynamics + collision)",
+    series: runs.filter((run) => run.motion === baseName(options.test[0])).map((run) => ({
+      name: run.model, x: run.numbers.perFrameMs.map((_, k) => k),
+      y: run.numbers.perFrameMs.map((ms) => ms.dynamics + ms.collision)}))});
+  const levelCount = Math.max(...multiRecord.meshes.map((mesh) => mesh.verticesPerLevel.length));
+  const levelNames = [];
+  for (let level = 1; level < levelCount; ++level) levelNames.push("level " + level);
+  preview.barChart(out + "/plots/vertices_per_level.png", {
+    title: "vertices per refinement level", yLabel: "vertices", categories: levelNames,
+    series: multiRecord.meshes.map((mesh) => ({name: mesh.name, values: levelNames.map((_, k) =>
+        mesh.verticesPerLevel[k + 1] === undefined ? 0 : mesh.verticesPerLevel[k + 1])}))});
+  const modeNames = modesRecord.sizes.map((_, k) => "mode " + (k + 1));
+  preview.barChart(out + "/plots/mode_histogram.png", {
+    title: "vertices per deformation mode", yLabel: "vertices", categories: modeNames,
+    series: [{name: "instance (" + highRecord.vertices + " vertices)", values: modesRecord.sizes},
+             {name: "coarse garment", values: modeNames.map((_, k) => modesRecord.coarseVerticesPerMode[k + 1] || 0)}]});
+  images.push({file: "plots/time_per_frame.png", title: "time per frame"},
+              {file: "plots/vertices_per_level.png", title: "vertices per level"},
+              {file: "plots/mode_histogram.png", title: "mode histogram"});
+  return {images: images};
+}
+
+// --- The report ------------------------------------------------------------------
+
+function reportMarkdown(report) {
+  const lines = [];
+  const fixed = (value, digits) => Number(value).toFixed(digits);
+  lines.push("# mrcloth pipeline report", "");
+  lines.push("Garment `" + report.garment.file.split("/").pop() + "`: " + report.garment.vertices + " vertices, " +
+             report.garment.faces + " faces, " + fixed(report.garment.area, 3) + " m^2. Body: " +
+             report.options.body + (report.options.makehuman ? " (MakeHuman)" : " (the mannequin)") +
+             "; material " + report.options.material + "; " + report.options.fps + " fps.", "");
+  lines.push("## Instance (Table 1)", "");
+  const t1 = report.table1Instance;
+  lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | max penetration |",
+             "|---|---:|---:|---|---:|---:|---:|---:|",
+             "| high (" + report.options.levels + " uniform levels) | " + t1.vertices + " | " + t1.frames + " | " +
+                 t1.motion + " | " + fixed(t1.seconds, 1) + " | " + fixed(t1.msPerFrame.total, 1) + " | " +
+                 fixed(100 * t1.maxStretch, 1) + " % | " + fixed(1000 * t1.maxPenetration, 2) + " mm |", "");
+  lines.push("## Refinement (Table 2)", "");
+  lines.push("| mesh | delta | vertices | hanging nodes | vertices per level | ms |", "|---|---:|---:|---:|---|---:|");
+  for (const row of report.table2Refinement)
+    lines.push("| " + row.model + " | " + (row.delta === undefined ? "-" : row.delta) + " | " + row.vertices + " | " +
+               (row.hangingNodes === undefined ? "-" : row.hangingNodes) + " | " +
+               (row.verticesPerLevel ? row.verticesPerLevel.slice(1).join(" / ") : "-") + " | " +
+               fixed(row.milliseconds, 1) + " |");
+  const equal = report.uniformEqual;
+  lines.push("", "The uniform comparison mesh is level " + equal.level + " (" + equal.vertices + " vertices), the " +
+             "uniform level nearest the first multi-resolution mesh's " + equal.target + " vertices" +
+             (equal.level === 0 ? ": the coarse mesh itself, so it is not run twice." :
+              equal.level === report.options.levels ? ": the high-resolution mesh itself, so it is not run twice." : ".") +
+             " Uniform refinement quadruples the faces per level, so a closer count needs another coarse mesh.", "");
+  lines.push("## Modes", "");
+  lines.push("k-means over " + report.modes.frames + " instance frames (" + report.modes.normalize +
+             " normalisation): " + report.modes.sizes.map((size, k) => "mode " + (k + 1) + ": " + size + " vertices, mean " +
+             fixed(report.modes.centroids[k][0], 2) + " 1/m").join("; ") + ". Mapped onto the coarse garment by " +
+             report.modes.mapping.method + ".", "");
+  lines.push("## Test motions (Table 3)", "");
+  const motions = report.table3.map((row) => row.motion).filter((m, k, all) => all.indexOf(m) === k);
+  for (const motion of motions) {
+    lines.push("### " + motion, "");
+    lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | max penetration |",
+               "|---|---:|---:|---:|---:|---:|---:|");
+    for (const row of report.table3.filter((r) => r.motion === motion))
+      lines.push("| " + row.model + " | " + row.vertices + " | " + fixed(row.dynamicsMs, 2) + " | " +
+                 fixed(row.collisionMs, 2) + " | " + fixed(row.totalMs, 2) + " | " + fixed(100 * row.maxStretch, 1) +
+                 " % | " + fixed(1000 * row.maxPenetration, 2) + " mm |");
+    lines.push("");
+  }
+  lines.push("## Pictures", "");
+  for (const image of report.previews) lines.push("### " + image.title, "", "![" + image.title + "](" + image.file + ")", "");
+  lines.push("Caches (PC2 with their rest OBJ, and the body's) are in `caches/`; meshes (`.om` with every layer, " +
+             "PLY coloured by level, mode or curvature) in `meshes/`. In Blender: import the rest OBJ, add a Mesh " +
+             "Cache modifier, choose the PC2.", "");
+  return lines.join("\n");
+}
