@@ -12,27 +12,28 @@ void setScript(CommandLine& command, const QString& path) {
   command.scriptPath = path;
 }
 
+/// `mrcloth [host options] pipeline [options]`: the host's own -q/--quiet and
+/// --plugins may also come among the pipeline's; everything else is the
+/// pipeline script's to check.
+void parsePipelineArguments(CommandLine& command, const QStringList& arguments) {
+  command.pipeline = true;
+  for (qsizetype i = 0; i < arguments.size(); ++i) {
+    const QString& argument = arguments[i];
+    if (argument == QLatin1String("-q") || argument == QLatin1String("--quiet")) {
+      command.quiet = true;
+    } else if (argument == QLatin1String("--plugins")) {
+      if (i + 1 >= arguments.size() || arguments[i + 1].isEmpty()) fail(QStringLiteral("option '--plugins' needs a value"));
+      command.pluginFolder = arguments[++i];
+    } else {
+      command.scriptArguments << argument;
+    }
+  }
+}
+
 }  // namespace
 
 CommandLine parseCommandLine(const QStringList& arguments) {
   CommandLine command;
-  // `mrcloth pipeline [options]`: the host's own -q/--quiet and --plugins
-  // are taken out; everything else is the pipeline script's to check.
-  if (!arguments.isEmpty() && arguments.front() == QLatin1String("pipeline")) {
-    command.pipeline = true;
-    for (qsizetype i = 1; i < arguments.size(); ++i) {
-      const QString& argument = arguments[i];
-      if (argument == QLatin1String("-q") || argument == QLatin1String("--quiet")) {
-        command.quiet = true;
-      } else if (argument == QLatin1String("--plugins")) {
-        if (i + 1 >= arguments.size() || arguments[i + 1].isEmpty()) fail(QStringLiteral("option '--plugins' needs a value"));
-        command.pluginFolder = arguments[++i];
-      } else {
-        command.scriptArguments << argument;
-      }
-    }
-    return command;
-  }
   for (qsizetype i = 0; i < arguments.size(); ++i) {
     const QString& argument = arguments[i];
     // "--name=value" and "--name value" are both accepted for options with a value.
@@ -69,6 +70,9 @@ CommandLine parseCommandLine(const QStringList& arguments) {
       command.version = true;
     } else if (argument.startsWith(QLatin1Char('-')) && argument.size() > 1) {
       fail(QStringLiteral("unknown option '%1'").arg(option));
+    } else if (argument == QLatin1String("pipeline") && command.scriptPath.isEmpty()) {
+      parsePipelineArguments(command, arguments.mid(i + 1));
+      break;
     } else {
       setScript(command, argument);
     }

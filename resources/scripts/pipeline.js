@@ -251,6 +251,9 @@ if (options.help) {
 
 function runPipeline(options) {
   const out = options.out;
+  // The garment is read before anything is written: a broken file stops the run here.
+  const coarse = core.loadObject(options.garment, {units: options.units});
+  const coarseInfo = core.objectInfo(coarse);
   core.makePath(out);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and
@@ -278,9 +281,7 @@ function runPipeline(options) {
     if (report.nonFinite) throw new Error("pipeline: " + what + " became non-finite (NaN); nothing was written");
   };
 
-  // Stage 1: the coarse garment and the high-resolution mesh.
-  const coarse = core.loadObject(options.garment, {units: options.units});
-  const coarseInfo = core.objectInfo(coarse);
+  // Stage 1: the high-resolution mesh.
   const highRecord = stages.run("refine-uniform", ["meshes/high.om", "meshes/high_by_level.ply"], () => {
     const id = multirescloth.refineUniform(coarse, options.levels);
     const report = multirescloth.lastReport();

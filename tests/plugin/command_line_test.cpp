@@ -66,8 +66,12 @@ TEST(CommandLine, PipelineTakesTheHostsOptionsAndForwardsTheRest) {
                                                   QStringLiteral("--help")}));
   EXPECT_TRUE(command.scriptPath.isEmpty());
   EXPECT_THROW(parseCommandLine({QStringLiteral("pipeline"), QStringLiteral("--plugins")}), UsageError);
-  // Only as the first argument.
-  EXPECT_FALSE(parseCommandLine({QStringLiteral("-q"), QStringLiteral("pipeline")}).pipeline);
+  // Host options may also come first; a script named "pipeline" needs -b.
+  const CommandLine after = parseCommandLine({QStringLiteral("-q"), QStringLiteral("pipeline"), QStringLiteral("--levels")});
+  EXPECT_TRUE(after.pipeline);
+  EXPECT_TRUE(after.quiet);
+  EXPECT_EQ(after.scriptArguments, QStringList{QStringLiteral("--levels")});
+  EXPECT_FALSE(parseCommandLine({QStringLiteral("-b"), QStringLiteral("pipeline")}).pipeline);
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#!/bin/sh
+# Bad pipeline inputs stop before any work: exit code 1, a message naming
+# the option or file, and no output folder created.
+#
+# pipeline_errors.sh <mrcloth> <resources> <tmp folder>
+set -u
+host=$1 resources=$2 tmp=$3
+rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
+failed=0
+n=0
+# refused <stderr regex> <pipeline arguments...>
+refused() {
+  pattern=$1
+  shift
+  n=$((n + 1))
+  out="$tmp/out$n"
+  "$host" pipeline --out "$out" "$@" > "$tmp/stdout$n" 2> "$tmp/stderr$n"
+  code=$?
+  if [ "$code" -ne 1 ]; then echo "FAILED ($*): exit code $code, expected 1"; failed=1; fi
+  if ! grep -Eq "$pattern" "$tmp/stderr$n"; then
+    echo "FAILED ($*): stderr does not match '$pattern':"; cat "$tmp/stderr$n"; failed=1
+  fi
+  if [ -e "$out" ]; then echo "FAILED ($*): $out was created"; failed=1; fi
+}
+refused "unknown option \"--frobnicate\"" --frobnicate
+refused "unexpected argument \"stray\"" stray
+refused "option --levels: expected an integer >= 1, got \"two\"" --levels two
+refused "option --levels: expected an integer >= 1, got \"0\"" --levels 0
+refused "option --delta: expected a number > 0, got \"-3\"" --delta 8,-3
+refused "option --fps: expected a number > 0, got \"fast\"" --fps fast
+refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot
+refused "option --units: expected one of m, dm, cm, mm, inch, got \"feet\"" --units feet
+refused "option --size: expected WIDTHxHEIGHT" --size 800
+refused "option --modes needs a value" --modes
+refused "option --garment: no such file: .*missing.obj" --garment "$tmp/missing.obj"
+refused "option --test: no such file: .*nowhere.bvh" --test "$resources/characters/walk_new.bvh,$tmp/nowhere.bvh"
+refused "option --instance: no such file" --instance "$tmp/no.bvh"
+refused "option --body mesh needs --makehuman DIR" --body mesh
+refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp"
+refused "option --resume takes no value" --resume=yes
+# An unreadable input (skipped when running as root, who reads everything).
+touch "$tmp/locked.obj" && chmod 000 "$tmp/locked.obj"
+if ! cat "$tmp/locked.obj" > /dev/null 2>&1; then
+  refused "option --garment: cannot read .*locked.obj" --garment "$tmp/locked.obj"
+fi
+# A garment that is not a quad mesh fails in its loader, naming the file and line, exit 1.
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' > "$tmp/broken.obj"
+n=$((n + 1))
+"$host" pipeline --garment "$tmp/broken.obj" --out "$tmp/out$n" > /dev/null 2> "$tmp/stderr$n"
+code=$?
+[ "$code" -eq 1 ] || { echo "FAILED (broken garment): exit code $code"; failed=1; }
+grep -q "broken.obj" "$tmp/stderr$n" || { echo "FAILED (broken garment): $(cat "$tmp/stderr$n")"; failed=1; }
+# --help prints the options and does nothing else.
+"$host" pipeline --help --out "$tmp/help" > "$tmp/help.out" 2>&1 || { echo "FAILED: --help exit code $?"; failed=1; }
+grep -q "^Usage: mrcloth pipeline" "$tmp/help.out" || { echo "FAILED: --help text"; failed=1; }
+[ -e "$tmp/help" ] && { echo "FAILED: --help created its output folder"; failed=1; }
+[ "$failed" -eq 0 ] && echo "pipeline errors: ok ($n cases)"
+exit "$failed"

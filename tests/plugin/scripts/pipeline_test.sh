@@ -1,0 +1,72 @@
+#!/bin/sh
+# The pipeline end to end on a very small configuration: `mrcloth pipeline`
+# writes every file its report names; `mrcloth -b pipeline.js` with the same
+# options gives the same numbers; --resume runs nothing again and reports the
+# same; Ctrl-C stops it with 130 and leaves only complete files, and a resume
+# then finishes the run.
+#
+# pipeline_test.sh <mrcloth> <resources> <test scripts> <tmp folder>
+set -u
+host=$1 resources=$2 scripts=$3 tmp=$4
+rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
+# Small: one uniform level, 8 instance frames, 5 frames of one test walk, short pre-roll.
+small="--levels 1 --modes 2 --delta 6,8 --instance-frames 8 --test-frames 5 --preroll 0.2 --size 160x160
+       --test $resources/characters/walk_new.bvh"
+failed=0
+fail() { echo "FAILED: $*"; failed=1; }
+
+# 1. The command.
+"$host" -q pipeline $small --out "$tmp/command" > "$tmp/command.out" 2> "$tmp/command.err"
+code=$?
+[ "$code" -eq 0 ] || { fail "pipeline exit code $code"; cat "$tmp/command.err"; }
+[ -s "$tmp/command.err" ] && fail "--quiet printed on stderr: $(cat "$tmp/command.err")"
+# Coarse, two multi-resolution meshes, high; the uniform level nearest 1395 vertices is the coarse mesh.
+grep -q "^pipeline: 4 runs of 4 models" "$tmp/command.out" || fail "no summary line: $(cat "$tmp/command.out")"
+
+# 2. The script through the public API, same options: same numbers.
+"$host" -q -b "$resources/scripts/pipeline.js" -- $small --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
+  { fail "pipeline.js exit code $?"; cat "$tmp/script.err"; }
+"$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/command" "$tmp/script" || fail "check command against script"
+
+# 3. Resume: every stage skipped, the same numbers.
+cp "$tmp/command/report.json" "$tmp/first_report.json"
+"$host" pipeline $small --out "$tmp/command" --resume > "$tmp/resume.out" 2> "$tmp/resume.err" ||
+  { fail "resume exit code $?"; cat "$tmp/resume.err"; }
+grep -q "(0 stages run, 10 resumed)" "$tmp/resume.out" || fail "resume ran stages: $(cat "$tmp/resume.out")"
+grep -q "complete from an earlier run, skipped" "$tmp/resume.err" || fail "no skip lines on stderr"
+"$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/command" "$tmp/script" || fail "check after resume"
+
+# 4. Resume with other options is refused before any work.
+"$host" -q pipeline $small --modes 3 --out "$tmp/command" --resume > /dev/null 2> "$tmp/other.err"
+code=$?
+[ "$code" -eq 1 ] || fail "resume with other options: exit code $code"
+grep -q "holds a run with other options (modes)" "$tmp/other.err" || fail "other options: $(cat "$tmp/other.err")"
+
+# 5. Ctrl-C once the instance is recorded, during the test runs or previews.
+"$host" pipeline $small --test-frames 120 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
+pid=$!
+tries=0
+until [ -f "$tmp/interrupted/stages/modes.json" ]; do
+  tries=$((tries + 1))
+  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
+    fail "the pipeline did not get to its modes"; cat "$tmp/int.err"; kill "$pid" 2>/dev/null; break
+  fi
+  sleep 0.1
+done
+sleep 1
+kill -INT "$pid"
+wait "$pid"
+code=$?
+[ "$code" -eq 130 ] || { fail "interrupted pipeline: exit code $code, expected 130"; tail -5 "$tmp/int.err"; }
+leftovers=$(find "$tmp/interrupted" -name '.*tmp*')
+[ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
+[ -f "$tmp/interrupted/report.json" ] && fail "an interrupted run wrote a report"
+# Every cache present is complete: the resumed run reads them all.
+"$host" -q pipeline $small --test-frames 120 --out "$tmp/interrupted" --resume > "$tmp/int_resume.out" 2> "$tmp/int_resume.err" ||
+  { fail "resume after Ctrl-C: exit code $?"; cat "$tmp/int_resume.err"; }
+grep -q "resumed)" "$tmp/int_resume.out" && ! grep -q "(0 stages run" "$tmp/int_resume.out" ||
+  fail "resume after Ctrl-C: $(cat "$tmp/int_resume.out")"
+grep -Eq ", [1-9][0-9]* resumed\)" "$tmp/int_resume.out" || fail "nothing was resumed: $(cat "$tmp/int_resume.out")"
+
+[ "$failed" -eq 0 ] && echo "pipeline: ok"
+exit "$failed"
