@@ -14,9 +14,12 @@
 #include "plugin/render/rasterize.h"
 #include "preview_scene.h"
 
+#include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QImage>
-#include <QDir>
+#include <QProcess>
+#include <QStandardPaths>
 
 #include <cmath>
 #include <optional>
@@ -93,7 +96,9 @@ RenderRequest parseRenderOptions(const Fields& fields) {
   if (fields.has(QStringLiteral("body"))) {
     const Fields body(fields.required(QStringLiteral("body")), QStringLiteral("body"),
                       {QStringLiteral("cache"), QStringLiteral("mesh")});
-    request.body_cache = options::existingInputFile(body.string(QStringLiteral("cache")), body.label(QStringLiteral("cache")));
+    request.body_cache = options::existingInputFile(
+        script::toString(body.required(QStringLiteral("cache")), body.label(QStringLiteral("cache"))),
+        body.label(QStringLiteral("cache")));
     const QFileInfo cache(request.body_cache);
     request.body_mesh = body.has(QStringLiteral("mesh"))
                             ? body.string(QStringLiteral("mesh"))
@@ -127,7 +132,8 @@ QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame
   options.height = request.height;
   options.supersample = request.supersample;
   QImage image = render::render(scene, camera, options);
-  if (request.legend) {
+  // A legend needs room; on a thumbnail it would cover the garment.
+  if (request.legend && std::min(request.width, request.height) >= 240) {
     render::draw_legend(image, garment.legend, render::Corner::top_right);
     if (garment.color_bar) render::draw_color_bar(image, *garment.color_bar, render::Corner::bottom_right);
   }
@@ -173,6 +179,50 @@ render::ChartOptions chartSize(const Fields& fields) {
 
 }  // namespace
 
+/// A GIF (ImageMagick's convert) or MP4 (ffmpeg) of the frames, only when the
+/// tool is installed: a warning otherwise, never a failure. Written beside
+/// and renamed, so an interrupted encoder leaves nothing.
+void PreviewPlugin::writeAnimation(const QVariantList& frames, const QString& path, double fps) {
+  const bool gif = path.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive);
+  const QString tool = QStandardPaths::findExecutable(gif ? QStringLiteral("convert") : QStringLiteral("ffmpeg"));
+  if (tool.isEmpty()) {
+    emit log(LOGWARN, QStringLiteral("renderSequence: %1 not written: %2 is not installed (the PNG frames are)")
+                          .arg(path, gif ? QStringLiteral("ImageMagick's convert") : QStringLiteral("ffmpeg")));
+    return;
+  }
+  const QFileInfo target(path);
+  const QString temporary = target.dir().filePath(QStringLiteral(".%1.part.%2").arg(target.completeBaseName(), target.suffix()));
+  QStringList arguments;
+  if (gif) {
+    arguments << QStringLiteral("-delay") << QString::number(std::max(1L, std::lround(100.0 / fps)))
+              << QStringLiteral("-loop") << QStringLiteral("0");
+    for (const QVariant& frame : frames) arguments << frame.toString();
+    arguments << temporary;
+  } else {
+    const QString first = frames.front().toString();
+    const QString pattern = first.left(first.lastIndexOf(QLatin1Char('_')) + 1) + QStringLiteral("%0") +
+                            QString::number(first.size() - first.lastIndexOf(QLatin1Char('_')) - 5) + QStringLiteral("d.png");
+    arguments << QStringLiteral("-y") << QStringLiteral("-loglevel") << QStringLiteral("error") << QStringLiteral("-framerate")
+              << QString::number(fps) << QStringLiteral("-i") << pattern << QStringLiteral("-pix_fmt")
+              << QStringLiteral("yuv420p") << QStringLiteral("-vf") << QStringLiteral("scale=trunc(iw/2)*2:trunc(ih/2)*2")
+              << temporary;
+  }
+  QProcess process;
+  process.start(tool, arguments);
+  const bool ok = process.waitForFinished(-1) && process.exitStatus() == QProcess::NormalExit && process.exitCode() == 0;
+  if (!ok || !QFile::exists(temporary)) {
+    QFile::remove(temporary);
+    emit log(LOGWARN, QStringLiteral("renderSequence: %1 not written: %2 failed: %3")
+                          .arg(path, tool, QString::fromLocal8Bit(process.readAllStandardError()).trimmed()));
+    return;
+  }
+  QFile::remove(path);
+  if (!QFile::rename(temporary, path)) {
+    QFile::remove(temporary);
+    throw OutputError(path.toStdString() + ": cannot move the animation into place");
+  }
+}
+
 template <class Body>
 auto PreviewPlugin::guarded(const char* slot, Body&& body) -> decltype(body()) {
   return runScriptSlot(this, scriptObjectName(name()) + QLatin1Char('.') + QLatin1String(slot),
@@ -195,6 +245,9 @@ QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) 
       options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
     const QImage image = renderFrame(*object.mesh, request, frame);
     savePng(image, file);
+    if (request.color_by == ColorBy::curvature && preview::largest_curvature(*object.mesh) <= 0.0)
+      emit log(LOGWARN, QStringLiteral("render: %1: the mean_curvature layer is zero everywhere: run "
+                                       "multirescloth.extractModes on this mesh first").arg(file));
     return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), image.width()},
                        {QStringLiteral("height"), image.height()}, {QStringLiteral("frame"), frame}};
   });
@@ -207,7 +260,7 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     const QString stem = script::toString(prefix, QStringLiteral("prefix"));
     QStringList keys = kRenderKeys;
     keys.removeAll(QStringLiteral("frame"));
-    keys << QStringLiteral("frames");
+    keys << QStringLiteral("frames") << QStringLiteral("animation") << QStringLiteral("fps");
     const Fields fields(options, QString(), keys, QStringLiteral("renderSequence options"));
     const RenderRequest request = parseRenderOptions(fields);
     if (request.cache.isEmpty()) options::fail(QStringLiteral("missing option 'cache': the PC2 whose frames are drawn"));
@@ -230,6 +283,11 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
       const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(object.mesh->n_vertices()));
       for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
     }
+    const QString animation = fields.string(QStringLiteral("animation"));
+    const double fps = fields.numberFrom(QStringLiteral("fps"), 30.0, 0.0, true);
+    if (!animation.isEmpty() && !animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
+        !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
+      options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));
     QVariantList files;
     JobScope job(*this, QStringLiteral("renderSequence"),
                  QStringLiteral("%1 frames of %2").arg(frames.size()).arg(QFileInfo(request.cache).fileName()),
@@ -242,6 +300,7 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
       files << file;
       job.progress(static_cast<int>(k + 1));
     }
+    if (!animation.isEmpty()) writeAnimation(files, animation, fps);
     return files;
   });
 }
@@ -360,7 +419,9 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
                       "the garment over all of them; returns the files. Cancellable (Ctrl-C)."),
        {QStringLiteral("id"), QStringLiteral("prefix"), QStringLiteral("options")},
        {QStringLiteral("object id"), QStringLiteral("path prefix of the PNG files"),
-        QStringLiteral("as render's, with cache required and frames: int[] = every frame instead of frame")}},
+        QStringLiteral("as render's, with cache required and frames: int[] = every frame instead of frame; "
+                       "animation: .gif (needs ImageMagick's convert) or .mp4 (needs ffmpeg) file = none, skipped "
+                       "with a warning when the tool is missing; fps: number > 0 = 30 (the animation's rate)")}},
       {QStringLiteral("contactSheet(string[] images, string path, object options = {}) -> object"),
        QStringLiteral("Composes images in a grid with captions and a title into one PNG; returns {file, width, "
                       "height}."),

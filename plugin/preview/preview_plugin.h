@@ -51,6 +51,7 @@ class PreviewPlugin : public QObject,
  private:
   template <class Body>
   auto guarded(const char* slot, Body&& body) -> decltype(body());
+  void writeAnimation(const QVariantList& frames, const QString& path, double fps);
 
   ObjectStore* store_ = nullptr;
 };

@@ -67,8 +67,8 @@ GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positio
       break;
     }
     case ColorBy::curvature: {
+      const double largest = largest_curvature(mesh);
       const std::vector<double> curvature = vertex_layer(mesh, layer::mean_curvature);
-      const double largest = curvature.empty() ? 0.0 : *std::max_element(curvature.begin(), curvature.end());
       for (const double k : curvature)
         surface.vertex_colors.push_back(to_qcolor(sequential_color(largest > 0.0 ? k / largest : 0.0)));
       render::ColorBar bar;
@@ -81,6 +81,14 @@ GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positio
     }
   }
   return result;
+}
+
+double largest_curvature(const QuadMesh& mesh) {
+  OpenMesh::VPropHandleT<double> handle;
+  if (!mesh.get_property_handle(handle, layer::mean_curvature))
+    throw ArgumentError("the mesh has no mean_curvature layer: run multirescloth.extractModes on it first");
+  const std::vector<double> curvature = vertex_layer(mesh, layer::mean_curvature);
+  return curvature.empty() ? 0.0 : *std::max_element(curvature.begin(), curvature.end());
 }
 
 Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expected_points) {

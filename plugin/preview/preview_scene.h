@@ -29,6 +29,10 @@ struct GarmentLayer {
 /// when curvature is asked of a mesh without the mean_curvature layer.
 GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positions, ColorBy color_by);
 
+/// The largest value of the mesh's mean_curvature layer (1/m); throws
+/// ArgumentError naming extractModes when the mesh has no such layer.
+double largest_curvature(const QuadMesh& mesh);
+
 /// The positions of frame `frame` (0-based) of a PC2 cache; InputError
 /// naming the file for a bad cache, ArgumentError for a frame out of range
 /// or a point count other than `expected_points` (when >= 0).
