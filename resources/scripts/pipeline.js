@@ -37,7 +37,7 @@ const USAGE = [
   "Method:",
   "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
   "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
-  "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [8,10]",
+  "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
   "  --material M           cotton | denim | silk [cotton]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
@@ -47,7 +47,9 @@ const USAGE = [
   "  --out DIR              output folder, created if missing [pipeline_out]",
   "  --resume               skip stages whose outputs are complete (same options only)",
   "  --size WxH             preview image size in pixels [800x800]",
-  "  --sequence             also render every frame of each test motion's multi-resolution run",
+  "  --sequence             also render every frame of each test motion's first multi-resolution run",
+  "                         (and an animated GIF of it when ImageMagick's convert is installed)",
+  "  --obj-sequence         also write every simulated frame as OBJ (caches/<run>_0000.obj ...)",
   "  -q, --quiet            no progress (host option)",
   "  -h, --help             this text",
 ].join("\n");
@@ -64,10 +66,11 @@ const DEFAULTS = {
   garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", body: "capsules", place: null,
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
-  levels: 2, modes: 3, delta: [8, 10], material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
-  preroll: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, help: false,
+  levels: 2, modes: 3, delta: [5, 7], material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
+  preroll: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
 };
-const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--help": "help", "-h": "help"};
+const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
+               "-h": "help"};
 const VALUED = {
   "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
@@ -392,6 +395,7 @@ function runPipeline(options) {
         const id = core.loadObject(out + "/" + model.file);
         const settings = onCharacter(options.testFrames, cache, bodyCache);
         settings.motion = motion(test);
+        if (options.objSequence) settings.objSequence = out + "/" + cache.replace(/\.pc2$/, "");
         const report = multirescloth.simulate(id, settings);
         core.deleteObject(id);
         mustFinish(model.name + " on " + motionName, report);
@@ -451,16 +455,18 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
   const cellSize = {width: Math.max(64, Math.round(size.width / 2)), height: Math.max(64, Math.round(size.height / 2))};
   core.makePath(out + "/previews/frames");
   const images = [];
-  const still = (file, meshFile, colorBy, camera, title) => {
+  // The high-resolution mesh's wires would hide its colours: drawn without.
+  const still = (file, meshFile, colorBy, camera, title, wireframe = true) => {
     const id = core.loadObject(out + "/" + meshFile);
-    preview.render(id, out + "/" + file, Object.assign({colorBy: colorBy, camera: camera, title: title}, size));
+    preview.render(id, out + "/" + file, Object.assign({colorBy: colorBy, camera: camera, title: title,
+                                                        wireframe: wireframe}, size));
     core.deleteObject(id);
     images.push({file: file, title: title});
   };
   still("previews/modes_coarse.png", "meshes/coarse_modes.om", "mode", "three_quarter", "modes on the coarse garment");
-  still("previews/modes_high.png", "meshes/high_modes.om", "mode", "three_quarter", "modes of the instance");
+  still("previews/modes_high.png", "meshes/high_modes.om", "mode", "three_quarter", "modes of the instance", false);
   still("previews/curvature_high.png", "meshes/high_modes.om", "curvature", "three_quarter",
-        "mean bending curvature of the instance");
+        "mean bending curvature of the instance", false);
   multiNames.forEach((name) => still("previews/levels_" + name + ".png", "meshes/" + name + ".om", "level", "front",
                                      name + ": refinement levels"));
 
@@ -482,7 +488,8 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
       if (options.sequence && run.model === multiNames[0])
         preview.renderSequence(id, out + "/previews/frames/sequence_" + run.model + "_" + motionName, {
           cache: out + "/" + run.cache, colorBy: "level", camera: "front", width: cellSize.width,
-          height: cellSize.height,
+          height: cellSize.height, fps: options.fps,
+          animation: out + "/previews/sequence_" + run.model + "_" + motionName + ".gif",
           body: {cache: out + "/" + run.bodyCache}});
       core.deleteObject(id);
     }
@@ -494,7 +501,7 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
 
   // Plots.
   preview.lineChart(out + "/plots/time_per_frame.png", {
-    title: "time per frame", xLabel: "frame", yLabel: "ms (dynamics + collision)",
+    title: "time per frame on " + baseName(options.test[0]), xLabel: "frame", yLabel: "ms (dynamics + collision)",
     series: runs.filter((run) => run.motion === baseName(options.test[0])).map((run) => ({
       name: run.model, x: run.numbers.perFrameMs.map((_, k) => k),
       y: run.numbers.perFrameMs.map((ms) => ms.dynamics + ms.collision)}))});
@@ -510,7 +517,7 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
     title: "vertices per deformation mode", yLabel: "vertices", categories: modeNames,
     series: [{name: "instance (" + highRecord.vertices + " vertices)", values: modesRecord.sizes},
              {name: "coarse garment", values: modeNames.map((_, k) => modesRecord.coarseVerticesPerMode[k + 1] || 0)}]});
-  images.push({file: "plots/time_per_frame.png", title: "time per frame"},
+  images.push({file: "plots/time_per_frame.png", title: "time per frame on " + baseName(options.test[0])},
               {file: "plots/vertices_per_level.png", title: "vertices per level"},
               {file: "plots/mode_histogram.png", title: "mode histogram"});
   return {images: images};

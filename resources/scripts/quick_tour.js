@@ -1,11 +1,12 @@
-// mrcloth main job: from a coarse garment to the meshes the paper compares.
+// mrcloth quick tour (about 15 s): from a coarse garment to the meshes the
+// paper compares, with hand-painted modes. The main job, with modes learnt
+// from a recorded instance, is `mrcloth pipeline` (pipeline.js).
 //
 //   coarse garment --refineUniform x2--> high-resolution (instance) mesh
 //   coarse garment --paint modes--> --refineAdaptive--> multi-resolution mesh
 //
-// The modes are painted by hand for now (a brush over the front of the lower
-// skirt, where a walk wrinkles it most); later issues derive them from a
-// simulated walk. Modes live on the coarse mesh because adaptive refinement
+// The modes are painted by hand (a brush over the front of the lower skirt,
+// where a walk wrinkles it most), as an artist would override them. Modes live on the coarse mesh because adaptive refinement
 // starts from it (paper, Stage 6); maxLevel 3 = the instance mesh's level, so
 // the multi-resolution mesh never gets finer than the high-resolution one.
 //
@@ -13,7 +14,7 @@
 // instance walk and simulates the coarse skirt and the trousers on the new
 // walk, on the embedded mannequin (PC2 caches with their rest OBJs).
 //
-// Usage: mrcloth -b main_job.js [-- <output folder> [<garment file> [<units>]]]
+// Usage: mrcloth -b quick_tour.js [-- <output folder> [<garment file> [<units>]]]
 //   output folder  created if missing (default "out")
 //   garment file   default: the embedded default skirt (resources/garments)
 //   units          of the garment file: m (default), dm, cm, mm, inch
@@ -28,7 +29,7 @@ const adaptiveOptions = {delta: 8, maxLevel: 3, balance: true};
 
 if (!core.fileExists(garmentPath))
   throw new Error("garment not found: " + garmentPath +
-                  " (pass another one: mrcloth -b main_job.js -- <out> <garment.obj> [units])");
+                  " (pass another one: mrcloth -b quick_tour.js -- <out> <garment.obj> [units])");
 core.makePath(outDir);
 
 // --- Stage 0: the coarse garment -------------------------------------------
@@ -88,8 +89,7 @@ function onCharacter(label, id, motionFile, record) {
   const options = {motion: characters + "/" + motionFile, body: "capsules", place: "firstFrame",
                    frames: motionFrames, output: outDir + "/" + label + ".pc2"};
   const report = record ? multirescloth.recordInstance(id, options) : multirescloth.simulate(id, options);
-  written.push(label + ".pc2");
-  if (record) written.push(label + ".obj");
+  written.push(label + ".pc2", label + ".obj");
   runs.push({label: label, motion: motionFile, report: report});
 }
 const usesDefaultGarment = args[1] === undefined;
@@ -117,7 +117,7 @@ function row(label, info, milliseconds) {
 }
 
 const modeCounts = coarseInfo.verticesPerMode;
-print("mrcloth main job");
+print("mrcloth quick tour");
 print("garment: " + garmentPath + " (" + units + "), " + coarseInfo.vertices + " vertices, " +
       coarseInfo.faces + " quads, area " + coarseInfo.area.toFixed(4) + " m^2, loaded in " +
       loadMilliseconds + " ms");
