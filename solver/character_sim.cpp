@@ -258,6 +258,34 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
   return placed_points.col(1).minCoeff() >= knee_height ? 1.0 : 2.0;
 }
 
+GarmentClearance clear_garment_of_body(PosedBody& body, const Motion& motion, const CharacterRunOptions& options,
+                                       Eigen::MatrixX3d& points, const std::vector<std::array<int, 3>>& hanging) {
+  body.set_pose(reference_pose(motion, options));
+  const CollisionScene& scene = body.scene();
+  GarmentClearance clearance;
+  const Eigen::MatrixX3d before = points;
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    const Eigen::Vector3d p = points.row(v).transpose();
+    Eigen::Vector3d moved = p;
+    // A point at rest: its step starts where it is, and friction has nothing to act on.
+    if (scene.resolve(p, moved, false) > 0.0) points.row(v) = moved.transpose();
+  }
+  for (const auto& [vertex, a, b] : hanging) {
+    if (vertex < 0 || a < 0 || b < 0 || vertex >= points.rows() || a >= points.rows() || b >= points.rows())
+      throw ArgumentError("clear_garment_of_body: hanging vertex " + std::to_string(vertex) + " with parents " +
+                          std::to_string(a) + ", " + std::to_string(b) + " out of range");
+    points.row(vertex) = 0.5 * (points.row(a) + points.row(b));
+  }
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    const double move = (points.row(v) - before.row(v)).norm();
+    if (move > 0.0) {
+      ++clearance.moved;
+      clearance.largest_move = std::max(clearance.largest_move, move);
+    }
+  }
+  return clearance;
+}
+
 void write_body_cache(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
                       const std::string& cache_path, const std::string& obj_path) {
   check(options, motion);

@@ -8,6 +8,7 @@
 #include "simulate.h"
 #include "skeleton.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -140,6 +141,23 @@ void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const Skinn
 /// capsules shrank.
 int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,
                                const std::vector<Eigen::Vector3d>& body_joints, const Eigen::MatrixX3d& garment);
+
+/// What clear_garment_of_body did.
+struct GarmentClearance {
+  int moved = 0;              ///< points moved out
+  double largest_move = 0.0;  ///< metres
+};
+
+/// Moves every garment point that starts inside `body`, or nearer to it
+/// than its thickness, out to the thickness, in the pose the garment was
+/// modelled on (reference_pose of `options`): a refined garment's new
+/// points lie on its flat coarse faces, chords that cut into a curved body,
+/// and a pinned waist there would stay inside for the whole run. `points`
+/// (#V x 3, metres, placed) are changed in place; each `hanging` entry
+/// {vertex, parent a, parent b} is then put back at its parents' midpoint,
+/// as the T-node constraint requires. The body is left in that pose.
+GarmentClearance clear_garment_of_body(PosedBody& body, const Motion& motion, const CharacterRunOptions& options,
+                                       Eigen::MatrixX3d& points, const std::vector<std::array<int, 3>>& hanging);
 
 /// How far down the legs bridges go for a garment (add_leg_bridges' reach,
 /// 0 = none): one tube around both legs (two boundary loops: a skirt or

@@ -25,6 +25,8 @@
 
 #include <QElapsedTimer>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -485,6 +487,40 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     }
     garment = placed.get();
   }
+  // A refined garment's new points lie on its flat coarse faces, chords that
+  // cut into the curved skinned body: they start outside it. Garments as
+  // modelled are left as they are (moving their few points that touch the
+  // body made the MakeHuman trousers stretch more, measured), and capsules
+  // are shrunk to the garment instead.
+  GarmentClearance clearance;
+  const std::vector<std::size_t> levels = faces_per_level(*input.mesh);
+  const bool refined = levels.size() > 2 && std::any_of(levels.begin() + 2, levels.end(), [](std::size_t n) { return n > 0; });
+  if (wanted.body == CharacterBodyType::mesh && refined) {
+    if (!placed) placed = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(placed->n_vertices()), 3);
+    for (const auto vertex : placed->vertices()) {
+      const auto& p = placed->point(vertex);
+      points.row(vertex.idx()) << p[0], p[1], p[2];
+    }
+    std::vector<std::array<int, 3>> hanging;
+    const Layers layers = get_layers(*placed);
+    for (const auto vertex : placed->vertices())
+      if (placed->property(layers.hanging, vertex)) {
+        const OpenMesh::Vec2i ends = placed->property(layers.parents, vertex);
+        hanging.push_back({vertex.idx(), ends[0], ends[1]});
+      }
+    CharacterRunOptions start;
+    start.garment_pose = character.garmentPose;
+    start.motion_start = wanted.motionStart;
+    clearance = clear_garment_of_body(*character.body, motion, start, points, hanging);
+    for (const auto vertex : placed->vertices())
+      placed->set_point(vertex, OpenMesh::Vec3d(points(vertex.idx(), 0), points(vertex.idx(), 1), points(vertex.idx(), 2)));
+    garment = placed.get();
+    if (clearance.moved > 0)
+      emit log(LOGINFO, QStringLiteral("%1: %2 garment vertices started inside the body or within its thickness; moved "
+                                       "out (at most %3 mm) before the run")
+                            .arg(slot).arg(clearance.moved).arg(1000.0 * clearance.largest_move, 0, 'f', 1));
+  }
   const DynamicsModel model = build_dynamics(*garment, request.dynamics);
   ClothState state = rest_state(model);
   const CharacterRunOptions run = characterRunOptions(wanted, character, model, request.simulation);
@@ -560,11 +596,14 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                        {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
                        {QStringLiteral("objFiles"), obj_files}});
   last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
+  last_report_.insert(QStringLiteral("garmentCleared"),
+                      QVariantMap{{QStringLiteral("vertices"), clearance.moved},
+                                  {QStringLiteral("largestMove"), clearance.largest_move}});
   if (!body_mesh.isEmpty())
     last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
   if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
-  if (report.preroll.initial_penetration > 0.0)
+  if (report.preroll.initial_penetration > 1e-6)  // clearing the garment leaves round-off
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
                                      "thickness); it is pushed out on the first step: check option 'place'")
                           .arg(slot).arg(1000.0 * report.preroll.initial_penetration, 0, 'f', 1));

@@ -131,5 +131,43 @@ TEST(BodyCache, HoldsTheBodyAtTheGarmentsFrameTimes) {
   EXPECT_TRUE(std::filesystem::exists(obj));
 }
 
+TEST(ClearGarmentOfBody, MovesPointsOutToTheThicknessAndKeepsTNodesAtMidpoints) {
+  const Motion motion = read_bvh(std::string(MRCLOTH_RESOURCES) + "/characters/walk_instance.bvh");
+  CapsuleRig rig = make_capsule_rig(motion.skeleton);
+  const double thickness = rig.thickness;
+  CapsulePosedBody body(rig, motion.skeleton);
+  CharacterRunOptions options;
+  const std::vector<Collider> capsules = posed_capsules(rig, reference_pose(motion, options));
+  // Three points inside the first capsule (its axis), one 0.5 m away, and a T-node between two of them.
+  const auto& c = std::get<CapsuleCollider>(capsules.front().shape);
+  Eigen::MatrixX3d points(5, 3);
+  points.row(0) = (0.7 * c.a + 0.3 * c.b).transpose();
+  points.row(1) = (0.4 * c.a + 0.6 * c.b + Eigen::Vector3d(0, 0, 0.25 * c.radius_a)).transpose();
+  points.row(2) = Eigen::RowVector3d::Zero();  // the T-node: set from 0 and 1
+  points.row(3) = (c.a + Eigen::Vector3d(0, 0, 0.5)).transpose();
+  points.row(4) = (0.5 * c.a + 0.5 * c.b).transpose();
+  const Eigen::MatrixX3d before = points;
+  const GarmentClearance clearance = clear_garment_of_body(body, motion, options, points, {{2, 0, 1}});
+  const CollisionScene& scene = body.scene();
+  for (const int v : {0, 1, 4}) {
+    EXPECT_LE(scene.penetration(points.row(v).transpose()), 1e-12) << "vertex " << v;
+    // At least the thickness from every capsule (the first overlaps its
+    // neighbours, so a point pushed out of it may be pushed on), and not far beyond.
+    double nearest = 1e300;
+    for (const Collider& collider : capsules)
+      nearest = std::min(nearest, query_surface(collider, points.row(v).transpose()).distance);
+    EXPECT_GE(nearest, thickness - 1e-9) << "vertex " << v;
+    EXPECT_LE(nearest, thickness + 0.01) << "vertex " << v;
+  }
+  EXPECT_EQ(points.row(3), before.row(3)) << "a point far outside stays";
+  EXPECT_EQ(points.row(2), 0.5 * (points.row(0) + points.row(1))) << "the T-node is at its parents' midpoint";
+  EXPECT_EQ(clearance.moved, 4);
+  double largest = 0.0;
+  for (int v = 0; v < 5; ++v) largest = std::max(largest, (points.row(v) - before.row(v)).norm());
+  EXPECT_EQ(clearance.largest_move, largest);
+  Eigen::MatrixX3d bad = before;
+  EXPECT_THROW(clear_garment_of_body(body, motion, options, bad, {{2, 0, 7}}), std::exception);
+}
+
 }  // namespace
 }  // namespace mrcloth
