@@ -246,15 +246,24 @@ bool face_usable(const std::vector<int>& face, const std::vector<char>& finite) 
   return true;
 }
 
-void draw_surface(Frame& frame, const Projector& projector, const Surface& surface, const RenderOptions& options) {
+/// Every vertex in view space, and whether it was finite (non-finite ones are skipped, not projected).
+void to_view_space(const Projector& projector, const Surface& surface, std::vector<Eigen::Vector3d>& view,
+                   std::vector<char>& finite) {
   const auto rows = static_cast<int>(surface.positions.rows());
-  std::vector<Eigen::Vector3d> view(rows);
-  std::vector<char> finite(rows);
+  view.assign(rows, Eigen::Vector3d::Zero());
+  finite.assign(rows, 0);
   for (int v = 0; v < rows; ++v) {
     const Eigen::Vector3d p = surface.positions.row(v).transpose();
     finite[v] = p.allFinite();
     if (finite[v]) view[v] = projector.to_view(p);
   }
+}
+
+void draw_surface(Frame& frame, const Projector& projector, const Surface& surface, const RenderOptions& options) {
+  const auto rows = static_cast<int>(surface.positions.rows());
+  std::vector<Eigen::Vector3d> view;
+  std::vector<char> finite;
+  to_view_space(projector, surface, view, finite);
   const Eigen::Vector3d light = -projector.forward();
   const double ambient = std::clamp(options.ambient, 0.0, 1.0);
   auto intensity = [&](const Eigen::Vector3d& normal) {
@@ -301,14 +310,9 @@ void draw_surface(Frame& frame, const Projector& projector, const Surface& surfa
 }
 
 void draw_wireframe(Frame& frame, const Projector& projector, const Surface& surface, double width, double offset) {
-  const auto rows = static_cast<int>(surface.positions.rows());
-  std::vector<Eigen::Vector3d> view(rows);
-  std::vector<char> finite(rows);
-  for (int v = 0; v < rows; ++v) {
-    const Eigen::Vector3d p = surface.positions.row(v).transpose();
-    finite[v] = p.allFinite();
-    if (finite[v]) view[v] = projector.to_view(p);
-  }
+  std::vector<Eigen::Vector3d> view;
+  std::vector<char> finite;
+  to_view_space(projector, surface, view, finite);
   const QRgb color = qRgb(surface.wire_color.red(), surface.wire_color.green(), surface.wire_color.blue());
   std::unordered_set<std::uint64_t> drawn;  // shared edges once: halves the work
   drawn.reserve(surface.faces.size() * 2);
