@@ -260,22 +260,48 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
 
 GarmentClearance clear_garment_of_body(PosedBody& body, const Motion& motion, const CharacterRunOptions& options,
                                        Eigen::MatrixX3d& points, const std::vector<std::array<int, 3>>& hanging) {
-  body.set_pose(reference_pose(motion, options));
-  const CollisionScene& scene = body.scene();
-  GarmentClearance clearance;
-  const Eigen::MatrixX3d before = points;
-  for (Eigen::Index v = 0; v < points.rows(); ++v) {
-    const Eigen::Vector3d p = points.row(v).transpose();
-    Eigen::Vector3d moved = p;
-    // A point at rest: its step starts where it is, and friction has nothing to act on.
-    if (scene.resolve(p, moved, false) > 0.0) points.row(v) = moved.transpose();
-  }
-  for (const auto& [vertex, a, b] : hanging) {
+  for (const auto& [vertex, a, b] : hanging)
     if (vertex < 0 || a < 0 || b < 0 || vertex >= points.rows() || a >= points.rows() || b >= points.rows())
       throw ArgumentError("clear_garment_of_body: hanging vertex " + std::to_string(vertex) + " with parents " +
                           std::to_string(a) + ", " + std::to_string(b) + " out of range");
-    points.row(vertex) = 0.5 * (points.row(a) + points.row(b));
-  }
+  body.set_pose(reference_pose(motion, options));
+  const CollisionScene& scene = body.scene();
+  const Eigen::MatrixX3d before = points;
+  const auto clear_points = [&] {
+    bool moved = false;
+    for (Eigen::Index v = 0; v < points.rows(); ++v) {
+      const Eigen::Vector3d p = points.row(v).transpose();
+      Eigen::Vector3d out = p;
+      // A point at rest: its step starts where it is, and friction has nothing to act on.
+      if (scene.resolve(p, out, false) > 0.0) {
+        points.row(v) = out.transpose();
+        moved = true;
+      }
+    }
+    return moved;
+  };
+  // Back at its parents' midpoint a T-node may be inside again (the chord of
+  // a curved body): its edge then moves out with it, as the integrator moves
+  // a T-node's stencil. Moved parents are cleared again, so repeat a few times.
+  const auto clear_t_nodes = [&] {
+    bool moved = false;
+    for (const auto& [vertex, a, b] : hanging) {
+      const Eigen::Vector3d midpoint = 0.5 * (points.row(a) + points.row(b)).transpose();
+      Eigen::Vector3d target = midpoint;
+      if (scene.resolve(midpoint, target, false) > 0.0) {
+        const Eigen::RowVector3d delta = (target - midpoint).transpose();
+        points.row(a) += delta;
+        points.row(b) += delta;
+        moved = true;
+      }
+    }
+    return moved;
+  };
+  clear_points();
+  for (int pass = 0; pass < 4 && clear_t_nodes(); ++pass) clear_points();
+  for (const auto& [vertex, a, b] : hanging) points.row(vertex) = 0.5 * (points.row(a) + points.row(b));
+
+  GarmentClearance clearance;
   for (Eigen::Index v = 0; v < points.rows(); ++v) {
     const double move = (points.row(v) - before.row(v)).norm();
     if (move > 0.0) {

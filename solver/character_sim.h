@@ -155,7 +155,8 @@ struct GarmentClearance {
 /// and a pinned waist there would stay inside for the whole run. `points`
 /// (#V x 3, metres, placed) are changed in place; each `hanging` entry
 /// {vertex, parent a, parent b} is then put back at its parents' midpoint,
-/// as the T-node constraint requires. The body is left in that pose.
+/// as the T-node constraint requires, its edge moved out with it where that
+/// midpoint is inside (a few passes). The body is left in that pose.
 GarmentClearance clear_garment_of_body(PosedBody& body, const Motion& motion, const CharacterRunOptions& options,
                                        Eigen::MatrixX3d& points, const std::vector<std::array<int, 3>>& hanging);
 

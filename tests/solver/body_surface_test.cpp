@@ -138,32 +138,51 @@ TEST(ClearGarmentOfBody, MovesPointsOutToTheThicknessAndKeepsTNodesAtMidpoints) 
   CapsulePosedBody body(rig, motion.skeleton);
   CharacterRunOptions options;
   const std::vector<Collider> capsules = posed_capsules(rig, reference_pose(motion, options));
-  // Three points inside the first capsule (its axis), one 0.5 m away, and a T-node between two of them.
-  const auto& c = std::get<CapsuleCollider>(capsules.front().shape);
-  Eigen::MatrixX3d points(5, 3);
-  points.row(0) = (0.7 * c.a + 0.3 * c.b).transpose();
-  points.row(1) = (0.4 * c.a + 0.6 * c.b + Eigen::Vector3d(0, 0, 0.25 * c.radius_a)).transpose();
-  points.row(2) = Eigen::RowVector3d::Zero();  // the T-node: set from 0 and 1
-  points.row(3) = (c.a + Eigen::Vector3d(0, 0, 0.5)).transpose();
-  points.row(4) = (0.5 * c.a + 0.5 * c.b).transpose();
-  const Eigen::MatrixX3d before = points;
-  const GarmentClearance clearance = clear_garment_of_body(body, motion, options, points, {{2, 0, 1}});
-  const CollisionScene& scene = body.scene();
-  for (const int v : {0, 1, 4}) {
-    EXPECT_LE(scene.penetration(points.row(v).transpose()), 1e-12) << "vertex " << v;
-    // At least the thickness from every capsule (the first overlaps its
-    // neighbours, so a point pushed out of it may be pushed on), and not far beyond.
-    double nearest = 1e300;
-    for (const Collider& collider : capsules)
-      nearest = std::min(nearest, query_surface(collider, points.row(v).transpose()).distance);
-    EXPECT_GE(nearest, thickness - 1e-9) << "vertex " << v;
-    EXPECT_LE(nearest, thickness + 0.01) << "vertex " << v;
+  // The capsule with the longest axis (a limb: away from the others in its middle).
+  std::size_t longest = 0;
+  double length = 0.0;
+  for (std::size_t k = 0; k < capsules.size(); ++k) {
+    const auto& c = std::get<CapsuleCollider>(capsules[k].shape);
+    if ((c.b - c.a).norm() > length) {
+      length = (c.b - c.a).norm();
+      longest = k;
+    }
   }
-  EXPECT_EQ(points.row(3), before.row(3)) << "a point far outside stays";
-  EXPECT_EQ(points.row(2), 0.5 * (points.row(0) + points.row(1))) << "the T-node is at its parents' midpoint";
-  EXPECT_EQ(clearance.moved, 4);
+  const auto& c = std::get<CapsuleCollider>(capsules[longest].shape);
+  const Eigen::Vector3d axis = (c.b - c.a).normalized();
+  const Eigen::Vector3d u = axis.cross(Eigen::Vector3d::UnitX()).normalized(), w = axis.cross(u);
+  const Eigen::Vector3d middle = 0.5 * (c.a + c.b);
+  const double radius = query_surface(capsules[longest], middle).distance;  // negative: the radius there
+  const auto around = [&](double angle, double from_axis, double along) {
+    return Eigen::Vector3d(middle + along * axis + from_axis * (std::cos(angle) * u + std::sin(angle) * w));
+  };
+  Eigen::MatrixX3d points(7, 3);
+  // 0, 1: 2 mm inside, 1 cm apart along the axis; 2: their T-node.
+  points.row(0) = around(0.0, -radius - 0.002, -0.005).transpose();
+  points.row(1) = around(0.0, -radius - 0.002, 0.005).transpose();
+  // 3, 4: outside at the thickness, 60 degrees apart around the axis; 5: their
+  // T-node, whose midpoint is inside (the chord of the curved capsule).
+  points.row(3) = around(-0.5, -radius + thickness, 0.0).transpose();
+  points.row(4) = around(0.5, -radius + thickness, 0.0).transpose();
+  // 6: half a metre outside.
+  points.row(6) = (middle + 0.5 * u).transpose();
+  const Eigen::MatrixX3d before = points;
+  const GarmentClearance clearance = clear_garment_of_body(body, motion, options, points, {{2, 0, 1}, {5, 3, 4}});
+  const CollisionScene& scene = body.scene();
+  for (int v = 0; v < 6; ++v) {
+    EXPECT_LE(scene.penetration(points.row(v).transpose()), 1e-9) << "vertex " << v;
+    EXPECT_GE(query_surface(capsules[longest], points.row(v).transpose()).distance, thickness - 1e-9) << "vertex " << v;
+  }
+  // Out to the thickness, not beyond: the inside pair lands on it exactly.
+  for (const int v : {0, 1})
+    EXPECT_NEAR(query_surface(capsules[longest], points.row(v).transpose()).distance, thickness, 1e-9) << "vertex " << v;
+  EXPECT_EQ(points.row(2), 0.5 * (points.row(0) + points.row(1))) << "T-node at its parents' midpoint";
+  EXPECT_EQ(points.row(5), 0.5 * (points.row(3) + points.row(4))) << "T-node at its parents' midpoint";
+  EXPECT_GT((points.row(3) - before.row(3)).norm(), 0.0) << "the outside pair moved out with its T-node";
+  EXPECT_EQ(points.row(6), before.row(6)) << "a point far outside stays";
+  EXPECT_EQ(clearance.moved, 6);
   double largest = 0.0;
-  for (int v = 0; v < 5; ++v) largest = std::max(largest, (points.row(v) - before.row(v)).norm());
+  for (int v = 0; v < 7; ++v) largest = std::max(largest, (points.row(v) - before.row(v)).norm());
   EXPECT_EQ(clearance.largest_move, largest);
   Eigen::MatrixX3d bad = before;
   EXPECT_THROW(clear_garment_of_body(body, motion, options, bad, {{2, 0, 7}}), std::exception);
