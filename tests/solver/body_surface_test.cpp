@@ -114,7 +114,8 @@ TEST(BodyCache, HoldsTheBodyAtTheGarmentsFrameTimes) {
   options.frames = 5;
   options.fps = 30.0;
   options.preroll_seconds = 0.5;
-  const auto folder = std::filesystem::path(std::getenv("MRCLOTH_TEST_TMP") ? std::getenv("MRCLOTH_TEST_TMP") : ".");
+  const auto folder = std::getenv("MRCLOTH_TEST_TMP") ? std::filesystem::path(std::getenv("MRCLOTH_TEST_TMP"))
+                                                     : std::filesystem::temp_directory_path() / "mrcloth_body_cache_test";
   std::filesystem::create_directories(folder);
   const std::string cache = (folder / "body_cache_test.pc2").string();
   const std::string obj = (folder / "body_cache_test.obj").string();
