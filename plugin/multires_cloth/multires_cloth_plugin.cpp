@@ -13,7 +13,9 @@
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
 #include "simulation_options.h"
+#include "plugin/core/option_fields.h"
 #include "solver/deformation_modes.h"
+#include "solver/result_comparison.h"
 #include "solver/dynamics_model.h"
 #include "solver/instance_curvature.h"
 #include "solver/implicit_integrator.h"
@@ -461,6 +463,70 @@ QVariantMap MultiresClothPlugin::mapModes(QVariant refinedId, QVariant coarseId,
   });
 }
 
+QVariantMap MultiresClothPlugin::compareResults(QVariant id, QVariant cachePath, QVariant referenceId,
+                                                QVariant referenceCachePath, QVariant options) {
+  return guarded("compareResults", [&] {
+    const StoredObject& model = store().get(script::toInt(id, QStringLiteral("id")));
+    const StoredObject& reference = store().get(script::toInt(referenceId, QStringLiteral("referenceId")));
+    const QString model_cache = options::existingInputFile(script::toString(cachePath, QStringLiteral("cachePath")),
+                                                           QStringLiteral("cachePath"));
+    const QString reference_cache = options::existingInputFile(
+        script::toString(referenceCachePath, QStringLiteral("referenceCachePath")), QStringLiteral("referenceCachePath"));
+    const script::Options given(options, QStringLiteral("compareResults options"),
+                                {QStringLiteral("regionMode"), QStringLiteral("maxFrames")});
+    ComparisonOptions settings;
+    settings.region_mode = given.integerAtLeast(QStringLiteral("regionMode"), settings.region_mode, 1);
+    settings.max_frames = given.integerAtLeast(QStringLiteral("maxFrames"), settings.max_frames, 1);
+
+    QElapsedTimer timer;
+    timer.start();
+    const int frames = Pc2Reader(reference_cache.toStdString()).num_frames();
+    ComparisonReport report;
+    {
+      JobScope job(*this, QStringLiteral("compareResults"),
+                   QStringLiteral("%1 against %2 at its %3 material points")
+                       .arg(describeObject(model), describeObject(reference)).arg(reference.mesh->n_vertices()),
+                   settings.max_frames > 0 ? std::min(frames, settings.max_frames) : frames);
+      report = compare_results(*model.mesh, model_cache.toStdString(), *reference.mesh, reference_cache.toStdString(),
+                               settings, [&](int done, int) {
+                                 job.progress(done);
+                                 return !cancelRequested();
+                               });
+    }
+    QVariantList rms, p95;
+    for (const DistanceStats& d : report.per_frame) {
+      rms << d.rms;
+      p95 << d.p95;
+    }
+    last_report_ = {{QStringLiteral("operation"), QStringLiteral("compareResults")},
+                    {QStringLiteral("source"), model.id},
+                    {QStringLiteral("reference"), reference.id},
+                    {QStringLiteral("frames"), report.frames},
+                    {QStringLiteral("points"), report.points},
+                    {QStringLiteral("regionMode"), report.region_mode},
+                    {QStringLiteral("regionPoints"), report.region_points},
+                    {QStringLiteral("meanRms"), report.mean_rms},
+                    {QStringLiteral("meanP95"), report.mean_p95},
+                    {QStringLiteral("maxDistance"), report.max_distance},
+                    {QStringLiteral("wrinkleKept"), report.wrinkle_kept},
+                    {QStringLiteral("wrinkleKeptRegion"), report.wrinkle_kept_region},
+                    {QStringLiteral("wrinkleError"), report.wrinkle_error},
+                    {QStringLiteral("wrinkleErrorRegion"), report.wrinkle_error_region},
+                    {QStringLiteral("rmsPerFrame"), rms},
+                    {QStringLiteral("p95PerFrame"), p95},
+                    {QStringLiteral("cancelled"), report.cancelled},
+                    {QStringLiteral("milliseconds"), millisecondsSince(timer)}};
+    emit log(LOGINFO, QStringLiteral("compareResults: %1 against %2 over %3 frames: RMS %4 mm, p95 %5 mm, max %6 mm; "
+                                     "wrinkle energy kept %7 % (mode-%8 region: %9 %), error %10 (region %11)")
+                          .arg(describeObject(model), describeObject(reference)).arg(report.frames)
+                          .arg(1000.0 * report.mean_rms, 0, 'f', 2).arg(1000.0 * report.mean_p95, 0, 'f', 2)
+                          .arg(1000.0 * report.max_distance, 0, 'f', 2).arg(100.0 * report.wrinkle_kept, 0, 'f', 1)
+                          .arg(report.region_mode).arg(100.0 * report.wrinkle_kept_region, 0, 'f', 1)
+                          .arg(report.wrinkle_error, 0, 'f', 3).arg(report.wrinkle_error_region, 0, 'f', 3));
+    return last_report_;
+  });
+}
+
 QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   return guarded("recordInstance", [&] {
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
@@ -761,6 +827,25 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("a PC2 cache of this mesh's vertices (recordInstance's output), metres"),
         QStringLiteral("{clusters: int >= 1 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
                        "= 1, restarts: int >= 1 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
+      {QStringLiteral("compareResults(int id, string cachePath, int referenceId, string referenceCachePath, object "
+                      "options = {}) -> object"),
+       QStringLiteral("Measures a model's recorded result against the high-resolution one, frame by frame, at the "
+                      "reference mesh's material points (both meshes refined from the same coarse mesh): the "
+                      "model's surface is evaluated there by bilinear interpolation in its active faces. Returns "
+                      "frames, points, meanRms, meanP95 (means over frames of the per-frame RMS and 95th "
+                      "percentile distance, m), maxDistance (m), rmsPerFrame, p95PerFrame, wrinkleKept (the "
+                      "model's bending energy, the squared umbrella Laplacian on the reference's grid summed over "
+                      "frames, over the reference's; null when the reference is flat) and wrinkleKeptRegion (the "
+                      "same over the interior vertices of mode regionMode; a coarser model's kinks along its face "
+                      "edges count as bending there), wrinkleError and wrinkleErrorRegion (the energy of the "
+                      "Laplacian of model - reference over the reference's: 0 = every wrinkle reproduced in "
+                      "place, 1 = none), regionMode, regionPoints, cancelled, milliseconds."),
+       {QStringLiteral("id"), QStringLiteral("cachePath"), QStringLiteral("referenceId"), QStringLiteral("referenceCachePath"),
+        QStringLiteral("options")},
+       {id_text, QStringLiteral("the model's PC2 cache (all its vertices)"),
+        QStringLiteral("the reference (high-resolution) mesh's object id"),
+        QStringLiteral("the reference's PC2 cache, the same frames"),
+        QStringLiteral("{regionMode: int >= 1 = the reference's highest mode, maxFrames: int >= 1 = all}")}},
       {QStringLiteral("mapModes(int refinedId, int coarseId, object options = {}) -> object"),
        QStringLiteral("Writes the modes of a refined mesh (e.g. after extractModes) onto the coarse mesh it was "
                       "refined from. index: coarse vertex i takes refined vertex i's mode (the paper's rule); "

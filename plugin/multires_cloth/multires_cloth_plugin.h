@@ -67,6 +67,8 @@ class MultiresClothPlugin : public QObject,
   QVariantMap recordInstance(QVariant id, QVariant options = QVariant());
   QVariantMap extractModes(QVariant id, QVariant cachePath, QVariant options = QVariant());
   QVariantMap mapModes(QVariant refinedId, QVariant coarseId, QVariant options = QVariant());
+  QVariantMap compareResults(QVariant id, QVariant cachePath, QVariant referenceId, QVariant referenceCachePath,
+                             QVariant options = QVariant());
 
  private:
   ObjectStore& store() const;

@@ -1,0 +1,90 @@
+#include "result_comparison.h"
+
+#include "point_cache.h"
+
+#include "mesh_ops/errors.h"
+#include "mesh_ops/mode_layer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace mrcloth {
+
+ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
+                                 const std::string& reference_cache, const ComparisonOptions& options,
+                                 const SimulationProgress& progress) {
+  if (count_roots(model) != count_roots(reference))
+    throw ArgumentError("the model has " + std::to_string(count_roots(model)) + " coarse faces and the reference " +
+                        std::to_string(count_roots(reference)) +
+                        ": compared meshes must be refined from the same coarse mesh");
+  Pc2Reader model_frames(model_cache);
+  Pc2Reader reference_frames(reference_cache);
+  if (model_frames.num_points() != static_cast<int>(model.n_vertices()))
+    throw ArgumentError(model_cache + ": " + std::to_string(model_frames.num_points()) + " points, the model has " +
+                        std::to_string(model.n_vertices()) + " vertices");
+  if (reference_frames.num_points() != static_cast<int>(reference.n_vertices()))
+    throw ArgumentError(reference_cache + ": " + std::to_string(reference_frames.num_points()) +
+                        " points, the reference has " + std::to_string(reference.n_vertices()) + " vertices");
+  if (model_frames.num_frames() != reference_frames.num_frames())
+    throw ArgumentError(model_cache + " holds " + std::to_string(model_frames.num_frames()) + " frames, " +
+                        reference_cache + " " + std::to_string(reference_frames.num_frames()));
+
+  ComparisonReport report;
+  const std::vector<MaterialPoint> points = material_points(reference);
+  const MaterialEvaluator evaluator(model);
+  const MaterialBinding binding = evaluator.bind(points);
+  const WrinkleEnergy wrinkles(reference);
+  const std::vector<int> modes = get_modes(reference);
+  report.region_mode = options.region_mode >= 0 ? options.region_mode
+                       : modes.empty()          ? kDefaultMode
+                                                : *std::max_element(modes.begin(), modes.end());
+  const std::vector<int> region = vertices_with_mode(reference, report.region_mode);
+  report.points = static_cast<int>(points.size());
+  report.region_points = static_cast<int>(region.size());
+
+  const int frames = options.max_frames >= 0 ? std::min(options.max_frames, model_frames.num_frames())
+                                             : model_frames.num_frames();
+  double model_energy = 0.0, reference_energy = 0.0, model_region = 0.0, reference_region = 0.0;
+  double error_energy = 0.0, error_region = 0.0;
+  double rms_sum = 0.0, p95_sum = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    const Eigen::MatrixX3d at_points = evaluator.evaluate(binding, model_frames.frame(f));
+    const Eigen::MatrixX3d truth = reference_frames.frame(f);
+    const DistanceStats d = point_distances(at_points, truth);
+    report.per_frame.push_back(d);
+    rms_sum += d.rms;
+    p95_sum += d.p95;
+    report.max_distance = std::max(report.max_distance, d.max);
+    report.energy_per_frame.push_back(wrinkles.energy(at_points));
+    report.reference_energy_per_frame.push_back(wrinkles.energy(truth));
+    model_energy += report.energy_per_frame.back();
+    reference_energy += report.reference_energy_per_frame.back();
+    const Eigen::MatrixX3d difference = at_points - truth;
+    error_energy += wrinkles.energy(difference);
+    if (!region.empty()) {
+      model_region += wrinkles.energy(at_points, region);
+      reference_region += wrinkles.energy(truth, region);
+      error_region += wrinkles.energy(difference, region);
+    }
+    ++report.frames;
+    if (progress && !progress(report.frames, frames)) {
+      report.cancelled = true;
+      break;
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (report.frames > 0) {
+    report.mean_rms = rms_sum / report.frames;
+    report.mean_p95 = p95_sum / report.frames;
+  }
+  // Summed over frames before dividing: a nearly flat frame cannot blow the ratio up.
+  report.wrinkle_kept = reference_energy > 0.0 ? model_energy / reference_energy : nan;
+  report.wrinkle_kept_region = reference_region > 0.0 ? model_region / reference_region : nan;
+  report.wrinkle_error = reference_energy > 0.0 ? error_energy / reference_energy : nan;
+  report.wrinkle_error_region = reference_region > 0.0 ? error_region / reference_region : nan;
+  return report;
+}
+
+}  // namespace mrcloth
