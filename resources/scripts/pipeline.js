@@ -260,8 +260,9 @@ function runPipeline(options) {
   core.makePath(out);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and
-  // one simulation per test motion and model (the equal-size uniform mesh counted).
-  const stages = new Stages(out, options, 6 + options.test.length * (3 + options.delta.length));
+  // per test motion one simulation per model (the equal-size uniform mesh
+  // counted) and a comparison; corrected once the models are known.
+  const stages = new Stages(out, options, 6 + options.test.length * (4 + options.delta.length));
   const started = Date.now();
 
   const makehuman = options.makehuman ? makehumanFiles(options.makehuman) : null;
@@ -382,7 +383,7 @@ function runPipeline(options) {
   if (uniformRecord.level > 0 && uniformRecord.level < options.levels)
     models.push({name: "uniform_L" + uniformRecord.level, file: "meshes/uniform_equal.om",
                  vertices: uniformRecord.vertices});
-  stages.total = 6 + options.test.length * models.length;
+  stages.total = 6 + options.test.length * (models.length + 1);
   const runs = [];
   for (const test of options.test) {
     const motionName = baseName(test);
@@ -406,11 +407,35 @@ function runPipeline(options) {
     });
   }
 
-  // Stage 7: previews and plots.
+  // Stage 7: every model against the high-resolution result, at its material points.
+  const detail = [];
+  for (const test of options.test) {
+    const motionName = baseName(test);
+    const highRun = runs.find((run) => run.motion === motionName && run.model === "high");
+    const others = runs.filter((run) => run.motion === motionName && run.model !== "high");
+    const record = stages.run("compare-" + motionName, [], () => {
+      const reference = core.loadObject(out + "/" + highRun.modelFile);
+      const rows = others.map((run) => {
+        const id = core.loadObject(out + "/" + run.modelFile);
+        const c = multirescloth.compareResults(id, out + "/" + run.cache, reference, out + "/" + highRun.cache);
+        core.deleteObject(id);
+        if (c.cancelled) throw new Error("pipeline: the comparison of " + run.model + " was cancelled");
+        return {model: run.model, vertices: run.numbers.vertices, meanRms: c.meanRms, meanP95: c.meanP95,
+                maxDistance: c.maxDistance, wrinkleKept: c.wrinkleKept, wrinkleKeptRegion: c.wrinkleKeptRegion,
+                wrinkleError: c.wrinkleError, wrinkleErrorRegion: c.wrinkleErrorRegion,
+                regionMode: c.regionMode, regionPoints: c.regionPoints, rmsPerFrame: c.rmsPerFrame};
+      });
+      core.deleteObject(reference);
+      return {motion: motionName, rows: rows};
+    });
+    for (const row of record.rows) detail.push(Object.assign({motion: motionName}, row));
+  }
+
+  // Stage 8: previews and plots.
   const previewRecord = stages.run("previews", previewFiles(options, models, multiNames), () =>
       renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord));
 
-  // Stage 8: the report (always rewritten: it is cheap and reflects this run).
+  // Stage 9: the report (always rewritten: it is cheap and reflects this run).
   const report = {
     mrcloth: "pipeline", options: resultOptions(options), garment: {file: options.garment, vertices: coarseInfo.vertices,
                                                                    faces: coarseInfo.faces, area: coarseInfo.area},
@@ -429,6 +454,7 @@ function runPipeline(options) {
                                 collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
                                 maxStretch: run.numbers.maxStretch, maxPenetration: run.numbers.maxPenetration,
                                 cache: run.cache})),
+    detail: detail,
     previews: previewRecord.images,
     stages: {ran: stages.ran, skipped: stages.skipped},
     seconds: (Date.now() - started) / 1000,
@@ -568,6 +594,23 @@ function reportMarkdown(report) {
       lines.push("| " + row.model + " | " + row.vertices + " | " + fixed(row.dynamicsMs, 2) + " | " +
                  fixed(row.collisionMs, 2) + " | " + fixed(row.totalMs, 2) + " | " + fixed(100 * row.maxStretch, 1) +
                  " % | " + fixed(1000 * row.maxPenetration, 2) + " mm |");
+    lines.push("");
+  }
+  lines.push("## Detail against the high-resolution result", "");
+  lines.push("Each model's surface evaluated at the high-resolution mesh's material points, every frame: mean " +
+             "RMS and 95th-percentile distance, the largest distance, and the bending energy kept (squared " +
+             "umbrella Laplacian on the high-resolution grid, summed over frames, relative to the " +
+             "high-resolution result) over the whole garment and over the top-mode region.", "");
+  for (const motion of motions) {
+    lines.push("### " + motion, "");
+    lines.push("| model | vertices | RMS | p95 | max | bending kept | in the top-mode region |",
+               "|---|---:|---:|---:|---:|---:|---:|");
+    const percent = (x) => x === null || x === undefined || !isFinite(x) ? "-" : fixed(100 * x, 1) + " %";
+    for (const row of report.detail.filter((r) => r.motion === motion))
+      lines.push("| " + row.model + " | " + row.vertices + " | " + fixed(1000 * row.meanRms, 2) + " mm | " +
+                 fixed(1000 * row.meanP95, 2) + " mm | " + fixed(1000 * row.maxDistance, 1) + " mm | " +
+                 percent(row.wrinkleKept) + " | " + percent(row.wrinkleKeptRegion) + " (mode " + row.regionMode +
+                 ", " + row.regionPoints + " vertices) |");
     lines.push("");
   }
   lines.push("## Pictures", "");

@@ -36,6 +36,17 @@ for (const row of report.table3) {
   check(row.maxStretch < 0.5 && row.maxPenetration < 0.01, row.model + " on " + row.motion + " stays sane");
 }
 expectEqual(report.table3.map((row) => row.model).slice(0, models.length), models, "models");
+// Detail: every model but the high one, per test motion; the high result against itself would be 0.
+expectEqual(report.detail.length, (models.length - 1) * options.test.length, "detail rows");
+for (const row of report.detail) {
+  for (const key of ["motion", "model", "vertices", "meanRms", "meanP95", "maxDistance", "wrinkleKept",
+                     "wrinkleKeptRegion", "regionMode", "regionPoints", "rmsPerFrame"])
+    check(row[key] !== undefined, "detail[" + row.model + ", " + row.motion + "]." + key);
+  check(row.model !== "high", "no detail row for the reference itself");
+  check(row.meanRms > 0 && row.meanRms <= row.maxDistance && row.meanP95 <= row.maxDistance,
+        row.model + ": 0 < RMS, p95 <= max");
+  expectEqual(row.rmsPerFrame.length, options.testFrames, row.model + ": RMS per frame");
+}
 expectEqual(report.modes.sizes.length, options.modes, "modes");
 expectEqual(report.modes.sizes.reduce((a, b) => a + b, 0), report.table1Instance.vertices, "mode sizes sum");
 
@@ -43,7 +54,8 @@ expectEqual(report.modes.sizes.reduce((a, b) => a + b, 0), report.table1Instance
 for (const image of report.previews) check(core.fileExists(out + "/" + image.file), "preview " + image.file);
 check(core.fileExists(out + "/report.md"), "report.md");
 const markdown = core.readTextFile(out + "/report.md");
-for (const heading of ["## Instance (Table 1)", "## Refinement (Table 2)", "## Test motions (Table 3)", "## Pictures"])
+for (const heading of ["## Instance (Table 1)", "## Refinement (Table 2)", "## Test motions (Table 3)",
+                       "## Detail against the high-resolution result", "## Pictures"])
   check(markdown.indexOf(heading) >= 0, "report.md has " + heading);
 for (const row of report.table3) {
   const cache = out + "/" + row.cache;
@@ -71,6 +83,8 @@ function numbers(r) {
     refinement: r.table2Refinement.map((row) => [row.model, row.vertices, row.hangingNodes, row.verticesPerLevel]),
     modes: [r.modes.sizes, r.modes.centroids, r.modes.coarseVerticesPerMode],
     runs: r.table3.map((row) => [row.motion, row.model, row.vertices, row.maxStretch, row.maxPenetration]),
+    detail: r.detail.map((row) => [row.motion, row.model, row.meanRms, row.meanP95, row.wrinkleKept,
+                                   row.wrinkleKeptRegion]),
   };
 }
 if (other) {

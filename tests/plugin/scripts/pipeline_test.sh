@@ -32,7 +32,7 @@ grep -q "^pipeline: 4 runs of 4 models" "$tmp/command.out" || fail "no summary l
 cp "$tmp/command/report.json" "$tmp/first_report.json"
 "$host" pipeline $small --out "$tmp/command" --resume > "$tmp/resume.out" 2> "$tmp/resume.err" ||
   { fail "resume exit code $?"; cat "$tmp/resume.err"; }
-grep -q "(0 stages run, 10 resumed)" "$tmp/resume.out" || fail "resume ran stages: $(cat "$tmp/resume.out")"
+grep -q "(0 stages run, 11 resumed)" "$tmp/resume.out" || fail "resume ran stages: $(cat "$tmp/resume.out")"
 grep -q "complete from an earlier run, skipped" "$tmp/resume.err" || fail "no skip lines on stderr"
 "$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/command" "$tmp/script" || fail "check after resume"
 
