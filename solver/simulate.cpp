@@ -65,6 +65,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
       const StepReport step = integrator.step(state, pinned_next, scene);
       timing.dynamics_ms += step.dynamics_ms;
       timing.collision_ms += step.collision_ms;
+      report.mean_rounds += step.rounds;
       ++report.steps;
       if (!step.finite) {
         report.non_finite = true;
@@ -93,6 +94,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     report.ms_per_frame_collision /= report.frames;
   }
   report.ms_per_frame_total = report.ms_per_frame_dynamics + report.ms_per_frame_collision;
+  if (report.steps > 0) report.mean_rounds /= report.steps;
   // Only a complete, finite run leaves a cache; the writer removes its
   // temporary file otherwise.
   if (cache && !report.cancelled && !report.non_finite) {

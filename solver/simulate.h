@@ -53,6 +53,7 @@ struct SimulationReport {
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
+  double mean_rounds = 0.0;            ///< strain-limiting/collision rounds per step, mean (1 .. collision_rounds): what a step's dynamics cost grows with
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)
   std::vector<FrameTiming> per_frame;  ///< timings of every output frame

@@ -769,7 +769,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
-                      "{dynamics, collision, total}, maxStretch (strain), maxPenetration (m), initialPenetration (m), nonFinite, cancelled, "
+                      "{dynamics, collision, total}, maxStretch (strain), meanRounds (strain-limiting and "
+                      "collision rounds per step, 1 .. 8: the dynamics cost grows with them), maxPenetration (m), initialPenetration (m), nonFinite, cancelled, "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
                       "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN). "

@@ -278,6 +278,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
                                                  {QStringLiteral("collision"), report.ms_per_frame_collision},
                                                  {QStringLiteral("total"), report.ms_per_frame_total}}},
       {QStringLiteral("maxStretch"), report.max_stretch},
+      {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("initialPenetration"), report.initial_penetration},
       {QStringLiteral("nonFinite"), report.non_finite},

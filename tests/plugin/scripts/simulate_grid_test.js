@@ -19,7 +19,7 @@ const report = multirescloth.simulate(grid, {frames: frames, substeps: substeps,
 // Every field, with its type.
 const types = {
   frames: "number", steps: "number", timeStep: "number", precomputeMs: "number", msPerFrame: "object",
-  maxStretch: "number", maxPenetration: "number", initialPenetration: "number", nonFinite: "boolean", cancelled: "boolean", output: "string",
+  maxStretch: "number", meanRounds: "number", maxPenetration: "number", initialPenetration: "number", nonFinite: "boolean", cancelled: "boolean", output: "string",
   vertices: "number", freeVertices: "number", pinnedVertices: "number", hangingVertices: "number",
   springs: "object", perFrameMs: "array", operation: "string", source: "number", material: "string",
   objFiles: "array",
@@ -28,6 +28,8 @@ for (const [key, type] of Object.entries(types)) expectType(report[key], type, "
 for (const key of ["dynamics", "collision", "total"]) expectType(report.msPerFrame[key], "number", "msPerFrame." + key);
 for (const key of ["stretch", "shear", "bend"]) expectType(report.springs[key], "number", "springs." + key);
 expectEqual(report.perFrameMs.length, frames, "perFrameMs has one entry per frame");
+// Every step takes at least one round and at most the integrator's 8.
+if (!(report.meanRounds >= 1 && report.meanRounds <= 8)) throw new Error("meanRounds " + report.meanRounds);
 report.perFrameMs.forEach((timing, frame) => {
   expectType(timing.dynamics, "number", "perFrameMs[" + frame + "].dynamics");
   expectType(timing.collision, "number", "perFrameMs[" + frame + "].collision");
