@@ -158,6 +158,14 @@ function parseOptions(args) {
     }
   }
   if (tests !== null) options.test = tests;
+  // Caches and stage records are named after the motion's file name.
+  const names = options.test.map(baseName);
+  names.forEach((name, k) => {
+    const first = names.indexOf(name);
+    if (first !== k)
+      throw pipelineError("option --test: " + options.test[first] + " and " + options.test[k] + " share the name \"" +
+                          name + "\", which names their caches; rename one");
+  });
   if (options.units === null) options.units = options.makehuman ? "dm" : "m";
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)

@@ -35,6 +35,9 @@ refused "option --modes needs a value" --modes
 refused "option --garment: no such file: .*missing.obj" --garment "$tmp/missing.obj"
 refused "option --test: no such file: .*nowhere.bvh" --test "$resources/characters/walk_new.bvh,$tmp/nowhere.bvh"
 refused "option --instance: no such file" --instance "$tmp/no.bvh"
+mkdir -p "$tmp/other" && cp "$resources/characters/walk_new.bvh" "$tmp/other/walk_new.bvh"
+refused "option --test: .*walk_new.bvh and .*other/walk_new.bvh share the name \"walk_new\"" \
+  --test "$resources/characters/walk_new.bvh" --test "$tmp/other/walk_new.bvh"
 refused "option --body mesh needs --makehuman DIR" --body mesh
 refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp"
 refused "option --resume takes no value" --resume=yes
