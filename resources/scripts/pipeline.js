@@ -286,7 +286,8 @@ function runPipeline(options) {
   const simulationNumbers = (report) => ({
     vertices: report.vertices, frames: report.frames, msPerFrame: report.msPerFrame,
     perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxPenetration: report.maxPenetration,
-    maxWaistError: report.maxWaistError, nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
+    meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
+    nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
   });
   const mustFinish = (what, report) => {
     if (report.cancelled) throw new Error("pipeline: " + what + " was cancelled");
@@ -461,7 +462,7 @@ function runPipeline(options) {
                                 dynamicsMs: run.numbers.msPerFrame.dynamics,
                                 collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
                                 maxStretch: run.numbers.maxStretch, maxPenetration: run.numbers.maxPenetration,
-                                cache: run.cache})),
+                                meanRounds: run.numbers.meanRounds, cache: run.cache})),
     detail: detail,
     previews: previewRecord.images,
     stages: {ran: stages.ran, skipped: stages.skipped},
