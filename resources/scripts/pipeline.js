@@ -368,19 +368,22 @@ function runPipeline(options) {
   // Stage 5: the uniform level nearest (in ratio) the first multi-resolution mesh's vertex count.
   const target = multiRecord.meshes[0].vertices;
   const uniformRecord = stages.run("refine-equal", ["meshes/uniform_equal.om"], () => {
-    let best = null;
-    for (let level = 0; level <= options.levels; ++level) {
-      const id = level === 0 ? coarse : multirescloth.refineUniform(coarse, level);
-      const vertices = core.objectInfo(id).vertices;
-      const error = Math.abs(Math.log(vertices / target));
-      if (best === null || error < best.error) best = {level: level, vertices: vertices, error: error};
-      if (level > 0) {
-        if (best.level === level) core.saveObject(id, out + "/meshes/uniform_equal.om");
-        core.deleteObject(id);
-      }
+    // The coarse and high counts are known; only the levels between are refined to count them.
+    const counts = [coarseInfo.vertices];
+    const ids = [coarse];
+    for (let level = 1; level < options.levels; ++level) {
+      ids.push(multirescloth.refineUniform(coarse, level));
+      counts.push(core.objectInfo(ids[level]).vertices);
     }
-    if (best.level === 0) core.saveObject(coarse, out + "/meshes/uniform_equal.om");
-    return {level: best.level, vertices: best.vertices, target: target};
+    counts.push(highRecord.vertices);
+    let best = 0;
+    counts.forEach((vertices, level) => {
+      if (Math.abs(Math.log(vertices / target)) < Math.abs(Math.log(counts[best] / target))) best = level;
+    });
+    if (best < options.levels) core.saveObject(ids[best], out + "/meshes/uniform_equal.om");
+    else core.saveObject(high, out + "/meshes/uniform_equal.om");
+    for (let level = 1; level < ids.length; ++level) core.deleteObject(ids[level]);
+    return {level: best, vertices: counts[best], target: target};
   });
 
   // Stage 6: every test motion on every model.
