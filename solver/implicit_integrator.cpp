@@ -266,21 +266,55 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     }
     // A T-node can be inside while its parents are outside (the collider is
     // curved): push its free stencil by the correction, mass-weighted.
-    for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
-      const int v = m.hanging_vertices[h];
-      const Eigen::Vector3d x = position_of(v, q);
-      if (settled && x == position_of(v, *settled)) continue;
-      Eigen::Vector3d target = x;
-      const double correction =
-          scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(q.rows()) + h]);
-      if (correction <= 0.0) continue;
-      largest = std::max(largest, correction);
-      const Eigen::Vector3d delta = target - x;
-      double denominator = 0.0;
-      for (const StencilTerm& t : m.stencil[v]) denominator += t.weight * t.weight / m.free_mass[t.free];
-      if (denominator <= 0.0) continue;
-      for (const StencilTerm& t : m.stencil[v])
-        q.row(t.free) += (t.weight / m.free_mass[t.free] / denominator) * delta.transpose();
+    // `check`: null, every T-node not settled; else only T-nodes with a free
+    // stencil vertex flagged there. Flags the free vertices it moves in `moved`.
+    std::vector<char> moved(static_cast<std::size_t>(q.rows()), 0), check;
+    const auto push_t_nodes = [&](const std::vector<char>* only) {
+      bool pushed = false;
+      for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
+        const int v = m.hanging_vertices[h];
+        if (only && std::none_of(m.stencil[v].begin(), m.stencil[v].end(), [&](const StencilTerm& t) {
+              return (*only)[static_cast<std::size_t>(t.free)] != 0;
+            }))
+          continue;
+        const Eigen::Vector3d x = position_of(v, q);
+        if (!only && settled && x == position_of(v, *settled)) continue;
+        Eigen::Vector3d target = x;
+        const double correction =
+            scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(q.rows()) + h]);
+        if (correction <= 0.0) continue;
+        largest = std::max(largest, correction);
+        const Eigen::Vector3d delta = target - x;
+        double denominator = 0.0;
+        for (const StencilTerm& t : m.stencil[v]) denominator += t.weight * t.weight / m.free_mass[t.free];
+        if (denominator <= 0.0) continue;
+        for (const StencilTerm& t : m.stencil[v]) {
+          q.row(t.free) += (t.weight / m.free_mass[t.free] / denominator) * delta.transpose();
+          moved[static_cast<std::size_t>(t.free)] = 1;
+        }
+        pushed = true;
+      }
+      return pushed;
+    };
+    // A push moves parents that neighbouring T-nodes share, after those
+    // T-nodes and the parents were resolved, and the settled copy would vouch
+    // for them in the next round: the moved parents are resolved again, then
+    // the T-nodes on them, a few times at most. (The shared skirt's
+    // multi-resolution mesh on the skinned body, CMU 07_03: T-nodes 45.9 ->
+    // 24.5 mm inside at worst, stretch 1676 -> 205 %; the deepest points are
+    // still T-nodes.)
+    bool pushed = push_t_nodes(nullptr);
+    for (int pass = 0; pushed && pass < 3; ++pass) {
+      check.swap(moved);
+      moved.assign(check.size(), 0);
+      for (Eigen::Index f = 0; f < q.rows(); ++f) {
+        if (!check[static_cast<std::size_t>(f)]) continue;
+        Eigen::Vector3d x = q.row(f).transpose();
+        largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, false,
+                                                  &memos_[static_cast<std::size_t>(f)]));
+        q.row(f) = x.transpose();
+      }
+      pushed = push_t_nodes(&check);
     }
   }
   return largest;
