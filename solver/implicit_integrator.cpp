@@ -268,7 +268,9 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     // curved): push its free stencil by the correction, mass-weighted.
     // `check`: null, every T-node not settled; else only T-nodes with a free
     // stencil vertex flagged there. Flags the free vertices it moves in `moved`.
-    std::vector<char> moved(static_cast<std::size_t>(q.rows()), 0), check;
+    std::vector<char>& moved = moved_;
+    std::vector<char>& check = check_;
+    moved.assign(static_cast<std::size_t>(q.rows()), 0);
     const auto push_t_nodes = [&](const std::vector<char>* only) {
       bool pushed = false;
       for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {

@@ -96,6 +96,7 @@ class ImplicitIntegrator {
   mutable Positions full_, force_;     // scratch, #V x 3
   Positions settled_;                  // scratch: q after the last collision round of this step
   mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between rounds
+  mutable std::vector<char> moved_, check_;  // per free vertex: moved by a T-node's push (reused, not reallocated per round)
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
   Eigen::VectorXd inverse_mass_;       // per free vertex, 1/kg
