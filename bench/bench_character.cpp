@@ -3,7 +3,7 @@
 // (capsules along the bones, the skinned MakeHuman mesh): ms per output frame
 // split into dynamics and collision, one core. Prints a table.
 //
-// Usage: bench_character [--frames N] [--preroll S]
+// Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/uniform_refine.h"
@@ -21,6 +21,8 @@ using namespace mrcloth;
 struct BenchOptions {
   int frames = 60;         // output frames at 30 fps (2 s of walking)
   double preroll = 0.5;    // seconds, not timed in the table
+  std::string garment = "all";  // coarse | refined | all: which rows to run (one row is handy under a profiler)
+  std::string body = "all";     // capsules | mesh | all
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -68,8 +70,13 @@ int main(int argc, char** argv) {
     const std::string key = argv[a];
     if (key == "--frames") b.frames = std::atoi(argv[a + 1]);
     else if (key == "--preroll") b.preroll = std::atof(argv[a + 1]);
+    else if (key == "--garment") b.garment = argv[a + 1];
+    else if (key == "--body") b.body = argv[a + 1];
     else {
-      std::fprintf(stderr, "unknown option %s\nusage: bench_character [--frames N] [--preroll S]\n", argv[a]);
+      std::fprintf(stderr,
+                   "unknown option %s\nusage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] "
+                   "[--body capsules|mesh|all]\n",
+                   argv[a]);
       return 2;
     }
   }
@@ -131,8 +138,9 @@ int main(int argc, char** argv) {
   const QuadMesh* garments[] = {&coarse, &high};
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
-    print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned));
-    print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned));
+    if (b.garment != "all" && b.garment != (g == &coarse ? "coarse" : "refined")) continue;
+    if (b.body == "all" || b.body == "capsules") print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned));
+    if (b.body == "all" || b.body == "mesh") print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned));
   }
   return 0;
 }

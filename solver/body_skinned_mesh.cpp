@@ -659,6 +659,13 @@ struct MeshBody::Impl {
   };
 
   std::vector<Node> nodes;
+  /// Per node, its children's boxes over both of the last two poses (what
+  /// each subtree swept through between the last two updates, if its
+  /// vertices moved in straight lines), rounded outwards as Node's.
+  struct SweptBoxes {
+    float lo[2][3], hi[2][3];
+  };
+  std::vector<SweptBoxes> swept;
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
   std::vector<std::array<int, 3>> neighbours;  ///< triangle across edge k
   std::vector<int> ring_start;                 ///< per vertex, its first entry in ring (one past the end: the next vertex's)
@@ -787,37 +794,51 @@ struct MeshBody::Impl {
 
   /// Children after parents in `nodes`, so one backward pass refits: O(n).
   void refit() {
+    swept.resize(nodes.size());
     for (std::size_t i = nodes.size(); i-- > 0;) {
       Node& node = nodes[i];
+      SweptBoxes& sweep = swept[i];
       for (int k = 0; k < 2; ++k) {
         if (node.count[k] == 0 && node.index[k] < 0) {
           // No child (a root holding a single leaf): a box nothing is near.
           for (int a = 0; a < 3; ++a) {
-            node.lo[k][a] = std::numeric_limits<float>::infinity();
-            node.hi[k][a] = -std::numeric_limits<float>::infinity();
+            node.lo[k][a] = sweep.lo[k][a] = std::numeric_limits<float>::infinity();
+            node.hi[k][a] = sweep.hi[k][a] = -std::numeric_limits<float>::infinity();
           }
           continue;
         }
         Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        Vector3d swept_lo = lo, swept_hi = hi;
         if (node.count[k] > 0) {
           for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) {
             for (int c = 0; c < 3; ++c) {
               const Vector3d& q = corner(t, c);
+              const Vector3d& before = x_previous[static_cast<std::size_t>(triangles[static_cast<std::size_t>(t)](c))];
               lo = lo.cwiseMin(q);
               hi = hi.cwiseMax(q);
+              swept_lo = swept_lo.cwiseMin(before);
+              swept_hi = swept_hi.cwiseMax(before);
             }
           }
+          swept_lo = swept_lo.cwiseMin(lo);
+          swept_hi = swept_hi.cwiseMax(hi);
         } else {
-          const Node& child = nodes[static_cast<std::size_t>(node.index[k])];
+          const auto c = static_cast<std::size_t>(node.index[k]);
+          const Node& child = nodes[c];
+          const SweptBoxes& child_sweep = swept[c];
           for (int a = 0; a < 3; ++a) {
             // Float to double is exact: the union of the child's boxes.
             lo(a) = std::min(child.lo[0][a], child.lo[1][a]);
             hi(a) = std::max(child.hi[0][a], child.hi[1][a]);
+            swept_lo(a) = std::min(child_sweep.lo[0][a], child_sweep.lo[1][a]);
+            swept_hi(a) = std::max(child_sweep.hi[0][a], child_sweep.hi[1][a]);
           }
         }
         for (int a = 0; a < 3; ++a) {
           node.lo[k][a] = round_down(lo(a));
           node.hi[k][a] = round_up(hi(a));
+          sweep.lo[k][a] = round_down(swept_lo(a));
+          sweep.hi[k][a] = round_up(swept_hi(a));
         }
       }
     }
@@ -1025,6 +1046,54 @@ struct MeshBody::Impl {
     return c;
   }
 
+  /// Whether segment a-b meets the box [lo, hi] (slab test).
+  static bool segment_meets_box(const Vector3d& a, const Vector3d& d, const float lo[3], const float hi[3]) {
+    double enter = 0.0, leave = 1.0;
+    for (int k = 0; k < 3; ++k) {
+      const double l = lo[k], h = hi[k];
+      if (d(k) == 0.0) {
+        if (a(k) < l || a(k) > h) return false;
+        continue;
+      }
+      double t0 = (l - a(k)) / d(k), t1 = (h - a(k)) / d(k);
+      if (t0 > t1) std::swap(t0, t1);
+      enter = std::max(enter, t0);
+      leave = std::min(leave, t1);
+      if (enter > leave) return false;
+    }
+    return true;
+  }
+
+  /// Whether no triangle can have crossed the segment a-b since the last
+  /// update but one: no leaf's swept box meets it. A point that moved along
+  /// it while the surface moved (straight) between those poses then stayed
+  /// on its side. Conservative: a false "no" only costs a query.
+  bool segment_clear(const Vector3d& a, const Vector3d& b) const {
+    const Vector3d d = b - a;
+    int stack[kStackSize];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const auto i = static_cast<std::size_t>(stack[--top]);
+      const Node& node = nodes[i];
+      for (int k = 0; k < 2; ++k) {
+        if (node.count[k] == 0 && node.index[k] < 0) continue;
+        if (!segment_meets_box(a, d, swept[i].lo[k], swept[i].hi[k])) continue;
+        if (node.count[k] > 0) return false;
+        stack[top++] = node.index[k];
+      }
+    }
+    return true;
+  }
+
+  /// Whether the side memo->outside records still holds at p: the memo was
+  /// made in this pose or the one before, and no surface crossed the way
+  /// from its centre to p.
+  bool side_carries(const ContactMemo* memo, const Vector3d& p) const {
+    return memo && memo->owner == this && memo->radius > 0.0 && (memo->serial == serial || memo->serial + 1 == serial) &&
+           segment_clear(memo->centre, p);
+  }
+
   /// Whether `memo` holds this body's triangles near p in the current pose.
   bool memo_applies(const ContactMemo* memo, const Vector3d& p) const {
     return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0 &&
@@ -1035,8 +1104,13 @@ struct MeshBody::Impl {
   /// certified: every triangle within memo.radius of its centre is in it,
   /// so one closer to p than (radius - |p - centre|) is the closest of all,
   /// and with none that close p lies on its centre's side (a surface between
-  /// them would be closer). Else the tree answers.
-  bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo) const {
+  /// them would be closer). Else the tree answers. A caller that only acts
+  /// on contacts closer than sqrt(need2) (resolve: thickness) may be told
+  /// "none" for an outside point with nothing that close, though a triangle
+  /// lies within sqrt(search2).
+  bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo,
+                    double need2 = -1.0) const {
+    if (need2 < 0.0) need2 = search2;
     if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
     const double slack = memo->radius - (p - memo->centre).norm();
     const Closest c = closest_among(p, memo->items);
@@ -1051,7 +1125,7 @@ struct MeshBody::Impl {
     }
     // Nothing within slack of p: no contact within search2 if that is
     // inside the slack, and p is on the centre's side.
-    if (search2 <= slack * slack && memo->outside) return false;
+    if (std::min(search2, need2) <= slack * slack && memo->outside) return false;
     return contact(p, search2, deep, out);
   }
 
@@ -1237,12 +1311,16 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // where the point ends.
   bool reuse = m.memo_applies(memo, position);
   if (memo && !reuse) {
-    m.remember(position, false, memo);
+    // A point that was outside stays outside while no surface crossed its
+    // way here: with nothing near, the memo then answers without the tree.
+    const bool stays_outside = memo->outside && m.side_carries(memo, position);
+    m.remember(position, stays_outside, memo);
     reuse = m.memo_applies(memo, position);
   }
   ContactMemo* refill = reuse ? nullptr : memo;
   Impl::Contact c;
-  if (!m.contact_with(position, m.reach2, true, c, memo) || !(c.distance - m.thickness < 0.0)) {
+  // Only a contact within thickness (or inside) is acted on.
+  if (!m.contact_with(position, m.reach2, true, c, memo, m.thickness * m.thickness) || !(c.distance - m.thickness < 0.0)) {
     m.remember(position, true, refill);
     return 0.0;
   }

@@ -348,6 +348,51 @@ TEST(MeshBody, AMemoNeverChangesAnAnswer) {
   EXPECT_NEAR(p.y(), 1.02, 1e-12);
 }
 
+TEST(MeshBody, AnOutsideSideCarriesOverOnlyWhereNoSurfaceCrossed) {
+  // A memo says which side its point was on; after the body moves, a point
+  // with nothing near is taken to be on that side only if no triangle swept
+  // across its way. Each case is checked against a body without memos.
+  Mesh cube = subdivided_cube(6);  // [0, 1]^3
+  const double thickness = 0.02;
+  MeshBody with(cube.vertices, cube.triangles, thickness, 0.0), without(cube.vertices, cube.triangles, thickness, 0.0);
+  const auto move = [&](const Eigen::RowVector3d& by) {
+    cube.vertices.rowwise() += by;
+    with.update(cube.vertices);
+    without.update(cube.vertices);
+  };
+  const auto same = [&](Vector3d a, ContactMemo& memo, const std::string& what) {
+    Vector3d b = a;
+    const double ca = with.resolve(a, a, false, &memo);
+    const double cb = without.resolve(b, b, false);
+    EXPECT_LT((a - b).norm(), 1e-12) << what;
+    EXPECT_NEAR(ca, cb, 1e-12) << what;
+    return ca;
+  };
+  // 1. Far above the top face, remembered outside; the cube rises 0.4 m in
+  //    one update and swallows the point 0.2 m deep: it must be pushed out
+  //    through the top (a carried "outside" would leave it there).
+  ContactMemo memo;
+  EXPECT_EQ(same(Vector3d(0.5, 1.2, 0.5), memo, "far above"), 0.0);
+  ASSERT_GT(memo.radius, 0.0);
+  ASSERT_TRUE(memo.outside);
+  move({0.0, 0.4, 0.0});
+  EXPECT_NEAR(same(Vector3d(0.5, 1.2, 0.5), memo, "swallowed"), 0.2 + thickness, 1e-12);
+  // 2. The same for a point that moves through a face while the body moves
+  //    a little: from 5 cm above the top face to 10 cm below it.
+  ContactMemo through;
+  EXPECT_EQ(same(Vector3d(0.3, 1.45, 0.3), through, "above"), 0.0);
+  move({0.001, 0.0, 0.0});
+  EXPECT_NEAR(same(Vector3d(0.3, 1.3, 0.3), through, "moved through"), 0.1 + thickness, 1e-12);
+  // 3. Where nothing crossed (the body slides sideways, the point stays
+  //    clear above), the carried side gives the same answer: clear.
+  ContactMemo clear;
+  EXPECT_EQ(same(Vector3d(0.6, 1.5, 0.6), clear, "clear"), 0.0);
+  for (int step = 0; step < 5; ++step) {
+    move({0.002, 0.0, -0.001});
+    EXPECT_EQ(same(Vector3d(0.6, 1.5 - 0.004 * step, 0.6), clear, "still clear " + std::to_string(step)), 0.0);
+  }
+}
+
 TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
   const Mesh sphere = icosphere(3);
   const MeshBody body(sphere.vertices, sphere.triangles, 0.01, 0.0);
