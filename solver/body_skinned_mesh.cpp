@@ -666,6 +666,10 @@ struct MeshBody::Impl {
     float lo[2][3], hi[2][3];
   };
   std::vector<SweptBoxes> swept;
+  /// Per triangle (leaf order), its box in the current pose, rounded
+  /// outwards (lo x y z, hi x y z): one contiguous read where the corners
+  /// are three scattered ones, for the test that rejects most triangles.
+  std::vector<std::array<float, 6>> triangle_boxes;
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
   std::vector<std::array<int, 3>> neighbours;  ///< triangle across edge k
   std::vector<int> ring_start;                 ///< per vertex, its first entry in ring (one past the end: the next vertex's)
@@ -795,6 +799,7 @@ struct MeshBody::Impl {
   /// Children after parents in `nodes`, so one backward pass refits: O(n).
   void refit() {
     swept.resize(nodes.size());
+    triangle_boxes.resize(triangles.size());
     for (std::size_t i = nodes.size(); i-- > 0;) {
       Node& node = nodes[i];
       SweptBoxes& sweep = swept[i];
@@ -811,14 +816,22 @@ struct MeshBody::Impl {
         Vector3d swept_lo = lo, swept_hi = hi;
         if (node.count[k] > 0) {
           for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) {
+            Vector3d triangle_lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), triangle_hi = -triangle_lo;
             for (int c = 0; c < 3; ++c) {
               const Vector3d& q = corner(t, c);
               const Vector3d& before = x_previous[static_cast<std::size_t>(triangles[static_cast<std::size_t>(t)](c))];
-              lo = lo.cwiseMin(q);
-              hi = hi.cwiseMax(q);
+              triangle_lo = triangle_lo.cwiseMin(q);
+              triangle_hi = triangle_hi.cwiseMax(q);
               swept_lo = swept_lo.cwiseMin(before);
               swept_hi = swept_hi.cwiseMax(before);
             }
+            std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
+            for (int a = 0; a < 3; ++a) {
+              box[static_cast<std::size_t>(a)] = round_down(triangle_lo(a));
+              box[static_cast<std::size_t>(a) + 3] = round_up(triangle_hi(a));
+            }
+            lo = lo.cwiseMin(triangle_lo);
+            hi = hi.cwiseMax(triangle_hi);
           }
           swept_lo = swept_lo.cwiseMin(lo);
           swept_hi = swept_hi.cwiseMax(hi);
@@ -1016,13 +1029,11 @@ struct MeshBody::Impl {
   /// Squared distance from p to the bounding box of triangle t (0 inside):
   /// branch-free, and a fraction of the exact test's cost.
   double triangle_box_distance2(const Vector3d& p, int t) const {
-    const Vector3d& a = corner(t, 0);
-    const Vector3d& b = corner(t, 1);
-    const Vector3d& c = corner(t, 2);
+    const std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
     double box2 = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const double below = std::min(a(k), std::min(b(k), c(k))) - p(k);
-      const double above = p(k) - std::max(a(k), std::max(b(k), c(k)));
+      const double below = static_cast<double>(box[static_cast<std::size_t>(k)]) - p(k);
+      const double above = p(k) - static_cast<double>(box[static_cast<std::size_t>(k) + 3]);
       const double e = std::max(0.0, std::max(below, above));
       box2 += e * e;
     }
@@ -1138,6 +1149,11 @@ struct MeshBody::Impl {
     memo->radius = -1.0;
     const double radius = thickness + kMemoMargin;
     gather(p, radius * radius, memo->items);
+    // A leaf's box lets in all its triangles; later rounds test only those
+    // whose own box is within reach (still every triangle that is).
+    memo->items.erase(std::remove_if(memo->items.begin(), memo->items.end(),
+                                     [&](int t) { return !(triangle_box_distance2(p, t) <= radius * radius); }),
+                      memo->items.end());
     const Closest c = closest_among(p, memo->items);
     // The later queries are near p: with its closest triangle first, the
     // boxes of most others are rejected at once.
