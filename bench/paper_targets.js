@@ -1,0 +1,100 @@
+// Issue 7's targets, read off finished pipeline runs (report.json): for every
+// multi-resolution mesh on every test walk,
+//   cost:   at or under 35 % of the high-resolution mesh's ms per frame (paper 33 %)
+//   speed:  at or under 33 ms per frame
+//   closer: mean RMS distance to the high-resolution result below the
+//           equal-size uniform mesh's
+//   detail: at least 90 % of the high-resolution bending energy kept in the
+//           top-mode region
+// Motions named like a squat are the paper's stated limit: shown, not judged.
+// A result stretched beyond 100 % somewhere is torn, no longer cloth: its
+// distances and energies measure the tear, so it meets no target.
+// The pipeline runs on one core, so its times are one-core times.
+//
+// Usage: mrcloth -q -b bench/paper_targets.js -- OUT_DIR [OUT_DIR ...]
+//   (bench/paper_targets.sh runs the pipeline first when asked to)
+"use strict";
+
+const TARGETS = {costShare: 0.35, msPerFrame: 33.0, detailKept: 0.90};
+const LIMIT_MOTION = /squat/i;
+const TORN_STRETCH = 1.0;
+
+function fixed(value, digits) {
+  return value === undefined || value === null || !isFinite(value) ? "-" : Number(value).toFixed(digits);
+}
+
+function readReport(folder) {
+  const path = folder + "/report.json";
+  if (!core.fileExists(path)) throw new Error(path + " does not exist; expected a finished `mrcloth pipeline` run there");
+  let report;
+  try {
+    report = JSON.parse(core.readTextFile(path));
+  } catch (error) {
+    throw new Error(path + ": not JSON (" + error.message + "); expected the pipeline's report.json");
+  }
+  for (const key of ["table3", "detail", "uniformEqual", "garment"])
+    if (report[key] === undefined) throw new Error(path + ": no \"" + key + "\"; expected the pipeline's report.json");
+  return report;
+}
+
+function rowOf(rows, motion, model) {
+  return rows.find((row) => row.motion === motion && row.model === model);
+}
+
+/// One line per (motion, multi-resolution mesh), and the checks it passed.
+function judge(folder, report) {
+  const lines = [];
+  let met = 0, judged = 0;
+  const equalName = "uniform_L" + report.uniformEqual.level;
+  const motions = report.table3.map((row) => row.motion).filter((m, k, all) => all.indexOf(m) === k);
+  const garment = report.garment.file.split("/").pop();
+  for (const motion of motions) {
+    const high = rowOf(report.table3, motion, "high");
+    const equal = rowOf(report.detail, motion, equalName);
+    const limit = LIMIT_MOTION.test(motion);
+    for (const run of report.table3.filter((row) => row.motion === motion && row.model.startsWith("multires_"))) {
+      const detail = rowOf(report.detail, motion, run.model) || {};
+      const share = high ? run.totalMs / high.totalMs : NaN;
+      const checks = [
+        ["cost", share <= TARGETS.costShare],
+        ["speed", run.totalMs <= TARGETS.msPerFrame],
+        ["closer", equal !== undefined && detail.meanRms < equal.meanRms],
+        ["detail", detail.wrinkleKeptRegion >= TARGETS.detailKept],
+      ];
+      const torn = !(run.maxStretch <= TORN_STRETCH);
+      if (torn) for (const check of checks) check[1] = false;
+      const passed = checks.filter((check) => check[1]).map((check) => check[0]);
+      const failed = checks.filter((check) => !check[1]).map((check) => check[0]);
+      if (!limit) {
+        judged += checks.length;
+        met += passed.length;
+      }
+      lines.push("| " + [garment, motion, run.model, run.vertices, fixed(run.totalMs, 1), fixed(100 * share, 1) + " %",
+                         fixed(1000 * detail.meanRms, 1) + " / " + (equal ? fixed(1000 * equal.meanRms, 1) : "-"),
+                         fixed(100 * detail.wrinkleKeptRegion, 1) + " %", fixed(100 * run.maxStretch, 0) + " %",
+                         limit ? "limit motion: not judged" :
+                         torn ? "torn (stretch > " + 100 * TORN_STRETCH + " %): none met" :
+                                 (failed.length === 0 ? "all met" : "missed: " + failed.join(", "))].join(" | ") + " |");
+    }
+  }
+  return {lines: lines, met: met, judged: judged, folder: folder};
+}
+
+const folders = core.scriptArguments();
+if (folders.length === 0) throw new Error("paper_targets: name at least one pipeline output folder");
+const reports = folders.map(readReport);  // every report checked before anything is printed
+print("Issue 7 targets per multi-resolution mesh and test motion: cost <= " + 100 * TARGETS.costShare +
+      " % of high, speed <= " + TARGETS.msPerFrame + " ms/frame (one core), closer to high than the equal-size uniform " +
+      "mesh (mean RMS), detail >= " + 100 * TARGETS.detailKept + " % of high's bending energy in the top-mode region.");
+print("");
+print("| garment | motion | mesh | vertices | ms/frame | % of high | RMS to high mm (uniform) | detail kept | max stretch | targets |");
+print("|---|---|---|---:|---:|---:|---:|---:|---:|---|");
+let met = 0, judged = 0;
+for (let k = 0; k < folders.length; ++k) {
+  const result = judge(folders[k], reports[k]);
+  for (const line of result.lines) print(line);
+  met += result.met;
+  judged += result.judged;
+}
+print("");
+print("targets met: " + met + " of " + judged + " checks on the test walks");
