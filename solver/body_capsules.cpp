@@ -552,10 +552,30 @@ void CapsuleBody::pose(const Pose& pose) {
   // the origin): that jump is not a motion the cloth took part in.
   if (!posed_) previous_ = colliders_;
   posed_ = true;
+  ++serial_;
 }
 
 double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
-                            ContactMemo*) const {
+                            ContactMemo* memo) const {
+  // A memo lists every capsule whose thickened surface may come within
+  // kMemoReach of its centre; within half that of the centre the others are
+  // clear, so a point that ends there was resolved against all of them.
+  constexpr double kMemoReach = 0.02;
+  if (!memo || (memo->owner != nullptr && memo->owner != this))
+    return resolve_point(previous_, colliders_, start, position, friction);
+  const double trusted2 = 0.25 * kMemoReach * kMemoReach;
+  if (memo->owner != this || memo->serial != serial_ || (position - memo->centre).squaredNorm() >= trusted2) {
+    memo->items.clear();
+    colliders_near(colliders_, position, kMemoReach, memo->items);
+    memo->centre = position;
+    memo->radius = kMemoReach;
+    memo->owner = this;
+    memo->serial = serial_;
+  }
+  const Eigen::Vector3d input = position;
+  const double largest = resolve_point_among(previous_, colliders_, memo->items, start, position, friction);
+  if ((position - memo->centre).squaredNorm() < trusted2) return largest;
+  position = input;  // pushed beyond what the memo vouches for: every capsule answers
   return resolve_point(previous_, colliders_, start, position, friction);
 }
 

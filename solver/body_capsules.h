@@ -101,6 +101,9 @@ class CapsuleBody : public CollisionScene {
  public:
   CapsuleBody(CapsuleRig rig, const Skeleton& skeleton);
   void pose(const Pose& pose);
+  /// With a memo, later collision rounds of the same pose test only the
+  /// capsules that were near the point when the memo was made: the same
+  /// answers while the point stays near there.
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
                  ContactMemo* memo = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
@@ -113,6 +116,7 @@ class CapsuleBody : public CollisionScene {
   std::vector<Collider> colliders_;
   std::vector<Collider> previous_;  ///< the capsules before the last pose()
   bool posed_ = false;              ///< false until the first pose(): no motion to carry yet
+  unsigned long long serial_ = 0;   ///< counts pose() calls: a memo is good for the pose it was made in
 };
 
 }  // namespace mrcloth

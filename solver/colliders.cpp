@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <locale>
 #include <sstream>
 #include <string>
@@ -259,8 +260,12 @@ double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector
   return resolve_point(colliders, colliders, previous, position, true);
 }
 
-double resolve_point(const std::vector<Collider>& before, const std::vector<Collider>& after,
-                     const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) {
+namespace {
+
+/// resolve_point's sweeps over `count` colliders, the k-th being index(k).
+template <typename Index>
+double resolve_sweeps(const std::vector<Collider>& before, const std::vector<Collider>& after, std::size_t count,
+                      Index index, const Vector3d& start, Vector3d& position, bool friction) {
   assert(before.size() == after.size());
   double largest = 0.0;
   // Overlapping colliders (a body of capsules) can push a point from one
@@ -269,18 +274,61 @@ double resolve_point(const std::vector<Collider>& before, const std::vector<Coll
   // keeps a point wedged between two shapes from costing more.
   for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
     double this_sweep = 0.0;
-    for (std::size_t i = 0; i < after.size(); ++i)
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = index(k);
       this_sweep = std::max(this_sweep, resolve_against(before[i], after[i], start, position, friction));
+    }
     largest = std::max(largest, this_sweep);
-    if (this_sweep == 0.0 || after.size() == 1) break;
+    if (this_sweep == 0.0 || count == 1) break;
   }
   return largest;
 }
 
+}  // namespace
+
+double resolve_point(const std::vector<Collider>& before, const std::vector<Collider>& after,
+                     const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction) {
+  return resolve_sweeps(before, after, after.size(), [](std::size_t k) { return k; }, start, position, friction);
+}
+
+double resolve_point_among(const std::vector<Collider>& before, const std::vector<Collider>& after,
+                           const std::vector<int>& among, const Eigen::Vector3d& start, Eigen::Vector3d& position,
+                           bool friction) {
+  return resolve_sweeps(before, after, among.size(), [&](std::size_t k) { return static_cast<std::size_t>(among[k]); },
+                        start, position, friction);
+}
+
+void colliders_near(const std::vector<Collider>& colliders, const Eigen::Vector3d& p, double margin,
+                    std::vector<int>& out) {
+  for (std::size_t i = 0; i < colliders.size(); ++i) {
+    const Collider& collider = colliders[i];
+    // Far when the distance to the axis (or centre) is at least its radius
+    // plus thickness plus margin, compared squared.
+    double distance2 = 0.0, reach = 0.0;
+    if (const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape)) {
+      const Vector3d axis = capsule->b - capsule->a;
+      const double length2 = axis.squaredNorm();
+      const double t = length2 > 0.0 ? std::clamp((p - capsule->a).dot(axis) / length2, 0.0, 1.0) : 0.0;
+      distance2 = (p - (capsule->a + t * axis)).squaredNorm();
+      reach = std::max(capsule->radius_a, capsule->radius_b);
+    } else if (const auto* sphere = std::get_if<SphereCollider>(&collider.shape)) {
+      distance2 = (p - sphere->center).squaredNorm();
+      reach = sphere->radius;
+    } else {
+      out.push_back(static_cast<int>(i));  // a plane is everywhere
+      continue;
+    }
+    reach += collider.thickness + margin;
+    if (!(distance2 >= reach * reach)) out.push_back(static_cast<int>(i));
+  }
+}
+
 double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p) {
   double deepest = 0.0;
-  for (const Collider& collider : colliders)
+  for (const Collider& collider : colliders) {
+    if (surely_clear(collider, p)) continue;  // beyond thickness: adds nothing
     deepest = std::max(deepest, collider.thickness - query_surface(collider, p).distance);
+  }
   return deepest;
 }
 

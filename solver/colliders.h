@@ -78,6 +78,19 @@ Eigen::Vector3d carry_with(const Collider& before, const Collider& after, const 
 double resolve_point(const std::vector<Collider>& before, const std::vector<Collider>& after,
                      const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true);
 
+/// As resolve_point(before, after, ...), against the colliders listed in
+/// `among` only (indices into both vectors).
+double resolve_point_among(const std::vector<Collider>& before, const std::vector<Collider>& after,
+                           const std::vector<int>& among, const Eigen::Vector3d& start, Eigen::Vector3d& position,
+                           bool friction = true);
+
+/// Appends to `out` the index of every collider whose thickened surface
+/// may come within `margin` (metres) of p: a superset, from bounds cheaper
+/// than the exact distance (a capsule: its axis' distance less its larger
+/// radius); planes always.
+void colliders_near(const std::vector<Collider>& colliders, const Eigen::Vector3d& p, double margin,
+                    std::vector<int>& out);
+
 /// Deepest penetration of p below any collider surface less thickness
 /// (metres, 0 when p is at least `thickness` outside all of them).
 double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p);

@@ -155,6 +155,37 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   }
   inverse_mass_ = model.free_mass.cwiseInverse();
   pinned_part_ = Positions::Zero(model.num_vertices, 3);
+  general_of_.assign(model.springs.size(), -1);
+  general_.clear();
+  general_terms_.clear();
+  for (std::size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    if (direct_free_[s.i] >= 0 && direct_free_[s.j] >= 0) continue;
+    // Merged per free vertex: the projection's denominator is the squared
+    // norm of the constraint's gradient, which counts a shared vertex once
+    // with its net weight (a T-node to its parent: 1/2 - 1, not 1/4 + 1).
+    std::vector<std::pair<int, double>> merged;
+    const auto add = [&](int free, double weight) {
+      for (auto& term : merged)
+        if (term.first == free) {
+          term.second += weight;
+          return;
+        }
+      merged.emplace_back(free, weight);
+    };
+    for (const StencilTerm& t : model.stencil[s.i]) add(t.free, t.weight);
+    for (const StencilTerm& t : model.stencil[s.j]) add(t.free, -t.weight);
+    GeneralSpring g;
+    g.first = static_cast<int>(general_terms_.size());
+    for (const auto& [free, weight] : merged) {
+      if (weight == 0.0) continue;
+      general_terms_.push_back({free, weight, weight * inverse_mass_[free]});
+      g.denominator += weight * weight * inverse_mass_[free];
+    }
+    g.count = static_cast<int>(general_terms_.size()) - g.first;
+    general_of_[k] = static_cast<int>(general_.size());
+    general_.push_back(g);
+  }
 }
 
 Eigen::Vector3d ImplicitIntegrator::position_of(int vertex, const Positions& q) const {
@@ -189,24 +220,19 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   const DynamicsModel& m = *model_;
   const double limit = 1.0 + m.material.stretch_limit;
   double largest = 0.0;  // the largest strain beyond the limit met
-  std::vector<StencilTerm> terms;
   // Ends that are T-nodes or pinned: the constraint acts on their free
   // stencils, mass-weighted (general, slower path).
-  const auto limit_general = [&](const Spring& s) {
-    const Eigen::Vector3d e = position_of(s.i, q) - position_of(s.j, q);
+  const auto limit_general = [&](const Spring& s, const GeneralSpring& g) {
+    Eigen::Vector3d e = (pinned_part_.row(s.i) - pinned_part_.row(s.j)).transpose();
+    const GeneralTerm* terms = general_terms_.data() + g.first;
+    for (int t = 0; t < g.count; ++t) e += terms[t].weight * q.row(terms[t].free).transpose();
     const double length = e.norm();
     const double excess = length - limit * s.rest;
     if (excess <= 0.0) return false;
     largest = std::max(largest, excess / s.rest);
-    terms.clear();
-    for (const StencilTerm& t : m.stencil[s.i]) terms.push_back(t);
-    for (const StencilTerm& t : m.stencil[s.j]) terms.push_back({t.free, -t.weight});
-    double denominator = 0.0;
-    for (const StencilTerm& t : terms) denominator += t.weight * t.weight / m.free_mass[t.free];
-    if (denominator <= 0.0) return false;  // both ends pinned
-    const Eigen::Vector3d n = e / length;
-    const double lambda = excess / denominator;
-    for (const StencilTerm& t : terms) q.row(t.free) -= (lambda * t.weight / m.free_mass[t.free]) * n.transpose();
+    if (g.denominator <= 0.0) return false;  // both ends pinned
+    const Eigen::Vector3d step = (excess / (g.denominator * length)) * e;
+    for (int t = 0; t < g.count; ++t) q.row(terms[t].free) -= terms[t].mass_weight * step.transpose();
     return true;
   };
   // Both ends free vertices: plain mass-weighted projection.
@@ -230,8 +256,8 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   };
   const auto limit_spring = [&](int k) {
     const Spring& s = m.springs[k];
-    const int fi = direct_free_[s.i], fj = direct_free_[s.j];
-    return (fi >= 0 && fj >= 0) ? limit_direct(s, fi, fj) : limit_general(s);
+    const int g = general_of_[static_cast<std::size_t>(k)];
+    return g < 0 ? limit_direct(s, direct_free_[s.i], direct_free_[s.j]) : limit_general(s, general_[static_cast<std::size_t>(g)]);
   };
   // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
   // across the whole cloth in a few sweeps instead of one row per sweep.

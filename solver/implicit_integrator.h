@@ -99,6 +99,22 @@ class ImplicitIntegrator {
   mutable std::vector<char> moved_, check_;  // per free vertex: moved by a T-node's push (reused, not reallocated per round)
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
+  /// A spring with a T-node or pinned end, as the constraint sees it: the
+  /// free vertices its length depends on, each once (a T-node's spring to
+  /// its own parent shares a free vertex between both ends), and the
+  /// mass-weighted denominator of its projection.
+  struct GeneralTerm {
+    int free;
+    double weight;       // d(spring vector) / d(free vertex position)
+    double mass_weight;  // weight / that vertex's mass
+  };
+  struct GeneralSpring {
+    int first = 0, count = 0;  // its terms in general_terms_
+    double denominator = 0.0;  // sum of weight^2 / mass; 0 when both ends are pinned
+  };
+  std::vector<int> general_of_;                // per spring: its index in general_, or -1 (both ends free vertices)
+  std::vector<GeneralSpring> general_;
+  std::vector<GeneralTerm> general_terms_;
   Eigen::VectorXd inverse_mass_;       // per free vertex, 1/kg
 };
 

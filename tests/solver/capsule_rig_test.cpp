@@ -324,6 +324,71 @@ TEST(CapsuleBody, PenetrationIsTheDeepestExactCapsuleQuery) {
   EXPECT_LT(unsettled, 60) << "of 6000 points, resolve() left this many more than 1 mm inside";
 }
 
+TEST(CapsuleBody, AMemoNeverChangesAnAnswer) {
+  // Collision rounds as the integrator runs them: each point resolved with
+  // friction, then nudged (as the strain limiter does) and resolved again
+  // without, over three poses of a random motion, by one body with memos
+  // and one without. The answers must agree, and most later rounds must be
+  // answered from the memo's short list (fewer capsules than the body has).
+  const Skeleton skeleton = cmu_like();
+  CapsuleRigOptions options;
+  options.thickness = 0.006;
+  const CapsuleRig rig = make_capsule_rig(skeleton, options);
+  const Motion motion = random_motion(skeleton, 3, 17);
+  CapsuleBody with(rig, skeleton), without(rig, skeleton);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::normal_distribution<double> nudge(0.0, 0.002);
+  // Points near the surfaces of the first pose (within 3 cm, either side);
+  // the later poses move the capsules about them.
+  std::vector<Vector3d> points;
+  with.pose(frame_pose(motion, 0));
+  std::uniform_int_distribution<std::size_t> pick(0, with.colliders().size() - 1);
+  while (points.size() < 1500) {
+    const auto* capsule = std::get_if<CapsuleCollider>(&with.colliders()[pick(rng)].shape);
+    if (!capsule || !((capsule->b - capsule->a).norm() > 1e-3)) continue;
+    const Vector3d axis = capsule->b - capsule->a;
+    const Vector3d side = axis.unitOrthogonal();
+    const double angle = 3.14159 * unit(rng), t = 0.5 + 0.5 * unit(rng);
+    const Vector3d radial = Eigen::AngleAxisd(angle, axis.normalized()) * side;
+    const double radius = (1.0 - t) * capsule->radius_a + t * capsule->radius_b;
+    points.push_back(capsule->a + t * axis + (radius + 0.03 * unit(rng)) * radial);
+  }
+  std::vector<ContactMemo> memos(points.size());
+  int short_lists = 0, pushes = 0;
+  for (int f = 0; f < 3; ++f) {
+    const Pose pose = frame_pose(motion, f);
+    with.pose(pose);
+    without.pose(pose);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vector3d start = points[i];
+      Vector3d a = start + Vector3d(0.01, -0.005, 0.003), b = a;
+      for (int round = 0; round < 4; ++round) {
+        const double ca = with.resolve(start, a, round == 0, &memos[i]);
+        const double cb = without.resolve(start, b, round == 0);
+        ASSERT_LT((a - b).norm(), 1e-12) << "frame " << f << " point " << i << " round " << round;
+        ASSERT_NEAR(ca, cb, 1e-12);
+        pushes += cb > 0.0;
+        short_lists += memos[i].owner == &with && memos[i].items.size() < with.colliders().size();
+        const Vector3d moved(nudge(rng), nudge(rng), nudge(rng));
+        a += moved;
+        b += moved;
+      }
+    }
+  }
+  EXPECT_GT(pushes, 2000) << "the samples must probe contacts";
+  EXPECT_GT(short_lists, 15000) << "of 18000 resolves, this many used a short list";
+  // A memo another scene owns is left alone.
+  ContactMemo foreign;
+  int other_scene = 0;
+  foreign.owner = &other_scene;
+  foreign.items = {12345};
+  Vector3d q(0, 0, 0);
+  with.resolve(q, q, true, &foreign);
+  EXPECT_EQ(foreign.owner, &other_scene);
+  EXPECT_EQ(foreign.items, std::vector<int>{12345});
+}
+
 TEST(CapsuleBody, HandComputedDistancesOfOneTaperedCapsule) {
   // One bone from (0, 0, 0) to (0, 1, 0) with radii 0.1 -> 0.05 (overridden).
   const Skeleton skeleton = one_bone();
