@@ -18,6 +18,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QPainter>
 #include <QProcess>
 #include <QStandardPaths>
 
@@ -132,12 +133,15 @@ QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame
   options.height = request.height;
   options.supersample = request.supersample;
   QImage image = render::render(scene, camera, options);
+  // The legend goes below the title: on a narrow image they would overlap.
+  QRect below_title = image.rect();
+  if (!request.title.isEmpty()) below_title.setTop(render::draw_title(image, request.title).bottom() + 1);
   // A legend needs room; on a thumbnail it would cover the garment.
   if (request.legend && std::min(request.width, request.height) >= 240) {
-    render::draw_legend(image, garment.legend, render::Corner::top_right);
-    if (garment.color_bar) render::draw_color_bar(image, *garment.color_bar, render::Corner::bottom_right);
+    QPainter painter(&image);
+    render::draw_legend(painter, below_title, garment.legend, render::Corner::top_right);
+    if (garment.color_bar) render::draw_color_bar(painter, below_title, *garment.color_bar, render::Corner::bottom_right);
   }
-  if (!request.title.isEmpty()) render::draw_title(image, request.title);
   return image;
 }
 
