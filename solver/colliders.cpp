@@ -263,6 +263,10 @@ double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector
 namespace {
 
 /// resolve_point's sweeps over `count` colliders, the k-th being index(k).
+/// The others must be clear of the point wherever the sweeps take it: they
+/// would change nothing, and the sweeps end as they would with them (a
+/// single collider, after.size() == 1, needs one sweep), so the result is
+/// the same to the bit.
 template <typename Index>
 double resolve_sweeps(const std::vector<Collider>& before, const std::vector<Collider>& after, std::size_t count,
                       Index index, const Vector3d& start, Vector3d& position, bool friction) {
@@ -279,7 +283,7 @@ double resolve_sweeps(const std::vector<Collider>& before, const std::vector<Col
       this_sweep = std::max(this_sweep, resolve_against(before[i], after[i], start, position, friction));
     }
     largest = std::max(largest, this_sweep);
-    if (this_sweep == 0.0 || count == 1) break;
+    if (this_sweep == 0.0 || after.size() == 1) break;
   }
   return largest;
 }

@@ -179,8 +179,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     g.first = static_cast<int>(general_terms_.size());
     for (const auto& [free, weight] : merged) {
       if (weight == 0.0) continue;
-      general_terms_.push_back({free, weight, weight * inverse_mass_[free]});
-      g.denominator += weight * weight * inverse_mass_[free];
+      general_terms_.push_back({free, weight});
+      g.denominator += weight * weight / model.free_mass[free];
     }
     g.count = static_cast<int>(general_terms_.size()) - g.first;
     general_of_[k] = static_cast<int>(general_.size());
@@ -222,17 +222,21 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   double largest = 0.0;  // the largest strain beyond the limit met
   // Ends that are T-nodes or pinned: the constraint acts on their free
   // stencils, mass-weighted (general, slower path).
+  // (The arithmetic is position_of's and the per-term update's, so a spring
+  // without shared terms, a pinned end's, projects to the same bits as
+  // before the terms were merged.)
   const auto limit_general = [&](const Spring& s, const GeneralSpring& g) {
-    Eigen::Vector3d e = (pinned_part_.row(s.i) - pinned_part_.row(s.j)).transpose();
-    const GeneralTerm* terms = general_terms_.data() + g.first;
-    for (int t = 0; t < g.count; ++t) e += terms[t].weight * q.row(terms[t].free).transpose();
+    const Eigen::Vector3d e = position_of(s.i, q) - position_of(s.j, q);
     const double length = e.norm();
     const double excess = length - limit * s.rest;
     if (excess <= 0.0) return false;
     largest = std::max(largest, excess / s.rest);
     if (g.denominator <= 0.0) return false;  // both ends pinned
-    const Eigen::Vector3d step = (excess / (g.denominator * length)) * e;
-    for (int t = 0; t < g.count; ++t) q.row(terms[t].free) -= terms[t].mass_weight * step.transpose();
+    const Eigen::Vector3d n = e / length;
+    const double lambda = excess / g.denominator;
+    const GeneralTerm* terms = general_terms_.data() + g.first;
+    for (int t = 0; t < g.count; ++t)
+      q.row(terms[t].free) -= (lambda * terms[t].weight / m.free_mass[terms[t].free]) * n.transpose();
     return true;
   };
   // Both ends free vertices: plain mass-weighted projection.

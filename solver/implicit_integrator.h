@@ -105,8 +105,7 @@ class ImplicitIntegrator {
   /// mass-weighted denominator of its projection.
   struct GeneralTerm {
     int free;
-    double weight;       // d(spring vector) / d(free vertex position)
-    double mass_weight;  // weight / that vertex's mass
+    double weight;  // d(spring vector) / d(free vertex position)
   };
   struct GeneralSpring {
     int first = 0, count = 0;  // its terms in general_terms_
