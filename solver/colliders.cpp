@@ -263,10 +263,12 @@ double resolve_point(const std::vector<Collider>& colliders, const Eigen::Vector
 namespace {
 
 /// resolve_point's sweeps over `count` colliders, the k-th being index(k).
-/// The others must be clear of the point wherever the sweeps take it: they
-/// would change nothing, and the sweeps end as they would with them (a
-/// single collider, after.size() == 1, needs one sweep), so the result is
-/// the same to the bit.
+/// The sweeps end as they would over all of them (a single collider,
+/// after.size() == 1, needs one sweep), so where the others are clear of
+/// every position the sweeps pass through, the result is the same to the
+/// bit. Callers check only where the point ends (CapsuleBody: within its
+/// memo's trusted ball); a push out of that ball and back within one call
+/// is the case this does not cover.
 template <typename Index>
 double resolve_sweeps(const std::vector<Collider>& before, const std::vector<Collider>& after, std::size_t count,
                       Index index, const Vector3d& start, Vector3d& position, bool friction) {
