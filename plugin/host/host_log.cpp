@@ -15,6 +15,15 @@ const HostLog* g_message_target = nullptr;
 constexpr qint64 kProgressIntervalNs = 1'000'000'000;
 /// A bar on a terminal redraws in place, so it may update more often.
 constexpr qint64 kBarIntervalNs = 100'000'000;
+
+/// MRCLOTH_PROGRESS_INTERVAL (seconds, > 0) overrides both intervals: a
+/// busy batch log may want fewer lines, and a test a job shorter than a
+/// second to print some.
+qint64 progressInterval(qint64 fallback_ns) {
+  bool ok = false;
+  const double seconds = qEnvironmentVariable("MRCLOTH_PROGRESS_INTERVAL").toDouble(&ok);
+  return ok && seconds > 0.0 && seconds < 1e6 ? static_cast<qint64>(seconds * 1e9) : fallback_ns;
+}
 constexpr int kBarWidth = 24;
 
 /// A bar when stderr is a terminal, plain lines otherwise (logs, pipes, CI);
@@ -145,7 +154,7 @@ void HostLog::onSetJobState(QString jobId, int value) {
   const int total = job.max - job.min;
   if (quiet_ || total <= 1) return;
   const bool last = value >= job.max;
-  const qint64 interval = bar_ ? kBarIntervalNs : kProgressIntervalNs;
+  const qint64 interval = progressInterval(bar_ ? kBarIntervalNs : kProgressIntervalNs);
   if (!last && job.printed_ns >= 0 && now - job.printed_ns < interval) return;
   if (!last && job.printed_ns < 0 && now < interval) return;  // short jobs print only their end
   job.printed_ns = now;

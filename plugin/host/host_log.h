@@ -4,7 +4,8 @@
 //  - "[info] ..." and "[job] ..." -> stderr, hidden by --quiet; a job with
 //    more than one step prints "<id>: 12/60 (20%), 8.3/s, ETA 5.8 s" at most
 //    once a second and at its last step; when stderr is a terminal, as a bar
-//    redrawn in place instead (MRCLOTH_PROGRESS=bar|lines overrides);
+//    redrawn in place instead (MRCLOTH_PROGRESS=bar|lines overrides;
+//    MRCLOTH_PROGRESS_INTERVAL=<seconds> sets how often);
 //  - "[warn] ..." and "[error] ..." -> stderr, always.
 // Keeping stdout for script output only lets a script's printed results be
 // piped and compared (the script tests do).

@@ -1,4 +1,4 @@
-// A job long enough for progress updates (a few seconds): the grid refined
+// A job long enough for progress updates (about a second): the grid refined
 // three times, hanging from its top row. Used by the progress-output checks.
 "use strict";
 const [dataDir] = core.scriptArguments();
