@@ -154,6 +154,12 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     if (st.size() == 1 && st[0].weight == 1.0 && !has_pinned_part[v]) direct_free_[v] = st[0].free;
   }
   inverse_mass_ = model.free_mass.cwiseInverse();
+  const Eigen::Index plane_rows = static_cast<Eigen::Index>(model.free_vertices.size() + model.hanging_vertices.size());
+  plane_point_.resize(plane_rows, 3);
+  plane_normal_.resize(plane_rows, 3);
+  has_plane_.assign(static_cast<std::size_t>(plane_rows), 0);
+  planes_.clear();
+  t_node_planes_.clear();
   pinned_part_ = Positions::Zero(model.num_vertices, 3);
   general_of_.assign(model.springs.size(), -1);
   general_.clear();
@@ -192,6 +198,62 @@ Eigen::Vector3d ImplicitIntegrator::position_of(int vertex, const Positions& q) 
   Eigen::Vector3d x = pinned_part_.row(vertex).transpose();
   for (const StencilTerm& t : model_->stencil[vertex]) x += t.weight * q.row(t.free).transpose();
   return x;
+}
+
+void ImplicitIntegrator::remember_plane(Eigen::Index f, const Eigen::Vector3d& before,
+                                        const Eigen::Vector3d& after) const {
+  if (!options_.contact_planes) return;
+  const Eigen::Vector3d push = after - before;
+  const double length = push.norm();
+  if (!(length > 0.0)) return;
+  const std::size_t k = static_cast<std::size_t>(f);
+  if (!has_plane_[k]) {
+    has_plane_[k] = 1;
+    planes_.push_back(static_cast<int>(f));
+    const Eigen::Index free_count = static_cast<Eigen::Index>(model_->free_vertices.size());
+    if (f >= free_count) t_node_planes_.push_back(static_cast<int>(f - free_count));
+  }
+  // The push's direction (the collider's normal, tilted by at most the
+  // friction angle in the first round): in front of this plane the point
+  // is where the collider put it or farther out.
+  plane_point_.row(f) = after.transpose();
+  plane_normal_.row(f) = push.transpose() / length;
+}
+
+void ImplicitIntegrator::keep_in_front(Eigen::Index f, Positions& q) const {
+  if (!has_plane_[static_cast<std::size_t>(f)]) return;
+  double behind = 0.0;
+  for (int c = 0; c < 3; ++c) behind += (q(f, c) - plane_point_(f, c)) * plane_normal_(f, c);
+  if (behind >= 0.0) return;
+  for (int c = 0; c < 3; ++c) q(f, c) -= behind * plane_normal_(f, c);
+}
+
+bool ImplicitIntegrator::move_t_node(std::size_t h, const Eigen::Vector3d& delta, Positions& q,
+                                     std::vector<char>* moved) const {
+  const DynamicsModel& m = *model_;
+  const auto& stencil = m.stencil[static_cast<std::size_t>(m.hanging_vertices[h])];
+  double denominator = 0.0;
+  for (const StencilTerm& t : stencil) denominator += t.weight * t.weight / m.free_mass[t.free];
+  if (denominator <= 0.0) return false;
+  // The smallest mass-weighted change of the free stencil that moves the
+  // T-node by delta.
+  for (const StencilTerm& t : stencil) {
+    q.row(t.free) += (t.weight / m.free_mass[t.free] / denominator) * delta.transpose();
+    if (moved) (*moved)[static_cast<std::size_t>(t.free)] = 1;
+  }
+  return true;
+}
+
+void ImplicitIntegrator::keep_t_nodes_in_front(Positions& q) const {
+  const DynamicsModel& m = *model_;
+  const Eigen::Index free_count = static_cast<Eigen::Index>(m.free_vertices.size());
+  for (int h : t_node_planes_) {
+    const Eigen::Index row = free_count + h;
+    const Eigen::Vector3d x = position_of(m.hanging_vertices[static_cast<std::size_t>(h)], q);
+    const Eigen::Vector3d n = plane_normal_.row(row).transpose();
+    const double behind = (x - plane_point_.row(row).transpose()).dot(n);
+    if (behind < 0.0) move_t_node(static_cast<std::size_t>(h), -behind * n, q, nullptr);
+  }
 }
 
 // grad = M/h^2 (q - y) + S^T dE/dx at x = S q + P p.
@@ -235,8 +297,10 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     const Eigen::Vector3d n = e / length;
     const double lambda = excess / g.denominator;
     const GeneralTerm* terms = general_terms_.data() + g.first;
-    for (int t = 0; t < g.count; ++t)
+    for (int t = 0; t < g.count; ++t) {
       q.row(terms[t].free) -= (lambda * terms[t].weight / m.free_mass[terms[t].free]) * n.transpose();
+      keep_in_front(terms[t].free, q);
+    }
     return true;
   };
   // Both ends free vertices: plain mass-weighted projection.
@@ -256,6 +320,8 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       q(fi, c) -= lambda * wi * e[c];
       q(fj, c) += lambda * wj * e[c];
     }
+    keep_in_front(fi, q);
+    keep_in_front(fj, q);
     return true;
   };
   const auto limit_spring = [&](int k) {
@@ -272,6 +338,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_order_[k]);
     else
       for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_order_[k]);
+    keep_t_nodes_in_front(q);
     if (!any) break;
   }
   return largest;
@@ -289,9 +356,12 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
       // A vertex the strain limiter left exactly where the last round put it
       // is already resolved against this (unchanged) scene.
       if (settled && q.row(f) == settled->row(f)) continue;
-      Eigen::Vector3d x = q.row(f).transpose();
-      largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, friction,
-                                                &memos_[static_cast<std::size_t>(f)]));
+      const Eigen::Vector3d before = q.row(f).transpose();
+      Eigen::Vector3d x = before;
+      const double correction = scene.resolve(q_previous.row(f).transpose(), x, friction,
+                                              &memos_[static_cast<std::size_t>(f)]);
+      largest = std::max(largest, correction);
+      if (correction > 0.0) remember_plane(f, before, x);
       q.row(f) = x.transpose();
     }
     // A T-node can be inside while its parents are outside (the collider is
@@ -316,14 +386,8 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
             scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(q.rows()) + h]);
         if (correction <= 0.0) continue;
         largest = std::max(largest, correction);
-        const Eigen::Vector3d delta = target - x;
-        double denominator = 0.0;
-        for (const StencilTerm& t : m.stencil[v]) denominator += t.weight * t.weight / m.free_mass[t.free];
-        if (denominator <= 0.0) continue;
-        for (const StencilTerm& t : m.stencil[v]) {
-          q.row(t.free) += (t.weight / m.free_mass[t.free] / denominator) * delta.transpose();
-          moved[static_cast<std::size_t>(t.free)] = 1;
-        }
+        if (!move_t_node(h, target - x, q, &moved)) continue;
+        remember_plane(q.rows() + static_cast<Eigen::Index>(h), x, target);
         pushed = true;
       }
       return pushed;
@@ -341,9 +405,12 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
       moved.assign(check.size(), 0);
       for (Eigen::Index f = 0; f < q.rows(); ++f) {
         if (!check[static_cast<std::size_t>(f)]) continue;
-        Eigen::Vector3d x = q.row(f).transpose();
-        largest = std::max(largest, scene.resolve(q_previous.row(f).transpose(), x, false,
-                                                  &memos_[static_cast<std::size_t>(f)]));
+        const Eigen::Vector3d before = q.row(f).transpose();
+        Eigen::Vector3d x = before;
+        const double correction = scene.resolve(q_previous.row(f).transpose(), x, false,
+                                                &memos_[static_cast<std::size_t>(f)]);
+        largest = std::max(largest, correction);
+        if (correction > 0.0) remember_plane(f, before, x);
         q.row(f) = x.transpose();
       }
       pushed = push_t_nodes(&check);
@@ -368,6 +435,9 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   if (m.P.cols() > 0) pinned_part_.noalias() = m.P * pinned_next;
 
   const Positions q_previous = state.positions;
+  for (int k : planes_) has_plane_[static_cast<std::size_t>(k)] = 0;  // planes last one step
+  planes_.clear();
+  t_node_planes_.clear();
   // Gravity is integrated exactly (x += h v + h^2 g / 2, v += h g), so free
   // fall follows the true parabola and a hanging cloth carries its full weight.
   Positions y = state.positions + h * state.velocities;

@@ -20,6 +20,11 @@
 // stay exact. After the iterations, Gauss-Seidel sweeps bound every stretch
 // spring to (1 + stretch_limit) of its rest length (strain limiting, in free
 // coordinates, so T-nodes stay exact), then collisions are resolved.
+// Collisions and strain limiting alternate in rounds; every collision
+// push-out leaves a contact plane (the pushed point, the push direction)
+// that the strain limiter keeps its vertex (or T-node) in front of for the
+// rest of the step, so the limiter cannot pull cloth back into what pushed
+// it and the stretch goes to the cloth that is free to move.
 //
 // Accuracy trade-off: with few iterations the step is a damped
 // approximation of implicit Euler (energy is lost in stiff directions,
@@ -42,6 +47,7 @@ struct IntegratorOptions {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
   double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
+  bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
 };
 
 /// State in free coordinates (rows follow DynamicsModel::free_vertices).
@@ -88,6 +94,17 @@ class ImplicitIntegrator {
   double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction,
                             const Positions* settled = nullptr) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
+  /// Records the contact plane of a push of free vertex `f` (or T-node
+  /// `f - #free`) from `before` to `after` (no plane when they are equal).
+  void remember_plane(Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) const;
+  /// Moves free vertex f back onto its contact plane if it is behind it.
+  void keep_in_front(Eigen::Index f, Positions& q) const;
+  /// The same for every T-node with a plane, through its free stencil.
+  void keep_t_nodes_in_front(Positions& q) const;
+  /// Moves T-node h (index into hanging_vertices) by `delta` through its
+  /// free stencil, mass-weighted; flags the moved free vertices in `moved`
+  /// when given. False when it has no free stencil.
+  bool move_t_node(std::size_t h, const Eigen::Vector3d& delta, Positions& q, std::vector<char>* moved) const;
 
   const DynamicsModel* model_ = nullptr;
   IntegratorOptions options_;
@@ -97,6 +114,13 @@ class ImplicitIntegrator {
   Positions settled_;                  // scratch: q after the last collision round of this step
   mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between rounds
   mutable std::vector<char> moved_, check_;  // per free vertex: moved by a T-node's push (reused, not reallocated per round)
+  // Per free vertex, then per T-node: the contact plane of its last push
+  // this step (point on it, unit outward normal); has_plane_ marks those
+  // with one, planes_ lists them for clearing.
+  mutable Positions plane_point_, plane_normal_;
+  mutable std::vector<char> has_plane_;
+  mutable std::vector<int> planes_;
+  mutable std::vector<int> t_node_planes_;  // T-node indices (into hanging_vertices) with a plane
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
   /// A spring with a T-node or pinned end, as the constraint sees it: the
