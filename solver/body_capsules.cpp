@@ -580,5 +580,6 @@ double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& posit
 }
 
 double CapsuleBody::penetration(const Eigen::Vector3d& p) const { return mrcloth::penetration(colliders_, p); }
+double CapsuleBody::depth(const Eigen::Vector3d& p) const { return mrcloth::depth(colliders_, p); }
 
 }  // namespace mrcloth

@@ -107,6 +107,7 @@ class CapsuleBody : public CollisionScene {
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
                  ContactMemo* memo = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
+  double depth(const Eigen::Vector3d& p) const override;
   bool empty() const override { return colliders_.empty(); }
   const std::vector<Collider>& colliders() const { return colliders_; }
   const CapsuleRig& rig() const { return rig_; }

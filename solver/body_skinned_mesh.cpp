@@ -1375,6 +1375,12 @@ double MeshBody::penetration(const Eigen::Vector3d& p) const {
   return std::max(0.0, impl_->thickness - c.distance);
 }
 
+double MeshBody::depth(const Eigen::Vector3d& p) const {
+  Impl::Contact c;
+  if (!impl_->contact(p, impl_->reach2, true, c)) return 0.0;
+  return std::max(0.0, -c.distance);
+}
+
 SurfaceQuery MeshBody::query(const Eigen::Vector3d& p) const {
   Impl::Closest c;
   impl_->closest(p, std::numeric_limits<double>::infinity(), c);

@@ -93,6 +93,7 @@ class MeshBody : public CollisionScene {
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
                  ContactMemo* memo = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
+  double depth(const Eigen::Vector3d& p) const override;
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.
   SurfaceQuery query(const Eigen::Vector3d& p) const;

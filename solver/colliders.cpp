@@ -338,4 +338,13 @@ double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d
   return deepest;
 }
 
+double depth(const std::vector<Collider>& colliders, const Eigen::Vector3d& p) {
+  double deepest = 0.0;
+  for (const Collider& collider : colliders) {
+    if (surely_clear(collider, p)) continue;  // beyond thickness, so outside
+    deepest = std::max(deepest, -query_surface(collider, p).distance);
+  }
+  return deepest;
+}
+
 }  // namespace mrcloth

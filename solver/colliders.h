@@ -95,4 +95,8 @@ void colliders_near(const std::vector<Collider>& colliders, const Eigen::Vector3
 /// (metres, 0 when p is at least `thickness` outside all of them).
 double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p);
 
+/// Deepest depth of p below any collider's surface itself, thickness not
+/// counted (metres, 0 when p is outside all of them).
+double depth(const std::vector<Collider>& colliders, const Eigen::Vector3d& p);
+
 }  // namespace mrcloth

@@ -39,6 +39,9 @@ class CollisionScene {
                          ContactMemo* memo = nullptr) const = 0;
   /// Depth of p inside surface + thickness (0 when outside), metres.
   virtual double penetration(const Eigen::Vector3d& p) const = 0;
+  /// Depth of p below the surface itself, thickness not counted (0 when
+  /// outside), metres: how far cloth is inside the body.
+  virtual double depth(const Eigen::Vector3d& p) const = 0;
   /// True when there is nothing to collide with (the integrator skips work).
   virtual bool empty() const = 0;
 };
@@ -52,6 +55,7 @@ class AnalyticScene : public CollisionScene {
     return resolve_point(colliders_, colliders_, start, position, friction);
   }
   double penetration(const Eigen::Vector3d& p) const override { return mrcloth::penetration(colliders_, p); }
+  double depth(const Eigen::Vector3d& p) const override { return mrcloth::depth(colliders_, p); }
   bool empty() const override { return colliders_.empty(); }
   std::vector<Collider>& colliders() { return colliders_; }
   const std::vector<Collider>& colliders() const { return colliders_; }
@@ -84,6 +88,11 @@ class CompositeScene : public CollisionScene {
   double penetration(const Eigen::Vector3d& p) const override {
     double deepest = 0.0;
     for (const CollisionScene* s : scenes_) deepest = std::max(deepest, s->penetration(p));
+    return deepest;
+  }
+  double depth(const Eigen::Vector3d& p) const override {
+    double deepest = 0.0;
+    for (const CollisionScene* s : scenes_) deepest = std::max(deepest, s->depth(p));
     return deepest;
   }
   bool empty() const override {

@@ -187,13 +187,16 @@ QuadMesh mesh_at_positions(const QuadMesh& mesh, const Positions& x) {
   return moved;
 }
 
-double max_stretch(const DynamicsModel& model, const Positions& full) {
-  double worst = 0.0;
+double max_stretch(const DynamicsModel& model, const Positions& full) { return most_stretched(model, full).strain; }
+
+StretchPeak most_stretched(const DynamicsModel& model, const Positions& full) {
+  StretchPeak peak;
   for (const Spring& s : model.springs) {
     if (s.kind != SpringKind::stretch) continue;
-    worst = std::max(worst, ((full.row(s.i) - full.row(s.j)).norm() - s.rest) / s.rest);
+    const double strain = ((full.row(s.i) - full.row(s.j)).norm() - s.rest) / s.rest;
+    if (strain > peak.strain) peak = {strain, s.i, s.j};
   }
-  return worst;
+  return peak;
 }
 
 }  // namespace mrcloth

@@ -105,4 +105,12 @@ QuadMesh mesh_at_positions(const QuadMesh& mesh, const Positions& x);
 /// Largest strain (|xi - xj| - rest) / rest over stretch springs (0 if none is stretched).
 double max_stretch(const DynamicsModel& model, const Positions& full);
 
+/// The most stretched stretch spring: its strain (as max_stretch) and end
+/// vertices (full ids; -1 when no spring is stretched).
+struct StretchPeak {
+  double strain = 0.0;
+  int i = -1, j = -1;
+};
+StretchPeak most_stretched(const DynamicsModel& model, const Positions& full);
+
 }  // namespace mrcloth

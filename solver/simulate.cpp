@@ -25,6 +25,31 @@ double deepest_penetration(const CollisionScene& scene, const Positions& x) {
   return deepest;
 }
 
+// Stretch, penetration (against surface + thickness) and depth (below the
+// surface) of one output frame, keeping where the worst of the run was.
+void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const Positions& x, int frame,
+                   SimulationReport& report) {
+  const StretchPeak peak = most_stretched(model, x);
+  if (peak.strain > report.max_stretch) {
+    report.max_stretch = peak.strain;
+    report.stretch_vertices[0] = peak.i;
+    report.stretch_vertices[1] = peak.j;
+    report.stretch_frame = frame;
+  }
+  if (scene.empty()) return;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    const Eigen::Vector3d p = x.row(v).transpose();
+    const double penetration = scene.penetration(p);
+    if (penetration <= 0.0) continue;  // outside surface + thickness, so outside the surface
+    report.max_depth = std::max(report.max_depth, scene.depth(p));
+    if (penetration > report.max_penetration) {
+      report.max_penetration = penetration;
+      report.deepest_vertex = static_cast<int>(v);
+      report.deepest_frame = frame;
+    }
+  }
+}
+
 }  // namespace
 
 SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
@@ -74,8 +99,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     }
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
-    report.max_stretch = std::max(report.max_stretch, max_stretch(model, x));
-    report.max_penetration = std::max(report.max_penetration, deepest_penetration(scene, x));
+    measure_frame(scene, model, x, report.frames, report);
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);

@@ -53,6 +53,11 @@ struct SimulationReport {
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
+  double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres
+  int deepest_vertex = -1;             ///< where max_penetration was met: full vertex id (-1: never within thickness)
+  int deepest_frame = -1;              ///< and output frame (0-based)
+  int stretch_vertices[2] = {-1, -1};  ///< the ends of the spring that had max_stretch (-1: never stretched)
+  int stretch_frame = -1;              ///< and output frame (0-based)
   double mean_rounds = 0.0;            ///< strain-limiting/collision rounds per step, mean (1 .. collision_rounds): what a step's dynamics cost grows with
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)

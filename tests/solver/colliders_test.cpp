@@ -565,6 +565,31 @@ TEST(Penetration, IsTheDeepestIntrusionIntoTheThicknessBand) {
   EXPECT_EQ(penetration({}, {0, -5, 0}), 0.0);
 }
 
+TEST(Depth, IsTheDeepestIntrusionBelowTheSurfaceItself) {
+  const std::vector<Collider> colliders = {make(PlaneCollider{}, 0.01, 0.0),
+                                           make(SphereCollider{{0, 1, 0}, 0.5}, 0.02, 0.0)};
+  EXPECT_EQ(depth(colliders, {0, 0.3, 0}), 0.0);
+  EXPECT_EQ(depth(colliders, {0, 0.005, 0}), 0.0) << "within the thickness but outside the surface";
+  EXPECT_NEAR(depth(colliders, {0, -0.1, 0}), 0.1, 1e-15);
+  EXPECT_NEAR(depth(colliders, {0, 0.6, 0}), 0.1, 1e-15);
+  EXPECT_EQ(depth({}, {0, -5, 0}), 0.0);
+  // Inside a single collider depth is penetration less thickness, everywhere.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::vector<Collider> capsule = {make(CapsuleCollider{{0, 0, 0}, {0, 1, 0}, 0.3, 0.1}, 0.02, 0.0)};
+  int inside = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vector3d p(0.4 * u(rng), 0.5 + 0.7 * u(rng), 0.4 * u(rng));
+    const double expected = std::max(0.0, -query_surface(capsule[0], p).distance);
+    EXPECT_NEAR(depth(capsule, p), expected, 1e-15);
+    if (expected > 0.0) {
+      ++inside;
+      EXPECT_NEAR(depth(capsule, p), penetration(capsule, p) - 0.02, 1e-15);
+    }
+  }
+  EXPECT_GT(inside, 50);
+}
+
 // ---------------------------------------------------------------------------
 // validate_colliders
 

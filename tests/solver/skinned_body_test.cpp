@@ -405,6 +405,14 @@ TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
   const double depth = body.query(Vector3d::Zero()).distance;
   EXPECT_LT(depth, -0.9);
   EXPECT_NEAR(body.penetration(Vector3d::Zero()), 0.01 - depth, 1e-15);
+  EXPECT_NEAR(body.depth(Vector3d::Zero()), -depth, 1e-15) << "depth below the surface, thickness not counted";
+  EXPECT_EQ(body.depth(Vector3d(0.0, 3.0, 0.0)), 0.0);
+  // Just outside the surface, within the thickness: penetrating, not inside.
+  const Vector3d near_surface = Vector3d(0.0, 1.0, 0.0) * (1.0 + 0.005);
+  if (body.query(near_surface).distance > 0.0) {
+    EXPECT_GT(body.penetration(near_surface), 0.0);
+    EXPECT_EQ(body.depth(near_surface), 0.0);
+  }
   Vector3d centre(0.05, 0.02, -0.03);
   const double correction = body.resolve(centre, centre);
   EXPECT_GT(correction, 0.9);
