@@ -36,12 +36,15 @@ class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
                  ContactMemo* memo) const override {
     double largest = mesh_.resolve(start, position, friction, memo);
-    if (bridges_ && bridges_->resolve(start, position, friction) > 0.0)
-      largest = std::max(largest, mesh_.resolve(start, position, false, memo));
+    const double bridged = bridges_ ? bridges_->resolve(start, position, friction) : 0.0;
+    if (bridged > 0.0) largest = std::max({largest, bridged, mesh_.resolve(start, position, false, memo)});
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {
     return std::max(mesh_.penetration(p), bridges_ ? bridges_->penetration(p) : 0.0);
+  }
+  double depth(const Eigen::Vector3d& p) const override {
+    return std::max(mesh_.depth(p), bridges_ ? bridges_->depth(p) : 0.0);
   }
   bool empty() const override { return false; }
 
@@ -148,10 +151,17 @@ int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const Char
                            garment);
 }
 
-Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options) {
-  if (time >= options.preroll_seconds) return pose_at(motion, options.motion_start + time - options.preroll_seconds);
-  const Pose first = pose_at(motion, options.motion_start);
-  return blend_poses(motion.skeleton, reference_pose(motion, options), first, smoothstep(time / options.preroll_seconds));
+Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options, double* arm_angle) {
+  Pose pose;
+  if (time >= options.preroll_seconds) {
+    pose = pose_at(motion, options.motion_start + time - options.preroll_seconds);
+  } else {
+    const Pose first = pose_at(motion, options.motion_start);
+    pose = blend_poses(motion.skeleton, reference_pose(motion, options), first, smoothstep(time / options.preroll_seconds));
+  }
+  const double angle = options.arm_clearance ? clear_arms(*options.arm_clearance, motion.skeleton, pose) : 0.0;
+  if (arm_angle) *arm_angle = angle;
+  return pose;
 }
 
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
@@ -183,10 +193,17 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   // the last one so each step computes FK once.
   double cached_time = -1.0;
   Pose cached;
+  CharacterRunReport report;
+  bool counting = true;  // steps of the run, not the waist check's re-evaluations below
   const auto pose_at_time = [&](double time) -> const Pose& {
     if (time != cached_time) {
-      cached = character_pose(motion, time, options);
+      double arm_angle = 0.0;
+      cached = character_pose(motion, time, options, &arm_angle);
       cached_time = time;
+      if (counting) {
+        report.max_arm_angle = std::max(report.max_arm_angle, arm_angle);
+        if (arm_angle > 0.0) ++report.arm_steps;
+      }
     }
     return cached;
   };
@@ -216,7 +233,6 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   SimulationOptions sim = options.simulation;
   sim.fps = options.fps;
   sim.substeps = std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
-  CharacterRunReport report;
 
   const int preroll_frames = static_cast<int>(std::lround(options.preroll_seconds * options.fps));
   if (preroll_frames > 0) {
@@ -237,6 +253,7 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
 
   // The waist error is measured on what was recorded, against the targets
   // the pins were given: it is exact by construction, and this checks it.
+  counting = false;
   for (std::size_t f = first; f < frames->size(); ++f) {
     const double time = options.preroll_seconds + static_cast<double>(f - first + 1) / options.fps;
     Positions target = rest_pinned;

@@ -2,6 +2,7 @@
 // A garment on a moving character: the waist pinned to the pelvis, a body
 // that collides (capsules or a skinned mesh), a pre-roll from the rest pose
 // to the first motion frame, then the motion, recorded frame by frame.
+#include "arm_clearance.h"
 #include "body_capsules.h"
 #include "body_skinned_mesh.h"
 #include "body_surface.h"
@@ -88,6 +89,9 @@ struct CharacterRunOptions {
   /// to 13 mm inside it.
   std::vector<std::vector<std::pair<int, double>>> waist_weights;
   std::vector<Eigen::Vector3d> body_joints;  ///< SkinnedBody::joint_rest of the body the weights come from; empty: the skeleton's
+  /// Opens the arms of every pose just enough to keep the hands out of the
+  /// hips and thighs (clear_arms); null: the poses as the clip has them.
+  std::shared_ptr<const ArmClearance> arm_clearance;
   SimulationOptions simulation;      ///< iterations, sweeps, gravity, extra colliders; frames/fps/substeps are set from the above
 };
 
@@ -95,6 +99,8 @@ struct CharacterRunReport {
   SimulationReport preroll;          ///< the pre-roll (no cache)
   SimulationReport motion;           ///< the recorded motion (cache, timings per frame)
   double max_waist_error = 0.0;      ///< largest distance of a pinned vertex from its target at an output frame, metres
+  double max_arm_angle = 0.0;        ///< largest angle options.arm_clearance opened an arm by at any step, radians
+  int arm_steps = 0;                 ///< steps at which it opened one
 };
 
 /// The reference pose: options.garment_pose (by default the skeleton's rest
@@ -170,8 +176,11 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
 
 /// The pose of the character at simulation time `time`: during the pre-roll
 /// a smooth blend from the reference pose to the clip's pose at
-/// motion_start, then the clip from motion_start.
-Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options);
+/// motion_start, then the clip from motion_start; arms opened by
+/// options.arm_clearance when it is set (`arm_angle`, if given, receives
+/// the largest angle an arm was turned by, radians).
+Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options,
+                    double* arm_angle = nullptr);
 
 /// Runs the pre-roll and the motion. The model's rest shape must sit on the
 /// reference pose (see garment_shift); its pinned vertices follow the pelvis

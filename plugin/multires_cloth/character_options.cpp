@@ -102,7 +102,7 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
                                       QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
                                                   QStringLiteral("radii"), QStringLiteral("legBridges"),
-                                                  QStringLiteral("waistFollows")});
+                                                  QStringLiteral("waistFollows"), QStringLiteral("armClearance")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
   request.body = type == QLatin1String("mesh") ? CharacterBodyType::mesh : CharacterBodyType::capsules;
 
@@ -141,6 +141,21 @@ void parseBody(const Fields& top, CharacterRequest& request) {
                             "knees, 2: the ankles), got %2")
                  .arg(label, script::describeValue(bridges)));
       request.legBridges = reach;
+    }
+  }
+  if (fields.has(QStringLiteral("armClearance"))) {
+    const QString label = fields.label(QStringLiteral("armClearance"));
+    const QVariant clearance = fields.required(QStringLiteral("armClearance"));
+    if (clearance.typeId() == QMetaType::QString) {
+      script::toChoice(clearance, label, {QStringLiteral("auto")});
+    } else if (clearance.typeId() == QMetaType::Bool) {
+      if (!clearance.toBool()) request.armClearance = -1.0;
+    } else {
+      const double metres = script::toNumber(clearance, label);
+      if (!(metres >= 0.0 && metres <= 0.1))
+        fail(QStringLiteral("%1 must be \"auto\", false or a clearance from 0 to 0.1 m, got %2")
+                 .arg(label, script::describeValue(clearance)));
+      request.armClearance = metres;
     }
   }
   if (fields.has(QStringLiteral("waistFollows"))) {
@@ -308,6 +323,13 @@ LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& g
                              ? request.legBridges
                              : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()),
                                                      placedPoints(garment, character.placement), skeleton);
+  if (request.armClearance >= 0.0) {
+    ArmClearanceOptions arms;
+    arms.clearance = request.armClearance;
+    character.armClearance = std::make_shared<const ArmClearance>(
+        skinned ? make_arm_clearance(skeleton, arms, skinned->rest_vertices, skinned->weights, skinned->joint_rest)
+                : make_arm_clearance(skeleton, arms));
+  }
   const bool waist_on_skin = request.waistFollows == WaistFollows::skin ||
                              (request.waistFollows == WaistFollows::automatic && request.hasMakeHuman);
   if (waist_on_skin) character.waistSkin = std::make_shared<const SkinnedBody>(*skinned);
@@ -360,6 +382,7 @@ CharacterRunOptions characterRunOptions(const CharacterRequest& request, const L
   run.preroll_seconds = request.prerollSeconds;
   run.motion_start = request.motionStart;
   run.simulation = simulation;
+  run.arm_clearance = character.armClearance;
   if (character.waistSkin) waist_follows_skin(run, *character.waistSkin, *character.motion, model);
   return run;
 }
@@ -392,9 +415,15 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
                                                               {QStringLiteral("total"), pre.ms_per_frame_total}}},
                    {QStringLiteral("maxStretch"), pre.max_stretch},
                    {QStringLiteral("maxPenetration"), pre.max_penetration},
+                   {QStringLiteral("maxDepth"), pre.max_depth},
                    {QStringLiteral("initialPenetration"), pre.initial_penetration},
                    {QStringLiteral("nonFinite"), pre.non_finite}}},
       {QStringLiteral("maxWaistError"), report.max_waist_error},
+      {QStringLiteral("armsOpened"), QVariantMap{{QStringLiteral("maxDegrees"), report.max_arm_angle * 180.0 / M_PI},
+                                                 {QStringLiteral("steps"), report.arm_steps},
+                                                 {QStringLiteral("clearance"), request.armClearance >= 0.0
+                                                                                   ? QVariant(request.armClearance)
+                                                                                   : QVariant(false)}}},
       {QStringLiteral("body"), bodyTypeName(request.body)},
       {QStringLiteral("motion"), request.motionPath},
       {QStringLiteral("motionUnits"), request.motionUnits},

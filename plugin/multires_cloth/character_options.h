@@ -59,6 +59,9 @@ struct CharacterRequest {
   /// Automatic: with the skin whenever the MakeHuman body is given (its
   /// mesh, or capsules fitted to it), else with the pelvis.
   WaistFollows waistFollows = WaistFollows::automatic;
+  /// Arms opened just enough to keep the hands this far (metres) from the
+  /// hips and thighs (solver/arm_clearance.h); < 0: the clip's arms as they are.
+  double armClearance = ArmClearanceOptions{}.clearance;
   GarmentPlacement place = GarmentPlacement::none;
   double prerollSeconds = 1.0;
   double stepRate = 120.0;      ///< time steps per second
@@ -89,6 +92,8 @@ struct LoadedCharacter {
   int capsulesShrunk = 0;       ///< capsules shrunk so the garment starts outside them (clear_capsules_of)
   /// The MakeHuman body whose skin the waist follows; null: the waist follows the pelvis.
   std::shared_ptr<const SkinnedBody> waistSkin;
+  /// The hands kept out of the hips (on the body's own proportions); null: off.
+  std::shared_ptr<const ArmClearance> armClearance;
 };
 
 /// Reads the BVH, finds the placement, builds the body (with bridges between

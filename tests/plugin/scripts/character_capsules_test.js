@@ -45,6 +45,21 @@ expectEqual(report.legBridges, 1, "a skirt above the knees gets bridges to the k
 expectEqual(report.waistFollows, "pelvis", "on capsules the waist follows the pelvis");
 expectAtMost(report.preroll.initialPenetration, 0, "the placed skirt starting inside the body:");
 expectEqual(report.perFrameMs.length, frames, "timings per frame");
+// Where the worst stretch and penetration were, and the depth below the
+// capsules' own surface (thickness not counted).
+if (!(report.maxDepth >= 0 && report.maxDepth <= Math.max(0, report.maxPenetration - body.thickness) + 1e-12))
+  throw new Error("maxDepth " + report.maxDepth + " against maxPenetration " + report.maxPenetration);
+const [si, sj] = report.mostStretched.vertices;
+if (!(si >= 0 && sj >= 0 && si < info.vertices && sj < info.vertices && report.mostStretched.frame >= 0 &&
+      report.mostStretched.frame < frames))
+  throw new Error("mostStretched " + JSON.stringify(report.mostStretched));
+if (report.maxPenetration > 0 && !(report.deepest.vertex >= 0 && report.deepest.frame >= 0 && report.deepest.frame < frames))
+  throw new Error("deepest " + JSON.stringify(report.deepest));
+// The mannequin's walk swings the hands close to the hips: the arms open by
+// a few degrees at most, to keep them 1 cm clear.
+expectEqual(report.armsOpened.clearance, 0.01, "arm clearance");
+if (!(report.armsOpened.maxDegrees >= 0 && report.armsOpened.maxDegrees < 10))
+  throw new Error("armsOpened " + JSON.stringify(report.armsOpened));
 if (!(report.perFrameMs.every(t => t.dynamics > 0 && t.collision >= 0)))
   throw new Error("per-frame timings: " + JSON.stringify(report.perFrameMs));
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");

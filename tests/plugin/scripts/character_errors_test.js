@@ -37,6 +37,10 @@ expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must 
 expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
              "option 'body.waistFollows' \"skin\" needs a body to skin by");
 expectThrows(sim({motion: walk, body: {waistFollows: "ribs"}}), "ArgumentError", "option 'body.waistFollows'");
+expectThrows(sim({motion: walk, body: {armClearance: 0.5}}), "ArgumentError",
+             "option 'body.armClearance' must be \"auto\", false or a clearance from 0 to 0.1 m, got the number 0.5");
+expectThrows(sim({motion: walk, body: {armClearance: -0.01}}), "ArgumentError", "option 'body.armClearance'");
+expectThrows(sim({motion: walk, body: {armClearance: "wide"}}), "ArgumentError", "option 'body.armClearance'");
 
 // The motion.
 expectThrows(sim({motion: missing}), "InputError", "option 'motion': ", "no_such_motion.bvh: no such file");
