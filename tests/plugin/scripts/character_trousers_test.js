@@ -17,21 +17,24 @@ for (const type of ["mesh", "capsules"]) {
     motion: {path: clip, units: "cmu"}, body: Object.assign({}, files, {type: type}), place: "makehuman",
     preroll: 0.5, frames: frames, output: pc2});
   print("character trousers (" + type + "): initialPenetration " + (1000 * report.preroll.initialPenetration).toFixed(2) +
-        " mm, maxPenetration " + (1000 * report.maxPenetration).toFixed(2) + " mm, maxStretch " +
+        " mm, maxPenetration " + (1000 * report.maxPenetration).toFixed(2) + " mm, maxDepth " +
+        (1000 * report.maxDepth).toFixed(2) + " mm at " + JSON.stringify(report.deepest) + ", maxStretch " +
         report.maxStretch.toFixed(3) + ", maxWaistError " + report.maxWaistError.toExponential(2) + " m, " +
         report.msPerFrame.total.toFixed(1) + " ms/frame");
   expectEqual([report.frames, report.nonFinite, report.preroll.nonFinite, report.body, report.waistFollows],
               [frames, false, false, type, "skin"], type + ": run completed, waist on the skin");
   if (!(report.maxWaistError <= 1e-9)) throw new Error(type + ": maxWaistError " + report.maxWaistError + " > 1e-9 m");
   expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, type + ": PC2 size");
-  // Stated bounds (README, Known limits), not issue 4's targets: the
-  // trousers start within the thickness plus 2-3 mm where they were
-  // modelled that close (6.0 / 4.3 mm measured); the pinned waistband
-  // meets the swinging forearm (14 / 21.5 mm measured, issue 4's target is
-  // 2 mm); the waistband's 5 mm edges and the crotch, where skinning
-  // stretches the body's own skin by up to 180 %, stretch most (116 / 149 %).
+  // Stated bounds (README, Known limits): the trousers start within the
+  // thickness plus 2-3 mm where they were modelled that close (6.0 / 4.3 mm
+  // measured). Depth inside the body (issue 4: 2 mm): on capsules 1.5 mm;
+  // on the skinned mesh 3.0 mm, at the crotch, where the skinned thighs
+  // pass into each other and cloth between them is inside one whatever it
+  // does (14 / 17.5 mm while the hands went into the hips). The waistband's
+  // edges next to the pins, where skinning stretches the body's own skin
+  // most, stretch most (60 / 81 %; 116 / 149 % before the contact planes).
   expectAtMost(report.preroll.initialPenetration, 0.007, type + ": initial penetration");
-  expectAtMost(report.maxPenetration, 0.025, type + ": penetration");
-  expectAtMost(report.maxStretch, 2.0, type + ": stretch");
+  expectAtMost(report.maxDepth, type === "mesh" ? 0.004 : 0.002, type + ": depth inside the body");
+  expectAtMost(report.maxStretch, 1.0, type + ": stretch");
 }
 print("character trousers: ok");
