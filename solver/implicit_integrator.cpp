@@ -220,14 +220,6 @@ void ImplicitIntegrator::remember_plane(Eigen::Index f, const Eigen::Vector3d& b
   plane_normal_.row(f) = push.transpose() / length;
 }
 
-void ImplicitIntegrator::keep_in_front(Eigen::Index f, Positions& q) const {
-  if (!has_plane_[static_cast<std::size_t>(f)]) return;
-  double behind = 0.0;
-  for (int c = 0; c < 3; ++c) behind += (q(f, c) - plane_point_(f, c)) * plane_normal_(f, c);
-  if (behind >= 0.0) return;
-  for (int c = 0; c < 3; ++c) q(f, c) -= behind * plane_normal_(f, c);
-}
-
 bool ImplicitIntegrator::move_t_node(std::size_t h, const Eigen::Vector3d& delta, Positions& q,
                                      std::vector<char>* moved) const {
   const DynamicsModel& m = *model_;
@@ -244,7 +236,7 @@ bool ImplicitIntegrator::move_t_node(std::size_t h, const Eigen::Vector3d& delta
   return true;
 }
 
-void ImplicitIntegrator::keep_t_nodes_in_front(Positions& q) const {
+void ImplicitIntegrator::keep_t_nodes_in_front(Positions& q, std::vector<char>& moved) const {
   const DynamicsModel& m = *model_;
   const Eigen::Index free_count = static_cast<Eigen::Index>(m.free_vertices.size());
   for (int h : t_node_planes_) {
@@ -252,7 +244,7 @@ void ImplicitIntegrator::keep_t_nodes_in_front(Positions& q) const {
     const Eigen::Vector3d x = position_of(m.hanging_vertices[static_cast<std::size_t>(h)], q);
     const Eigen::Vector3d n = plane_normal_.row(row).transpose();
     const double behind = (x - plane_point_.row(row).transpose()).dot(n);
-    if (behind < 0.0) move_t_node(static_cast<std::size_t>(h), -behind * n, q, nullptr);
+    if (behind < 0.0) move_t_node(static_cast<std::size_t>(h), -behind * n, q, &moved);
   }
 }
 
@@ -324,10 +316,43 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     keep_in_front(fj, q);
     return true;
   };
+  // Active set: a spring is evaluated only when a free vertex it depends on
+  // moved since its last evaluation; the others would find themselves within
+  // the limit again (their last evaluation did, and nothing they depend on
+  // changed), so skipping them gives the same bits. `dirty` flags the free
+  // vertices moved since, `moved` those moved in the current sweep.
+  std::vector<char>& dirty = dirty_;
+  std::vector<char>& moved = swept_;
+  const std::size_t free_count = static_cast<std::size_t>(q.rows());
+  moved.assign(free_count, 0);
+  if (fresh_pass_ || !options_.active_set) {
+    dirty.assign(free_count, 1);
+    fresh_pass_ = false;
+  } else {
+    // Moved by the collisions since the last pass, or in its last sweep.
+    for (std::size_t f = 0; f < free_count; ++f)
+      if (q.row(static_cast<Eigen::Index>(f)) != limited_.row(static_cast<Eigen::Index>(f))) dirty[f] = 1;
+  }
   const auto limit_spring = [&](int k) {
     const Spring& s = m.springs[k];
     const int g = general_of_[static_cast<std::size_t>(k)];
-    return g < 0 ? limit_direct(s, direct_free_[s.i], direct_free_[s.j]) : limit_general(s, general_[static_cast<std::size_t>(g)]);
+    if (g < 0) {
+      const int fi = direct_free_[s.i], fj = direct_free_[s.j];
+      if (!dirty[static_cast<std::size_t>(fi)] && !dirty[static_cast<std::size_t>(fj)]) return false;
+      if (!limit_direct(s, fi, fj)) return false;
+      dirty[static_cast<std::size_t>(fi)] = dirty[static_cast<std::size_t>(fj)] = 1;
+      moved[static_cast<std::size_t>(fi)] = moved[static_cast<std::size_t>(fj)] = 1;
+      return true;
+    }
+    const GeneralSpring& spring = general_[static_cast<std::size_t>(g)];
+    const GeneralTerm* terms = general_terms_.data() + spring.first;
+    if (spring.count == 0) return limit_general(s, spring);  // both ends pinned: measured, never moved
+    bool any_dirty = false;
+    for (int t = 0; t < spring.count && !any_dirty; ++t) any_dirty = dirty[static_cast<std::size_t>(terms[t].free)] != 0;
+    if (!any_dirty || !limit_general(s, spring)) return false;
+    for (int t = 0; t < spring.count; ++t)
+      dirty[static_cast<std::size_t>(terms[t].free)] = moved[static_cast<std::size_t>(terms[t].free)] = 1;
+    return true;
   };
   // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
   // across the whole cloth in a few sweeps instead of one row per sweep.
@@ -338,9 +363,14 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_order_[k]);
     else
       for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_order_[k]);
-    keep_t_nodes_in_front(q);
+    keep_t_nodes_in_front(q, moved);
+    if (options_.active_set) {
+      dirty.swap(moved);  // the next sweep evaluates the springs of what moved in this one
+      std::fill(moved.begin(), moved.end(), 0);
+    }
     if (!any) break;
   }
+  limited_ = q;
   return largest;
 }
 
@@ -436,6 +466,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
 
   const Positions q_previous = state.positions;
   for (int k : planes_) has_plane_[static_cast<std::size_t>(k)] = 0;  // planes last one step
+  fresh_pass_ = true;  // the dynamics moved everything: the first limiter pass evaluates every spring
   planes_.clear();
   t_node_planes_.clear();
   // Gravity is integrated exactly (x += h v + h^2 g / 2, v += h g), so free

@@ -48,6 +48,7 @@ struct IntegratorOptions {
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
   double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
   bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
+  bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
 };
 
 /// State in free coordinates (rows follow DynamicsModel::free_vertices).
@@ -98,9 +99,17 @@ class ImplicitIntegrator {
   /// `f - #free`) from `before` to `after` (no plane when they are equal).
   void remember_plane(Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) const;
   /// Moves free vertex f back onto its contact plane if it is behind it.
-  void keep_in_front(Eigen::Index f, Positions& q) const;
-  /// The same for every T-node with a plane, through its free stencil.
-  void keep_t_nodes_in_front(Positions& q) const;
+  /// (Inline: the strain limiter calls it after every projection.)
+  void keep_in_front(Eigen::Index f, Positions& q) const {
+    if (!has_plane_[static_cast<std::size_t>(f)]) return;
+    double behind = 0.0;
+    for (int c = 0; c < 3; ++c) behind += (q(f, c) - plane_point_(f, c)) * plane_normal_(f, c);
+    if (behind >= 0.0) return;
+    for (int c = 0; c < 3; ++c) q(f, c) -= behind * plane_normal_(f, c);
+  }
+  /// The same for every T-node with a plane, through its free stencil
+  /// (flagging the free vertices it moves in `moved`).
+  void keep_t_nodes_in_front(Positions& q, std::vector<char>& moved) const;
   /// Moves T-node h (index into hanging_vertices) by `delta` through its
   /// free stencil, mass-weighted; flags the moved free vertices in `moved`
   /// when given. False when it has no free stencil.
@@ -122,6 +131,12 @@ class ImplicitIntegrator {
   mutable std::vector<int> planes_;
   mutable std::vector<int> t_node_planes_;  // T-node indices (into hanging_vertices) with a plane
   std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
+  // The limiter's active set (see limit_strain): per free vertex, moved
+  // since its springs were last evaluated / moved in the current sweep; q
+  // as the last pass left it; whether the next pass is the step's first.
+  mutable std::vector<char> dirty_, swept_;
+  mutable Positions limited_;
+  mutable bool fresh_pass_ = true;
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
   /// A spring with a T-node or pinned end, as the constraint sees it: the
   /// free vertices its length depends on, each once (a T-node's spring to
