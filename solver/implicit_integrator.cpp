@@ -381,18 +381,22 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
+  // Resolves free vertex f, keeping the plane of its push.
+  const auto resolve_free = [&](Eigen::Index f, bool with_friction) {
+    const Eigen::Vector3d before = q.row(f).transpose();
+    Eigen::Vector3d x = before;
+    const double correction =
+        scene.resolve(q_previous.row(f).transpose(), x, with_friction, &memos_[static_cast<std::size_t>(f)]);
+    largest = std::max(largest, correction);
+    if (correction > 0.0) remember_plane(f, before, x);
+    q.row(f) = x.transpose();
+  };
   {
     for (Eigen::Index f = 0; f < q.rows(); ++f) {
       // A vertex the strain limiter left exactly where the last round put it
       // is already resolved against this (unchanged) scene.
       if (settled && q.row(f) == settled->row(f)) continue;
-      const Eigen::Vector3d before = q.row(f).transpose();
-      Eigen::Vector3d x = before;
-      const double correction = scene.resolve(q_previous.row(f).transpose(), x, friction,
-                                              &memos_[static_cast<std::size_t>(f)]);
-      largest = std::max(largest, correction);
-      if (correction > 0.0) remember_plane(f, before, x);
-      q.row(f) = x.transpose();
+      resolve_free(f, friction);
     }
     // A T-node can be inside while its parents are outside (the collider is
     // curved): push its free stencil by the correction, mass-weighted.
@@ -433,16 +437,8 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     for (int pass = 0; pushed && pass < 3; ++pass) {
       check.swap(moved);
       moved.assign(check.size(), 0);
-      for (Eigen::Index f = 0; f < q.rows(); ++f) {
-        if (!check[static_cast<std::size_t>(f)]) continue;
-        const Eigen::Vector3d before = q.row(f).transpose();
-        Eigen::Vector3d x = before;
-        const double correction = scene.resolve(q_previous.row(f).transpose(), x, false,
-                                                &memos_[static_cast<std::size_t>(f)]);
-        largest = std::max(largest, correction);
-        if (correction > 0.0) remember_plane(f, before, x);
-        q.row(f) = x.transpose();
-      }
+      for (Eigen::Index f = 0; f < q.rows(); ++f)
+        if (check[static_cast<std::size_t>(f)]) resolve_free(f, false);
       pushed = push_t_nodes(&check);
     }
   }
