@@ -540,6 +540,54 @@ void check_body(const SkinnedBody& body, std::size_t n, const char* caller) {
 
 }  // namespace
 
+namespace {
+
+/// Per joint, the rotation taking the skinning source (the input mesh in its
+/// own pose, or the rest mesh) to `pose`.
+std::vector<Matrix3d> joint_turns(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose) {
+  const std::size_t n = skeleton.joints.size();
+  const Pose rest = rest_pose(skeleton);
+  const bool from_input = body.input_vertices.rows() > 0;
+  std::vector<Matrix3d> turn(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    turn[j] = pose.global[j].linear() * rest.global[j].linear().transpose();
+    if (from_input) turn[j] = turn[j] * body.rest_correction[j];
+  }
+  return turn;
+}
+
+}  // namespace
+
+std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose,
+                                   const Eigen::MatrixX3d& posed) {
+  const std::size_t n = skeleton.joints.size();
+  if (pose.global.size() != n)
+    throw ArgumentError("turned_triangles: the pose has " + std::to_string(pose.global.size()) + " joints; expected " +
+                        std::to_string(n) + " (the skeleton's)");
+  check_body(body, n, "turned_triangles");
+  const Eigen::MatrixX3d& source = body.input_vertices.rows() > 0 ? body.input_vertices : body.rest_vertices;
+  if (posed.rows() != source.rows())
+    throw ArgumentError("turned_triangles: " + std::to_string(posed.rows()) + " posed vertices; expected " +
+                        std::to_string(source.rows()));
+  const std::vector<Matrix3d> turn = joint_turns(body, skeleton, pose);
+  // Per vertex, the linear part of its blend.
+  std::vector<Matrix3d> blend(static_cast<std::size_t>(source.rows()), Matrix3d::Zero());
+  for (std::size_t v = 0; v < blend.size(); ++v)
+    for (const auto& [joint, w] : body.weights[v]) blend[v] += w * turn[static_cast<std::size_t>(joint)];
+  std::vector<char> turned(body.triangles.size(), 0);
+  for (std::size_t t = 0; t < body.triangles.size(); ++t) {
+    const Eigen::Vector3i& tri = body.triangles[t];
+    const auto row = [](const Eigen::MatrixX3d& m, int v) { return Vector3d(m.row(v).transpose()); };
+    const Vector3d source_normal =
+        (row(source, tri[1]) - row(source, tri[0])).cross(row(source, tri[2]) - row(source, tri[0]));
+    const Vector3d carried = (blend[static_cast<std::size_t>(tri[0])] + blend[static_cast<std::size_t>(tri[1])] +
+                              blend[static_cast<std::size_t>(tri[2])]) * source_normal;
+    const Vector3d normal = (row(posed, tri[1]) - row(posed, tri[0])).cross(row(posed, tri[2]) - row(posed, tri[0]));
+    turned[t] = normal.dot(carried) < 0.0 ? 1 : 0;
+  }
+  return turned;
+}
+
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose) {
   const std::size_t n = skeleton.joints.size();
   if (pose.global.size() != n) {
@@ -563,11 +611,9 @@ Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const P
   // where the pivot goes, carried down the body's own chain (the body keeps
   // its bone lengths; only rotations and the root's motion come from the
   // skeleton).
-  std::vector<Matrix3d> turn(n);
+  const std::vector<Matrix3d> turn = joint_turns(body, skeleton, pose);
   std::vector<Vector3d> pivot(n), shift(n);
   for (std::size_t j = 0; j < n; ++j) {
-    turn[j] = pose.global[j].linear() * rest.global[j].linear().transpose();
-    if (from_input) turn[j] = turn[j] * body.rest_correction[j];
     const int parent = skeleton.joints[j].parent;
     if (parent < 0) {
       pivot[j] = pose.position(static_cast<int>(j)) + turn[j] * (pivot_source[j] - rest.position(static_cast<int>(j)));
@@ -671,6 +717,9 @@ struct MeshBody::Impl {
   /// are three scattered ones, for the test that rejects most triangles.
   std::vector<std::array<float, 6>> triangle_boxes;
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
+  std::vector<int> leaf_of_input;              ///< per triangle in construction order, its leaf-order index
+  std::vector<char> ignored;                   ///< per triangle (leaf order): unseen in this pose (turned over)
+  bool any_ignored = false;
   std::vector<std::array<int, 3>> neighbours;  ///< triangle across edge k
   std::vector<int> ring_start;                 ///< per vertex, its first entry in ring (one past the end: the next vertex's)
   std::vector<std::pair<int, int>> ring;       ///< (triangle, corner) around each vertex
@@ -899,6 +948,7 @@ struct MeshBody::Impl {
   /// Tests the triangles of a leaf against the best so far.
   void search_leaf(const Vector3d& p, int first, int count, double& best, Closest& out) const {
     for (int t = first; t < first + count; ++t) {
+      if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
       // The triangle's own box first: it rejects most of a leaf.
       const double box2 = triangle_box_distance2(p, t);
       if (!(box2 < best)) continue;
@@ -953,11 +1003,16 @@ struct MeshBody::Impl {
   Vector3d pseudo_normal(int t, int feature) const {
     const auto ti = static_cast<std::size_t>(t);
     if (feature == kFace) return face_normal(t);
-    if (feature >= kEdge0) return face_normal(t) + face_normal(neighbours[ti][static_cast<std::size_t>(feature - kEdge0)]);
+    if (feature >= kEdge0) {
+      const int across = neighbours[ti][static_cast<std::size_t>(feature - kEdge0)];
+      if (any_ignored && ignored[static_cast<std::size_t>(across)]) return face_normal(t);
+      return face_normal(t) + face_normal(across);
+    }
     const auto v = static_cast<std::size_t>(triangles[ti](feature - kVertex0));
     Vector3d sum = Vector3d::Zero();
     for (int r = ring_start[v]; r < ring_start[v + 1]; ++r) {
       const auto [u, k] = ring[static_cast<std::size_t>(r)];
+      if (any_ignored && ignored[static_cast<std::size_t>(u)]) continue;
       const Vector3d e1 = corner(u, (k + 1) % 3) - corner(u, k);
       const Vector3d e2 = corner(u, (k + 2) % 3) - corner(u, k);
       const Vector3d n = e1.cross(e2);
@@ -1045,6 +1100,7 @@ struct MeshBody::Impl {
   Closest closest_among(const Vector3d& p, const std::vector<int>& items) const {
     Closest c;
     for (int t : items) {
+      if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
       if (!(triangle_box_distance2(p, t) < c.d2)) continue;
       const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
       const double d2 = (p - at.point).squaredNorm();
@@ -1251,7 +1307,12 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
     m.nodes[0].count[0] = top.second;
   }
   m.triangles.resize(triangles.size());
-  for (std::size_t t = 0; t < order.size(); ++t) m.triangles[t] = triangles[static_cast<std::size_t>(order[t])];
+  m.leaf_of_input.resize(triangles.size());
+  for (std::size_t t = 0; t < order.size(); ++t) {
+    m.triangles[t] = triangles[static_cast<std::size_t>(order[t])];
+    m.leaf_of_input[static_cast<std::size_t>(order[t])] = static_cast<int>(t);
+  }
+  m.ignored.assign(triangles.size(), 0);
 
   // Neighbours across each edge: the mesh must be closed and consistently
   // oriented (each directed edge once, its reverse once).
@@ -1303,12 +1364,22 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
 
 MeshBody::~MeshBody() = default;
 
-void MeshBody::update(const Eigen::MatrixX3d& vertices) {
+void MeshBody::update(const Eigen::MatrixX3d& vertices, const std::vector<char>& ignored) {
   Impl& m = *impl_;
   if (vertices.rows() != static_cast<Eigen::Index>(m.x.size())) {
     throw ArgumentError("MeshBody::update: " + std::to_string(vertices.rows()) + " vertices; expected " +
                         std::to_string(m.x.size()) + " (the count the body was built with)");
   }
+  if (!ignored.empty() && ignored.size() != m.triangles.size())
+    throw ArgumentError("MeshBody::update: " + std::to_string(ignored.size()) + " ignore flags; expected one per triangle (" +
+                        std::to_string(m.triangles.size()) + ")");
+  m.any_ignored = false;
+  std::fill(m.ignored.begin(), m.ignored.end(), 0);
+  for (std::size_t t = 0; t < ignored.size(); ++t)
+    if (ignored[t]) {
+      m.ignored[static_cast<std::size_t>(m.leaf_of_input[t])] = 1;
+      m.any_ignored = true;
+    }
   Impl::require_finite(vertices);
   ++m.serial;
   std::swap(m.x, m.x_previous);

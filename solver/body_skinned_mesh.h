@@ -65,6 +65,16 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
 /// in mesh_pose the input mesh, both to round-off.
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose);
 
+/// Triangles (in body.triangles order) that skinning has turned over in
+/// `pose`: linear blend skinning folds the skin where a joint bends far
+/// (behind a bent knee), and a folded triangle's normal then points against
+/// the normal its own vertices' blended rotations carry its source normal
+/// to. Such a triangle is skin buried in the fold, not the body's outside:
+/// its normal would push cloth into the leg. `posed` is skin(body,
+/// skeleton, pose). 1: turned over.
+std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose,
+                                   const Eigen::MatrixX3d& posed);
+
 /// The skeleton posed as the body's input mesh was modelled (MakeHuman's
 /// A-pose): every joint's rest rotation undone by its rest correction, the
 /// root where the rest pose has it, positions by forward kinematics with the
@@ -85,7 +95,10 @@ class MeshBody : public CollisionScene {
            double friction = 0.3);
   ~MeshBody() override;
   /// New vertex positions (same count), then refit; call once per step.
-  void update(const Eigen::MatrixX3d& vertices);
+  /// `ignored` (per triangle in construction order, or empty: none): the
+  /// triangles no query sees in this pose (turned_triangles); pseudo-normals
+  /// are formed from the others.
+  void update(const Eigen::MatrixX3d& vertices, const std::vector<char>& ignored = {});
   /// With a memo, a point resolved again before the next update() (a later
   /// collision round) is answered from the triangles remembered near it
   /// whenever they certainly include its closest one, else from the tree:

@@ -70,7 +70,9 @@ SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, d
 SkinnedPosedBody::~SkinnedPosedBody() = default;
 
 void SkinnedPosedBody::set_pose(const Pose& pose) {
-  mesh_->update(skin(body_, skeleton_, pose));
+  const Eigen::MatrixX3d vertices = skin(body_, skeleton_, pose);
+  // Skin the blend has folded over (behind a bent knee) is not the outside.
+  mesh_->update(vertices, turned_triangles(body_, skeleton_, pose, vertices));
   // The bridges sit between the body's own legs, not the capture subject's.
   if (bridges_) bridges_->pose(proportioned_pose(skeleton_, body_.joint_rest, pose));
 }
