@@ -56,8 +56,8 @@ if (!(si >= 0 && sj >= 0 && si < info.vertices && sj < info.vertices && report.m
 if (report.maxPenetration > 0 && !(report.deepest.vertex >= 0 && report.deepest.frame >= 0 && report.deepest.frame < frames))
   throw new Error("deepest " + JSON.stringify(report.deepest));
 // The mannequin's walk swings the hands close to the hips: the arms open by
-// a few degrees at most, to keep them 1 cm clear.
-expectEqual(report.armsOpened.clearance, 0.01, "arm clearance");
+// a few degrees at most, to keep them 2 cm clear.
+expectEqual(report.armsOpened.clearance, 0.02, "arm clearance");
 if (!(report.armsOpened.maxDegrees >= 0 && report.armsOpened.maxDegrees < 10))
   throw new Error("armsOpened " + JSON.stringify(report.armsOpened));
 if (!(report.perFrameMs.every(t => t.dynamics > 0 && t.collision >= 0)))

@@ -25,16 +25,18 @@ for (const type of ["mesh", "capsules"]) {
               [frames, false, false, type, "skin"], type + ": run completed, waist on the skin");
   if (!(report.maxWaistError <= 1e-9)) throw new Error(type + ": maxWaistError " + report.maxWaistError + " > 1e-9 m");
   expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, type + ": PC2 size");
-  // Stated bounds (README, Known limits): the trousers start within the
-  // thickness plus 2-3 mm where they were modelled that close (6.0 / 4.3 mm
-  // measured). Depth inside the body (issue 4: 2 mm): on capsules 1.5 mm;
-  // on the skinned mesh 3.0 mm, at the crotch, where the skinned thighs
-  // pass into each other and cloth between them is inside one whatever it
-  // does (14 / 17.5 mm while the hands went into the hips). The waistband's
-  // edges next to the pins, where skinning stretches the body's own skin
-  // most, stretch most (60 / 81 %; 116 / 149 % before the contact planes).
-  expectAtMost(report.preroll.initialPenetration, 0.007, type + ": initial penetration");
-  expectAtMost(report.maxDepth, type === "mesh" ? 0.004 : 0.002, type + ": depth inside the body");
+  // Stated bounds (README, Known limits). On capsules the trousers start
+  // within the thickness plus 2-3 mm where they were modelled that close
+  // (4.3 mm measured); on the skinned mesh they are cleared of it first
+  // (their waistband was modelled 2 mm inside). Depth inside the body
+  // (issue 4: 2 mm): 0.0 mm on both (14 / 17.5 mm while the hands went
+  // into the hips; 3.0 mm on the mesh before the waistband was cleared and
+  // skin folded over behind the knees stopped counting as the outside). The
+  // waistband's edges next to the pins, where skinning stretches the body's
+  // own skin most, stretch most (57 / 88 %; 116 / 149 % before the contact
+  // planes).
+  expectAtMost(report.preroll.initialPenetration, type === "mesh" ? 1e-9 : 0.007, type + ": initial penetration");
+  expectAtMost(report.maxDepth, 0.002, type + ": depth inside the body");
   expectAtMost(report.maxStretch, 1.0, type + ": stretch");
 }
 print("character trousers: ok");
