@@ -3,7 +3,7 @@
 // (capsules along the bones, the skinned MakeHuman mesh): ms per output frame
 // split into dynamics and collision, one core, set up as the plugin sets up
 // a run by default (fitted capsules, leg bridges, the waist on the skin, arm
-// clearance). Prints a table; depth is the deepest vertex below the body's
+// clearance, the garment cleared of the skinned body). Prints a table; depth is the deepest vertex below the body's
 // surface at an output frame.
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
@@ -42,6 +42,16 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
         const SkinnedBody* waist_skin = nullptr, std::shared_ptr<const ArmClearance> arms = nullptr) {
   QuadMesh placed = copy_mesh(garment);
   for (auto v : placed.vertices()) placed.point(v) += OpenMesh::Vec3d(offset.x(), offset.y(), offset.z());
+  if (body_name == "mesh") {
+    // As the plugin does on the skinned body: the garment starts clear of
+    // it (these uniform meshes have no T-nodes).
+    CharacterRunOptions start;
+    start.garment_pose = garment_pose;
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(placed.n_vertices()), 3);
+    for (auto v : placed.vertices()) points.row(v.idx()) << placed.point(v)[0], placed.point(v)[1], placed.point(v)[2];
+    clear_garment_of_body(body, motion, start, points, {});
+    for (auto v : placed.vertices()) placed.set_point(v, OpenMesh::Vec3d(points(v.idx(), 0), points(v.idx(), 1), points(v.idx(), 2)));
+  }
   DynamicsOptions d;
   d.pinned = boundary_loop_by_name(placed, "top");
   const DynamicsModel model = build_dynamics(placed, d);
