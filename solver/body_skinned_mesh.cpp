@@ -1179,7 +1179,11 @@ struct MeshBody::Impl {
                     double need2 = -1.0) const {
     if (need2 < 0.0) need2 = search2;
     if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
-    const double slack = memo->radius - (p - memo->centre).norm();
+    const double moved = (p - memo->centre).norm();
+    // Clear of every triangle by more than the caller acts on, on the
+    // centre's (outside) side: what the loop below would conclude.
+    if (memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
+    const double slack = memo->radius - moved;
     const Closest c = closest_among(p, memo->items);
     if (c.triangle >= 0 && c.d2 < slack * slack) {
       if (c.d2 < search2) {
@@ -1219,6 +1223,7 @@ struct MeshBody::Impl {
     else return;  // side unknown: nothing remembered
     memo->centre = p;
     memo->radius = radius;
+    memo->clear = c.triangle >= 0 && c.d2 < radius * radius ? std::sqrt(c.d2) : radius;
     memo->owner = this;
     memo->serial = serial;
   }

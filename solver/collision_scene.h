@@ -22,6 +22,7 @@ struct ContactMemo {
   Eigen::Vector3d centre{0, 0, 0};      ///< where they were gathered
   double radius = -1.0;                 ///< < 0: nothing remembered
   bool outside = true;                  ///< whether centre was outside the surface
+  double clear = 0.0;                   ///< MeshBody: no (seen) triangle is nearer than this to centre
   const void* owner = nullptr;          ///< the scene that wrote it
   unsigned long long serial = 0;        ///< that scene's pose then
 };
