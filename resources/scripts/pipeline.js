@@ -38,6 +38,9 @@ const USAGE = [
   "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
   "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
   "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
+  "  --map-modes M          index | highest | frequent: how the instance's modes reach the coarse garment",
+  "                         (index: coarse vertex i takes high vertex i's, the paper's rule; highest /",
+  "                         frequent: the highest / most frequent mode in its cell) [index]",
   "  --material M           cotton | denim | silk [cotton]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
@@ -66,7 +69,7 @@ const DEFAULTS = {
   garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", body: "capsules", place: null,
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
-  levels: 2, modes: 3, delta: [5, 7], material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
+  levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
@@ -74,7 +77,7 @@ const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence":
 const VALUED = {
   "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
-  "--modes": "modes", "--delta": "delta", "--material": "material", "--fps": "fps",
+  "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
   "--size": "size",
 };
@@ -145,6 +148,7 @@ function parseOptions(args) {
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
       case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
       case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
+      case "mapModes": options.mapModes = choiceOption(name, text, ["index", "highest", "frequent"]); break;
       case "size": {
         const match = /^(\d+)x(\d+)$/.exec(text);
         if (!match || Number(match[1]) < 64 || Number(match[2]) < 64 || Number(match[1]) > 8192 || Number(match[2]) > 8192)
@@ -325,7 +329,7 @@ function runPipeline(options) {
                                            "meshes/high_by_mode.ply", "meshes/high_by_curvature.ply",
                                            "meshes/coarse_by_mode.ply", "meshes/coarse_layers.csv"], () => {
     const extraction = multirescloth.extractModes(high, out + "/caches/instance_high.pc2", {clusters: options.modes});
-    const mapping = multirescloth.mapModes(high, coarse, {method: "index"});
+    const mapping = multirescloth.mapModes(high, coarse, {method: options.mapModes});
     core.saveObject(high, out + "/meshes/high_modes.om");
     core.saveObject(coarse, out + "/meshes/coarse_modes.om");
     multirescloth.exportSurface(high, out + "/meshes/high_by_mode.ply", {colorBy: "mode"});

@@ -23,8 +23,9 @@ code=$?
 # Coarse, two multi-resolution meshes, high; the uniform level nearest 1395 vertices is the coarse mesh.
 grep -q "^pipeline: 4 runs of 4 models" "$tmp/command.out" || fail "no summary line: $(cat "$tmp/command.out")"
 
-# 2. The script through the public API, same options: same numbers.
-"$host" -q -b "$resources/scripts/pipeline.js" -- $small --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
+# 2. The script through the public API, same options (the default mode
+# mapping spelled out): same numbers.
+"$host" -q -b "$resources/scripts/pipeline.js" -- $small --map-modes index --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
   { fail "pipeline.js exit code $?"; cat "$tmp/script.err"; }
 "$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/command" "$tmp/script" || fail "check command against script"
 
