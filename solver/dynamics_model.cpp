@@ -103,6 +103,8 @@ DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& option
   const std::vector<double> mass = lumped_mass(mesh, options.material.areal_density);
   model.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), n);
   model.springs = build_springs(mesh, model.rest, options);
+  for (const QuadRecord& q : quadtree(mesh))
+    if (q.active) model.corners.push_back(q.corners);
 
   // Classify vertices; free and pinned indices follow vertex order.
   std::vector<char> pinned(n, 0);

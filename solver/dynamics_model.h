@@ -33,6 +33,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 namespace mrcloth {
@@ -80,6 +82,7 @@ struct DynamicsModel {
   Eigen::SparseMatrix<double> P;               ///< #V x #pinned
   Eigen::VectorXd free_mass;                   ///< #free, diag of S^T M S (kg)
   std::vector<std::vector<StencilTerm>> stencil;  ///< per full vertex: its S row (free terms only)
+  std::vector<std::array<std::int32_t, 4>> corners;  ///< per active quadtree record: its corners (full ids, face orientation)
   Material material;
   double alpha = 0.0, alpha_bend = 2.0;
 };

@@ -145,6 +145,7 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
   sweep_order_ = wavefront_order(model);
+  self_contact_.precompute(model, options.self_contact);
   std::vector<char> has_pinned_part(model.num_vertices, 0);
   for (int col = 0; col < model.P.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(model.P, col); it; ++it) has_pinned_part[it.row()] = 1;
@@ -478,6 +479,15 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     q -= delta;
   }
   report.dynamics_ms = ms_since(start);
+  if (self_contact_.enabled()) {
+    const auto gather_start = Clock::now();
+    full_.noalias() = m.S * q;
+    full_ += pinned_part_;
+    self_contact_.gather(full_positions(m, q_previous, state.pinned), full_);
+    report.self_pairs = self_contact_.pair_count();
+    report.self_contact_ms = ms_since(gather_start);
+    report.collision_ms = report.self_contact_ms;
+  }
 
   // Strain limiting and collisions alternate: a collision push-out can
   // stretch springs, and limiting can pull vertices back in, so each round
@@ -501,6 +511,10 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     const double excess = limit_strain(q);
     report.dynamics_ms += ms_since(limit_start);
     const auto collide_start = Clock::now();
+    if (self_contact_.enabled()) {
+      self_contact_.project(q, pinned_part_);
+      report.self_contact_ms += ms_since(collide_start);
+    }
     report.max_correction = std::max(report.max_correction,
                                      resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
                                                         round == 0 ? nullptr : &settled_));

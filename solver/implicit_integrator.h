@@ -32,6 +32,7 @@
 // strain limit rather than by convergence.
 #include "collision_scene.h"
 #include "dynamics_model.h"
+#include "self_contact.h"
 #include "sparse_ldlt3.h"
 
 #include <Eigen/Core>
@@ -48,6 +49,7 @@ struct IntegratorOptions {
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
   double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
   bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
+  SelfContactOptions self_contact;              ///< cloth-cloth contact (self_contact.h), projected in every round before the body collisions; thickness 0: off
   bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
 };
 
@@ -64,7 +66,9 @@ ClothState rest_state(const DynamicsModel& model);
 
 struct StepReport {
   double dynamics_ms = 0.0;        ///< local/global iterations and strain limiting
-  double collision_ms = 0.0;       ///< collision resolution
+  double collision_ms = 0.0;       ///< collision resolution, bodies and cloth-cloth contact
+  double self_contact_ms = 0.0;    ///< the cloth-cloth part of collision_ms
+  std::size_t self_pairs = 0;      ///< cloth-cloth pairs gathered this step
   double max_correction = 0.0;     ///< largest collision push-out this step, metres
   int rounds = 0;                  ///< rounds of (strain limiting, collisions) taken
   bool finite = true;              ///< false if any position became NaN or infinite
@@ -118,6 +122,7 @@ class ImplicitIntegrator {
   const DynamicsModel* model_ = nullptr;
   IntegratorOptions options_;
   SparseLdlt3 solver_;
+  SelfContact self_contact_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
   Positions settled_;                  // scratch: q after the last collision round of this step

@@ -27,8 +27,9 @@ double deepest_penetration(const CollisionScene& scene, const Positions& x) {
 
 // Stretch, penetration (against surface + thickness) and depth (below the
 // surface) of one output frame, keeping where the worst of the run was.
-void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const Positions& x, int frame,
-                   SimulationReport& report) {
+void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const ContactSurface& surface,
+                   const Positions& x, int frame, SimulationReport& report) {
+  report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x));
   const StretchPeak peak = most_stretched(model, x);
   if (peak.strain > report.max_stretch) {
     report.max_stretch = peak.strain;
@@ -66,6 +67,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.gravity = options.gravity;
+  io.self_contact = options.self_contact;
   report.time_step = io.time_step;
 
   auto start = std::chrono::steady_clock::now();
@@ -80,6 +82,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   if (bodies.pose) bodies.pose(state.time);
   report.initial_penetration = deepest_penetration(scene, full_positions(model, state.positions, state.pinned));
   const Positions rest_pinned = pinned_rows(model, model.rest);
+  const ContactSurface surface = contact_surface(model);
   Positions pinned_next = rest_pinned;
   for (int frame = 0; frame < options.frames; ++frame) {
     FrameTiming timing;
@@ -99,7 +102,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     }
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
-    measure_frame(scene, model, x, report.frames, report);
+    measure_frame(scene, model, surface, x, report.frames, report);
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);

@@ -19,6 +19,7 @@ struct SimulationOptions {
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};   ///< m/s^2
   std::vector<Collider> colliders;            ///< analytic colliders
+  SelfContactOptions self_contact;            ///< cloth-cloth contact (self_contact.h); thickness 0: off
   std::string cache_path;                     ///< PC2 file of all vertices per frame; empty: none
 };
 
@@ -54,6 +55,7 @@ struct SimulationReport {
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
   double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres
+  int max_self_crossings = 0;          ///< most edge-triangle crossings of the cloth with itself at any output frame (count_self_crossings)
   int deepest_vertex = -1;             ///< where max_penetration was met: full vertex id (-1: never within thickness)
   int deepest_frame = -1;              ///< and output frame (0-based)
   int stretch_vertices[2] = {-1, -1};  ///< the ends of the spring that had max_stretch (-1: never stretched)

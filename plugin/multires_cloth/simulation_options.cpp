@@ -188,7 +188,7 @@ QStringList simulationOptionKeys() {
                      QStringLiteral("iterations"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
-                     QStringLiteral("updateObject")} +
+                     QStringLiteral("updateObject"), QStringLiteral("selfContact")} +
          characterOptionKeys();
 }
 
@@ -219,6 +219,20 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
+  if (fields.has(QStringLiteral("selfContact"))) {
+    const QString label = fields.label(QStringLiteral("selfContact"));
+    const QVariant contact = fields.required(QStringLiteral("selfContact"));
+    double metres = 0.0;
+    if (contact.typeId() == QMetaType::Bool) {
+      if (contact.toBool()) fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got true").arg(label));
+    } else {
+      metres = script::toNumber(contact, label);
+      if (!(metres >= 0.0 && metres <= 0.02))
+        fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got %2")
+                 .arg(label, script::describeValue(contact)));
+    }
+    sim.self_contact.thickness = metres;
+  }
   const QString output = checkedOutputPath(fields, QStringLiteral("output"));
   if (record && QFileInfo(output).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
     fail(QStringLiteral("option 'output' must be the PC2 cache (e.g. walk.pc2), not an .obj: the rest mesh is written "
@@ -281,6 +295,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("maxDepth"), report.max_depth},
+      {QStringLiteral("maxSelfCrossings"), report.max_self_crossings},
       {QStringLiteral("deepest"), QVariantMap{{QStringLiteral("vertex"), report.deepest_vertex},
                                               {QStringLiteral("frame"), report.deepest_frame}}},
       {QStringLiteral("mostStretched"),

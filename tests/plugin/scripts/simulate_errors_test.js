@@ -15,7 +15,7 @@ expectThrows(() => multirescloth.simulate(99), "ArgumentError", "multirescloth.s
 expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options must be an object, got the number 5");
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
              "accepted: frames, fps, substeps, iterations, material, alpha, alphaBend, gravity, pins, colliders, " +
-             "output, objSequence, updateObject");
+             "output, objSequence, updateObject, selfContact");
 
 // Scalars: wrong types and ranges name the option.
 expectThrows(sim({frames: "10"}), "ArgumentError", "option 'frames' must be an integer, got the string \"10\"");
@@ -27,6 +27,11 @@ expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an 
 expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer >= 1");
 expectThrows(sim({alpha: NaN}), "ArgumentError", "option 'alpha' must be a finite number");
 expectThrows(sim({alphaBend: "1"}), "ArgumentError", "option 'alphaBend' must be a finite number");
+expectThrows(sim({selfContact: 0.05}), "ArgumentError",
+             "option 'selfContact' must be false or a thickness from 0 to 0.02 m, got the number 0.05");
+expectThrows(sim({selfContact: -0.001}), "ArgumentError", "option 'selfContact' must be false or a thickness");
+expectThrows(sim({selfContact: true}), "ArgumentError", "option 'selfContact' must be false or a thickness", "got true");
+expectThrows(sim({selfContact: "on"}), "ArgumentError", "option 'selfContact'");
 expectThrows(sim({gravity: [0, -9.81]}), "ArgumentError", "option 'gravity' must be an array of 3 numbers");
 expectThrows(sim({updateObject: 1}), "ArgumentError", "option 'updateObject' must be true or false, got the number 1");
 

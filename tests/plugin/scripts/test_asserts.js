@@ -30,6 +30,11 @@ function expectAtMost(value, limit, what) {
   if (!(value <= limit)) throw new Error(what + " " + value + " > " + limit);
 }
 
+/// value >= limit (NaN fails).
+function expectAtLeast(value, limit, what) {
+  if (!(value >= limit)) throw new Error(what + " " + value + " < " + limit);
+}
+
 /// The type of `value` is `type`: typeof, except "array" and "null".
 function expectType(value, type, what) {
   const actual = Array.isArray(value) ? "array" : value === null ? "null" : typeof value;

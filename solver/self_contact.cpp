@@ -1,0 +1,500 @@
+#include "self_contact.h"
+
+#include "mesh_ops/errors.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+namespace mrcloth {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+constexpr double kMinSine = 0.05;
+// A crossing found this close outside an element (in barycentric or edge
+// parameter) still counts: a point passing exactly over an edge between two
+// triangles must be caught by one of them.
+constexpr double kCrossingSlack = 1e-3;
+
+// Pairs farther beside each other than this (in barycentric or edge
+// parameter) at both ends of a step are not gathered: in one step a point
+// does not pass half a triangle sideways and through it.
+constexpr double kBeside = 0.5;
+
+signed char sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
+constexpr std::uint64_t kEdgeEdge = std::uint64_t{1} << 63;
+
+std::uint64_t pair_key(bool edge_edge, int a, int b) {
+  return (edge_edge ? kEdgeEdge : 0) | (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+int first_of(std::uint64_t key) { return static_cast<int>((key & ~kEdgeEdge) >> 32); }
+int second_of(std::uint64_t key) { return static_cast<int>(key & 0xffffffffu); }
+
+bool share_support(const std::vector<int>& a, const std::vector<int>& b) {
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end()) {
+    if (*i == *j) return true;
+    if (*i < *j) ++i; else ++j;
+  }
+  return false;
+}
+
+std::vector<int> merged(std::initializer_list<const std::vector<int>*> sets) {
+  std::vector<int> out;
+  for (const auto* s : sets) out.insert(out.end(), s->begin(), s->end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// A vertex over a triangle: the barycentric coordinates of its projection
+// onto the triangle's plane, the unit normal and the signed distance.
+struct OverTriangle {
+  double u = 0, v = 0, w = 0;  // weights of a, b, c
+  Vec3 normal{0, 0, 0};
+  double distance = 0.0;
+  bool valid = false;  // false for a degenerate triangle
+  bool inside() const { return u >= 0.0 && v >= 0.0 && w >= 0.0; }
+  bool near_over() const { return u >= -kBeside && v >= -kBeside && w >= -kBeside; }
+};
+
+OverTriangle over_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  OverTriangle o;
+  const Vec3 ab = b - a, ac = c - a, n = ab.cross(ac);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return o;
+  const Vec3 ap = p - a;
+  o.v = ap.cross(ac).dot(n) / area2;
+  o.w = ab.cross(ap).dot(n) / area2;
+  o.u = 1.0 - o.v - o.w;
+  o.normal = n / std::sqrt(area2);
+  o.distance = ap.dot(o.normal);
+  o.valid = true;
+  return o;
+}
+
+// Two edges p0-p1 and q0-q1: the parameters of their closest points on the
+// infinite lines, and the unit common normal (from the first to the second).
+struct EdgeEdge {
+  double s = 0, t = 0;
+  Vec3 normal{0, 0, 0};
+  double distance = 0.0;  // (q(t) - p(s)) . normal
+  bool valid = false;     // false for (nearly) parallel edges
+  bool inside() const { return s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0; }
+  bool near_over() const { return s > -kBeside && s < 1.0 + kBeside && t > -kBeside && t < 1.0 + kBeside; }
+};
+
+EdgeEdge edge_edge(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  EdgeEdge e;
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const Vec3 n = d1.cross(d2);
+  const double n2 = n.squaredNorm();
+  // Within 3 degrees of parallel the common normal turns over under small
+  // motions (a pair of nearly parallel edges a few centimetres apart would
+  // seem to swap sides); the edges' end points meet the triangles instead.
+  if (!(n2 > kMinSine * kMinSine * d1.squaredNorm() * d2.squaredNorm())) return e;
+  const double a = d1.dot(d1), b = d1.dot(d2), c = d2.dot(d2), d = d1.dot(r), f = d2.dot(r);
+  const double denominator = a * c - b * b;
+  e.s = (b * f - c * d) / denominator;
+  e.t = (a * f - b * d) / denominator;
+  e.normal = n / std::sqrt(n2);
+  e.distance = (q0 - p0).dot(e.normal);
+  e.valid = true;
+  return e;
+}
+
+struct Box {
+  Vec3 lo, hi;
+};
+
+Box box_of(const Positions& x0, const Positions& x1, std::initializer_list<int> vertices, double pad) {
+  Box b{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+  for (int v : vertices) {
+    const Vec3 a = x0.row(v).transpose(), c = x1.row(v).transpose();
+    b.lo = b.lo.cwiseMin(a).cwiseMin(c);
+    b.hi = b.hi.cwiseMax(a).cwiseMax(c);
+  }
+  b.lo.array() -= pad;
+  b.hi.array() += pad;
+  return b;
+}
+
+bool overlap(const Box& a, const Box& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+
+// A uniform grid over boxes: cell keys pack three 21-bit signed indices.
+struct CellRange {
+  Eigen::Array3i lo, hi;
+};
+CellRange cells_of(const Box& b, double cell) {
+  CellRange r;
+  for (int c = 0; c < 3; ++c) {
+    r.lo[c] = static_cast<int>(std::floor(b.lo[c] / cell));
+    r.hi[c] = static_cast<int>(std::floor(b.hi[c] / cell));
+  }
+  return r;
+}
+std::uint64_t cell_key(int i, int j, int k) {
+  const auto part = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffffu; };
+  return (part(i) << 42) | (part(j) << 21) | part(k);
+}
+
+// Boxes filed by cell; `candidates` calls back each pair (query, item) once:
+// in the lowest cell both boxes cover.
+class BoxGrid {
+ public:
+  BoxGrid(const std::vector<Box>& items, double cell) : items_(items), cell_(cell) {
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const CellRange r = cells_of(items[i], cell);
+      if (((r.hi - r.lo) > 64).any()) continue;  // a runaway element: not filed (it is non-finite or huge)
+      for (int x = r.lo[0]; x <= r.hi[0]; ++x)
+        for (int y = r.lo[1]; y <= r.hi[1]; ++y)
+          for (int z = r.lo[2]; z <= r.hi[2]; ++z) entries_.emplace_back(cell_key(x, y, z), static_cast<int>(i));
+    }
+    std::sort(entries_.begin(), entries_.end());
+    cells_.reserve(entries_.size());
+    for (std::size_t i = 0; i < entries_.size();) {
+      std::size_t j = i;
+      while (j < entries_.size() && entries_[j].first == entries_[i].first) ++j;
+      cells_.emplace(entries_[i].first, std::make_pair(static_cast<int>(i), static_cast<int>(j)));
+      i = j;
+    }
+  }
+  template <class F>
+  void candidates(const Box& query, F&& visit) const {
+    const CellRange r = cells_of(query, cell_);
+    if (((r.hi - r.lo) > 64).any()) return;
+    for (int x = r.lo[0]; x <= r.hi[0]; ++x)
+      for (int y = r.lo[1]; y <= r.hi[1]; ++y)
+        for (int z = r.lo[2]; z <= r.hi[2]; ++z) {
+          const std::uint64_t key = cell_key(x, y, z);
+          const auto cell = cells_.find(key);
+          if (cell == cells_.end()) continue;
+          for (auto it = entries_.begin() + cell->second.first; it != entries_.begin() + cell->second.second; ++it) {
+            const Box& item = items_[static_cast<std::size_t>(it->second)];
+            if (!overlap(query, item)) continue;
+            // Only in the lowest cell common to both, so each pair once.
+            const CellRange ir = cells_of(item, cell_);
+            if (std::max(r.lo[0], ir.lo[0]) != x || std::max(r.lo[1], ir.lo[1]) != y ||
+                std::max(r.lo[2], ir.lo[2]) != z)
+              continue;
+            visit(it->second);
+          }
+        }
+  }
+
+ private:
+  const std::vector<Box>& items_;
+  double cell_;
+  std::vector<std::pair<std::uint64_t, int>> entries_;  // (cell, item), sorted
+  std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;  // cell -> its run in entries_
+};
+
+double mean_edge_length(const ContactSurface& s, const Positions& x) {
+  double sum = 0.0;
+  for (const auto& e : s.edges) sum += (x.row(e[0]) - x.row(e[1])).norm();
+  return s.edges.empty() ? 0.0 : sum / static_cast<double>(s.edges.size());
+}
+
+// One contact as a linear constraint: sum_k weight_k x_k along `normal` at
+// least `gap`, over up to four full vertices.
+struct Constraint {
+  int vertex[4];
+  double weight[4];
+  int count;
+};
+
+}  // namespace
+
+ContactSurface contact_surface(const DynamicsModel& model) {
+  ContactSurface s;
+  const int n = model.num_vertices;
+  for (const auto& q : model.corners) {
+    if (q[3] < 0) {
+      s.triangles.push_back({q[0], q[1], q[2]});
+    } else {
+      s.triangles.push_back({q[0], q[1], q[2]});
+      s.triangles.push_back({q[0], q[2], q[3]});
+    }
+  }
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : s.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      edges.emplace(std::min(a, b), std::max(a, b));
+    }
+  for (const auto& [a, b] : edges) s.edges.push_back({a, b});
+  // Supports: free and pinned vertices are their own; a T-node's are the
+  // vertices its stencil (free) and pinned part reach.
+  s.support.assign(static_cast<std::size_t>(n), {});
+  for (int v = 0; v < n; ++v) {
+    auto& sup = s.support[static_cast<std::size_t>(v)];
+    for (const StencilTerm& t : model.stencil[static_cast<std::size_t>(v)])
+      sup.push_back(model.free_vertices[static_cast<std::size_t>(t.free)]);
+  }
+  for (int col = 0; col < model.P.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(model.P, col); it; ++it)
+      s.support[static_cast<std::size_t>(it.row())].push_back(model.pinned_vertices[static_cast<std::size_t>(col)]);
+  for (auto& sup : s.support) {
+    std::sort(sup.begin(), sup.end());
+    sup.erase(std::unique(sup.begin(), sup.end()), sup.end());
+  }
+  return s;
+}
+
+int count_self_crossings(const ContactSurface& s, const Positions& x) {
+  std::vector<Box> triangles;
+  triangles.reserve(s.triangles.size());
+  for (const auto& t : s.triangles) triangles.push_back(box_of(x, x, {t[0], t[1], t[2]}, 0.0));
+  const double cell = std::max(mean_edge_length(s, x), 1e-6);
+  const BoxGrid grid(triangles, cell);
+  int crossings = 0;
+  for (const auto& e : s.edges) {
+    const std::vector<int> edge_support = merged({&s.support[e[0]], &s.support[e[1]]});
+    const Vec3 p = x.row(e[0]).transpose(), q = x.row(e[1]).transpose();
+    grid.candidates(box_of(x, x, {e[0], e[1]}, 0.0), [&](int ti) {
+      const auto& t = s.triangles[static_cast<std::size_t>(ti)];
+      for (int k = 0; k < 3; ++k)
+        if (share_support(edge_support, s.support[t[k]])) return;
+      const Vec3 a = x.row(t[0]).transpose(), b = x.row(t[1]).transpose(), c = x.row(t[2]).transpose();
+      const Vec3 n = (b - a).cross(c - a);
+      const double dp = (p - a).dot(n), dq = (q - a).dot(n);
+      if (!(dp * dq < 0.0)) return;
+      const Vec3 hit = p + (q - p) * (dp / (dp - dq));
+      const OverTriangle o = over_triangle(hit, a, b, c);
+      if (o.valid && o.u > 0.0 && o.v > 0.0 && o.w > 0.0) ++crossings;
+    });
+  }
+  return crossings;
+}
+
+void SelfContact::precompute(const DynamicsModel& model, const SelfContactOptions& options) {
+  if (!(options.thickness >= 0.0) || !std::isfinite(options.thickness))
+    throw ArgumentError("self-contact thickness must be >= 0 metres");
+  if (!(options.reach >= 0.0) || !std::isfinite(options.reach))
+    throw ArgumentError("self-contact reach must be >= 0 metres");
+  if (options.passes < 1) throw ArgumentError("self-contact passes must be >= 1");
+  model_ = &model;
+  options_ = options;
+  pairs_.clear();
+  memory_.clear();
+  if (options.thickness <= 0.0) return;
+  surface_ = contact_surface(model);
+  cell_ = mean_edge_length(surface_, model.rest) + options.thickness + options.reach;
+}
+
+void SelfContact::gather(const Positions& x0, const Positions& x1) {
+  memory_.swap(pairs_);  // the last step's pairs, with the sides its projections settled on
+  pairs_.clear();
+  if (!enabled()) return;
+  start_ = x0;
+  const ContactSurface& s = surface_;
+  const double near = options_.thickness + options_.reach;
+  // Swept boxes; only the querying element's is widened by `near`.
+  std::vector<Box> triangle_boxes, edge_boxes;
+  triangle_boxes.reserve(s.triangles.size());
+  edge_boxes.reserve(s.edges.size());
+  for (const auto& t : s.triangles) triangle_boxes.push_back(box_of(x0, x1, {t[0], t[1], t[2]}, 0.0));
+  for (const auto& e : s.edges) edge_boxes.push_back(box_of(x0, x1, {e[0], e[1]}, 0.0));
+  std::vector<std::vector<int>> edge_support(s.edges.size());
+  for (std::size_t e = 0; e < s.edges.size(); ++e)
+    edge_support[e] = merged({&s.support[s.edges[e][0]], &s.support[s.edges[e][1]]});
+
+  // A pair is kept when it is near at either end of the step: over (or
+  // beside by at most kBeside of) the element, and within `near` of it or
+  // on the other side of it at the end.
+  const auto keep = [&](std::uint64_t key, bool overlapping, bool beside, double d0, double d1) {
+    const signed char raw = sign_of(d0);
+    if (raw == 0 || !beside) return;
+    if (sign_of(d1) == raw && std::min(std::abs(d0), std::abs(d1)) > near) return;
+    signed char side = raw;
+    if (overlapping) {  // a side it overlapped with at the last step's end holds
+      const auto it = std::lower_bound(memory_.begin(), memory_.end(), key,
+                                       [](const Pair& p, std::uint64_t k) { return p.key < k; });
+      if (it != memory_.end() && it->key == key) side = it->side;
+    }
+    pairs_.push_back({key, side, raw});
+  };
+  const auto corner = [](const Positions& x, int v) -> Vec3 { return x.row(v).transpose(); };
+
+  const BoxGrid triangles(triangle_boxes, cell_);
+  for (int v = 0; v < model_->num_vertices; ++v) {
+    const auto& vertex_support = s.support[static_cast<std::size_t>(v)];
+    if (vertex_support.empty()) continue;
+    triangles.candidates(box_of(x0, x1, {v}, near), [&](int ti) {
+      const auto& t = s.triangles[static_cast<std::size_t>(ti)];
+      for (int k = 0; k < 3; ++k)
+        if (share_support(vertex_support, s.support[t[k]])) return;
+      const OverTriangle o0 = over_triangle(corner(x0, v), corner(x0, t[0]), corner(x0, t[1]), corner(x0, t[2]));
+      const OverTriangle o1 = over_triangle(corner(x1, v), corner(x1, t[0]), corner(x1, t[1]), corner(x1, t[2]));
+      if (!o0.valid || !o1.valid) return;
+      keep(pair_key(false, v, ti), o0.inside(), o0.near_over() || o1.near_over(), o0.distance, o1.distance);
+    });
+  }
+  const BoxGrid edges(edge_boxes, cell_);
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    const auto& first = s.edges[e];
+    Box query = edge_boxes[e];
+    query.lo.array() -= near;
+    query.hi.array() += near;
+    edges.candidates(query, [&](int other) {
+      if (other <= static_cast<int>(e)) return;  // each pair once (the widening is symmetric)
+      if (share_support(edge_support[e], edge_support[static_cast<std::size_t>(other)])) return;
+      const auto& second = s.edges[static_cast<std::size_t>(other)];
+      const EdgeEdge e0 = edge_edge(corner(x0, first[0]), corner(x0, first[1]), corner(x0, second[0]), corner(x0, second[1]));
+      const EdgeEdge e1 = edge_edge(corner(x1, first[0]), corner(x1, first[1]), corner(x1, second[0]), corner(x1, second[1]));
+      if (!e0.valid || !e1.valid) return;
+      keep(pair_key(true, static_cast<int>(e), other), e0.inside(), e0.near_over() || e1.near_over(), e0.distance,
+           e1.distance);
+    });
+  }
+  std::sort(pairs_.begin(), pairs_.end(), [](const Pair& a, const Pair& b) { return a.key < b.key; });
+}
+
+double SelfContact::project(Positions& q, const Positions& pinned_part) {
+  if (!enabled() || pairs_.empty()) return 0.0;
+  const DynamicsModel& m = *model_;
+  const ContactSurface& s = surface_;
+  const auto position = [&](int v) {
+    Vec3 x = pinned_part.row(v).transpose();
+    for (const StencilTerm& t : m.stencil[static_cast<std::size_t>(v)]) x += t.weight * q.row(t.free).transpose();
+    return x;
+  };
+  double largest = 0.0;
+  // Terms of one constraint in free coordinates, merged per free vertex.
+  std::vector<std::pair<int, double>> terms;
+  const double gap = options_.thickness;
+  const auto apply = [&](const Constraint& c, const Vec3& normal, double violation) {
+    terms.clear();
+    for (int k = 0; k < c.count; ++k)
+      for (const StencilTerm& t : m.stencil[static_cast<std::size_t>(c.vertex[k])]) {
+        const double w = c.weight[k] * t.weight;
+        auto it = std::find_if(terms.begin(), terms.end(), [&](const auto& term) { return term.first == t.free; });
+        if (it == terms.end()) terms.emplace_back(t.free, w);
+        else it->second += w;
+      }
+    const auto inverse_mass = [&](int f) { return 1.0 / m.free_mass[f]; };
+    double denominator = 0.0;
+    for (const auto& [f, w] : terms) denominator += w * w * inverse_mass(f);
+    if (!(denominator > 0.0)) return;
+    // At most a thickness per projection: a pinch the body will undo (cloth
+    // between two limbs) then costs a little each round instead of pushes
+    // that become velocity (uncapped, pushes grew to 8 cm and the skirt flew
+    // apart within 30 steps).
+    // No vertex moves more than that either (a held triangle whose only free
+    // corner carries a small weight would otherwise throw it far).
+    violation = std::min(violation, gap);
+    double lambda = violation / denominator, farthest = 0.0;
+    for (const auto& [f, w] : terms) farthest = std::max(farthest, std::abs(lambda * w * inverse_mass(f)));
+    if (farthest > gap) lambda *= gap / farthest;
+    for (const auto& [f, w] : terms) q.row(f) += (lambda * w * inverse_mass(f)) * normal.transpose();
+    largest = std::max(largest, violation);
+  };
+  // The four points of a pair at fraction t of the way from the step's start.
+  Vec3 now[4], then[4];
+  const auto at = [&](double t, Vec3* out) {
+    for (int k = 0; k < 4; ++k) out[k] = then[k] + t * (now[k] - then[k]);
+  };
+  // Where along the step a pair's sign changed (bisection: the sign is
+  // continuous in t, and 30 halvings put it within 1e-9 of the step).
+  const auto crossing_time = [&](auto&& signed_volume, signed char start_sign) {
+    double lo = 0.0, hi = 1.0;
+    Vec3 x[4];
+    for (int k = 0; k < 30; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      at(mid, x);
+      if (sign_of(signed_volume(x)) == start_sign) lo = mid; else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  for (int pass = 0; pass < options_.passes; ++pass) {
+    for (Pair& pair : pairs_) {
+      const int a = first_of(pair.key), b = second_of(pair.key);
+      if (!(pair.key & kEdgeEdge)) {
+        const auto& t = s.triangles[static_cast<std::size_t>(b)];
+        const int ids[4] = {a, t[0], t[1], t[2]};
+        for (int k = 0; k < 4; ++k) now[k] = position(ids[k]);
+        const OverTriangle o = over_triangle(now[0], now[1], now[2], now[3]);
+        if (!o.valid) continue;
+        OverTriangle use = o;
+        const signed char sign_now = sign_of(o.distance);
+        if (!o.near_over()) continue;
+        if (sign_now != 0 && sign_now != pair.raw) {
+          // The vertex crossed the triangle's plane this step: through the
+          // triangle (keep the side), or round it (take the new side).
+          for (int k = 0; k < 4; ++k) then[k] = start_.row(ids[k]).transpose();
+          const double tc = crossing_time(
+              [](const Vec3* x) { return (x[2] - x[1]).cross(x[3] - x[1]).dot(x[0] - x[1]); }, pair.raw);
+          Vec3 x[4];
+          at(tc, x);
+          const OverTriangle c = over_triangle(x[0], x[1], x[2], x[3]);
+          const bool through = c.valid && c.u >= -kCrossingSlack && c.v >= -kCrossingSlack && c.w >= -kCrossingSlack;
+          if (!through) {
+            if (o.inside()) pair.side = sign_now;
+            if (!o.inside()) continue;
+          } else if (!o.inside()) {
+            // Pull it back through where it passed.
+            use.u = std::max(c.u, 0.0);
+            use.v = std::max(c.v, 0.0);
+            use.w = std::max(c.w, 0.0);
+            const double sum = use.u + use.v + use.w;
+            use.u /= sum;
+            use.v /= sum;
+            use.w /= sum;
+            use.distance = (now[0] - (use.u * now[1] + use.v * now[2] + use.w * now[3])).dot(o.normal);
+          }
+        } else if (!o.inside()) {
+          continue;
+        }
+        const double violation = gap - pair.side * use.distance;
+        if (violation <= 0.0) continue;
+        // side * normal . (p - (u a + v b + w c)) >= gap
+        apply({{a, t[0], t[1], t[2]}, {1.0, -use.u, -use.v, -use.w}, 4}, pair.side * o.normal, violation);
+      } else {
+        const auto& e1 = s.edges[static_cast<std::size_t>(a)];
+        const auto& e2 = s.edges[static_cast<std::size_t>(b)];
+        const int ids[4] = {e1[0], e1[1], e2[0], e2[1]};
+        for (int k = 0; k < 4; ++k) now[k] = position(ids[k]);
+        const EdgeEdge ee = edge_edge(now[0], now[1], now[2], now[3]);
+        if (!ee.valid) continue;
+        EdgeEdge use = ee;
+        const signed char sign_now = sign_of(ee.distance);
+        if (!ee.near_over()) continue;
+        if (sign_now != 0 && sign_now != pair.raw) {
+          for (int k = 0; k < 4; ++k) then[k] = start_.row(ids[k]).transpose();
+          const double tc = crossing_time(
+              [](const Vec3* x) { return (x[2] - x[0]).dot((x[1] - x[0]).cross(x[3] - x[2])); }, pair.raw);
+          Vec3 x[4];
+          at(tc, x);
+          const EdgeEdge c = edge_edge(x[0], x[1], x[2], x[3]);
+          const bool through = c.valid && c.s > -kCrossingSlack && c.s < 1.0 + kCrossingSlack &&
+                               c.t > -kCrossingSlack && c.t < 1.0 + kCrossingSlack;
+          if (!through) {
+            if (ee.inside()) pair.side = sign_now;
+            if (!ee.inside()) continue;
+          } else if (!ee.inside()) {
+            use.s = std::clamp(c.s, 0.0, 1.0);
+            use.t = std::clamp(c.t, 0.0, 1.0);
+          }
+        } else if (!ee.inside()) {
+          continue;
+        }
+        const Vec3 between = (now[2] + use.t * (now[3] - now[2])) - (now[0] + use.s * (now[1] - now[0]));
+        const double violation = gap - pair.side * between.dot(ee.normal);
+        if (violation <= 0.0) continue;
+        // side * normal . (q(t) - p(s)) >= gap
+        apply({{e2[0], e2[1], e1[0], e1[1]}, {1.0 - use.t, use.t, -(1.0 - use.s), -use.s}, 4},
+              pair.side * ee.normal, violation);
+      }
+    }
+  }
+  return largest;
+}
+
+}  // namespace mrcloth

@@ -1,0 +1,219 @@
+#include "test_meshes.h"
+
+#include "mesh_ops/adaptive_refine.h"
+#include "mesh_ops/mode_layer.h"
+#include "solver/implicit_integrator.h"
+#include "mesh_ops/errors.h"
+#include "solver/self_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <random>
+
+namespace mrcloth {
+namespace {
+
+// Sheets given as (origin, u step, v step, nu x nv vertices) in one mesh,
+// vertex ids sheet by sheet, row by row.
+struct SheetSpec {
+  Eigen::Vector3d origin, du, dv;
+  int nu, nv;
+};
+QuadMesh sheets(const std::vector<SheetSpec>& specs) {
+  QuadMesh mesh;
+  int base = 0;
+  for (const SheetSpec& s : specs) {
+    for (int j = 0; j < s.nv; ++j)
+      for (int i = 0; i < s.nu; ++i) {
+        const Eigen::Vector3d p = s.origin + i * s.du + j * s.dv;
+        mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z()));
+      }
+    const auto vid = [&](int i, int j) { return mesh.vertex_handle(base + j * s.nu + i); };
+    for (int j = 0; j + 1 < s.nv; ++j)
+      for (int i = 0; i + 1 < s.nu; ++i) mesh.add_face(vid(i, j), vid(i, j + 1), vid(i + 1, j + 1), vid(i + 1, j));
+    base += s.nu * s.nv;
+  }
+  init_forest(mesh);
+  return mesh;
+}
+
+// Every edge against every triangle, no broad phase: the oracle.
+int brute_force_crossings(const ContactSurface& s, const Positions& x) {
+  int crossings = 0;
+  for (const auto& e : s.edges)
+    for (const auto& t : s.triangles) {
+      bool shared = false;
+      for (int a : {e[0], e[1]})
+        for (int b : {t[0], t[1], t[2]})
+          for (int u : s.support[a])
+            for (int v : s.support[b]) shared |= u == v;
+      if (shared) continue;
+      const Eigen::Vector3d p = x.row(e[0]).transpose(), q = x.row(e[1]).transpose();
+      const Eigen::Vector3d a = x.row(t[0]).transpose(), b = x.row(t[1]).transpose(), c = x.row(t[2]).transpose();
+      // Signed volumes: the edge crosses the plane and the line passes
+      // inside all three sides.
+      const auto volume = [](const Eigen::Vector3d& o, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                             const Eigen::Vector3d& w) { return (u - o).cross(v - o).dot(w - o); };
+      const double dp = volume(a, b, c, p), dq = volume(a, b, c, q);
+      if (!(dp * dq < 0.0)) continue;
+      const double s1 = volume(p, q, a, b), s2 = volume(p, q, b, c), s3 = volume(p, q, c, a);
+      if ((s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0)) ++crossings;
+    }
+  return crossings;
+}
+
+TEST(ContactSurface, AGridGivesTwoTrianglesPerQuadAndEachEdgeOnce) {
+  const QuadMesh mesh = test::make_grid(4, 3, 0.1);
+  const DynamicsModel m = build_dynamics(mesh, {});
+  const ContactSurface s = contact_surface(m);
+  EXPECT_EQ(s.triangles.size(), 2u * 4 * 3);
+  // 4 x 4 horizontal, 5 x 3 vertical, one diagonal per quad.
+  EXPECT_EQ(s.edges.size(), 4u * 4 + 5 * 3 + 4 * 3);
+  for (int v = 0; v < m.num_vertices; ++v) EXPECT_EQ(s.support[v], std::vector<int>{v});
+}
+
+TEST(ContactSurface, ATNodeIsSupportedByItsParents) {
+  QuadMesh mesh = test::make_sheet(5, 0.4);
+  paint_modes_sphere(mesh, {-0.2, 0.0, -0.2}, 0.1, 3);
+  adaptive_refine(mesh, {8.0, 2, true});
+  const DynamicsModel m = build_dynamics(mesh, {});
+  ASSERT_FALSE(m.hanging_vertices.empty());
+  const ContactSurface s = contact_surface(m);
+  const Layers layers = get_layers(mesh);
+  for (int h : m.hanging_vertices) {
+    const OpenMesh::Vec2i parents = mesh.property(layers.parents, mesh.vertex_handle(h));
+    for (int p : {parents[0], parents[1]}) {
+      // Every free or pinned vertex a parent rests on supports the T-node.
+      for (int u : s.support[p])
+        EXPECT_TRUE(std::binary_search(s.support[h].begin(), s.support[h].end(), u)) << "T-node " << h;
+    }
+    EXPECT_FALSE(std::binary_search(s.support[h].begin(), s.support[h].end(), h));
+  }
+  // Triangles use corners only: no T-node lies inside a triangle's edge
+  // list twice, and the area equals the sheet's.
+  double area = 0.0;
+  for (const auto& t : s.triangles)
+    area += 0.5 * (m.rest.row(t[1]) - m.rest.row(t[0])).cross(m.rest.row(t[2]) - m.rest.row(t[0])).norm();
+  EXPECT_NEAR(area, 0.4 * 0.4, 1e-12);
+}
+
+TEST(CountSelfCrossings, AgreesWithTheBruteForceOracle) {
+  // A horizontal sheet and a vertical one through it: 2 x 2 cm cells.
+  const QuadMesh mesh = sheets({{{0, 0, 0}, {0.02, 0, 0}, {0, 0, 0.02}, 8, 8},
+                                {{0.011, -0.05, 0.031}, {0.02, 0, 0}, {0, 0.02, 0}, 5, 6}});
+  const DynamicsModel m = build_dynamics(mesh, {});
+  const ContactSurface s = contact_surface(m);
+  const int crossed = count_self_crossings(s, m.rest);
+  EXPECT_EQ(crossed, brute_force_crossings(s, m.rest));
+  EXPECT_GT(crossed, 0);
+  // Crumpled at random: still the oracle's count.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (int trial = 0; trial < 5; ++trial) {
+    Positions x = m.rest;
+    for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += noise(rng);
+    EXPECT_EQ(count_self_crossings(s, x), brute_force_crossings(s, x)) << "trial " << trial;
+  }
+  // Apart, nothing crosses.
+  Positions apart = m.rest;
+  for (int v = 64; v < m.num_vertices; ++v) apart(v, 1) += 0.2;
+  EXPECT_EQ(count_self_crossings(s, apart), 0);
+}
+
+IntegratorOptions contact_options(double thickness) {
+  IntegratorOptions o;
+  o.time_step = 1.0 / 120;
+  o.self_contact.thickness = thickness;
+  return o;
+}
+
+// Runs `steps` steps; returns the largest self-crossing count met at any
+// step and the final full positions.
+std::pair<int, Positions> run(const DynamicsModel& m, const IntegratorOptions& o, int steps) {
+  ImplicitIntegrator integrator;
+  integrator.precompute(m, o);
+  ClothState state = rest_state(m);
+  const ContactSurface surface = contact_surface(m);
+  int worst = 0;
+  for (int k = 0; k < steps; ++k) {
+    integrator.step(state, state.pinned, std::vector<Collider>{});
+    worst = std::max(worst, count_self_crossings(surface, full_positions(m, state.positions, state.pinned)));
+  }
+  return {worst, full_positions(m, state.positions, state.pinned)};
+}
+
+// A small sheet dropped on a larger one pinned at its rim like a drum:
+// with cloth-cloth contact it rests on it a thickness above, without it
+// falls through.
+TEST(SelfContact, AFallingSheetRestsOnTheOneBelow) {
+  const int n = 11;
+  const QuadMesh mesh = sheets({{{-0.25, 0, -0.25}, {0.05, 0, 0}, {0, 0, 0.05}, n, n},
+                                {{-0.15, 0.02, -0.15}, {0.03, 0, 0}, {0, 0, 0.03}, n, n}});
+  DynamicsOptions d;
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      if (k == 0 || i == 0 || k == n - 1 || i == n - 1) d.pinned.push_back(k * n + i);
+  const DynamicsModel m = build_dynamics(mesh, d);
+  const double thickness = 0.004;
+  const auto [crossed_with, with] = run(m, contact_options(thickness), 120);
+  const auto [crossed_without, without] = run(m, contact_options(0.0), 120);
+  EXPECT_EQ(crossed_with, 0);
+  EXPECT_EQ(crossed_without, 0);  // it falls through flat, within a step
+  // Each upper vertex over the lower sheet's triangle under it.
+  const ContactSurface s = contact_surface(m);
+  double lowest = 1e9;
+  for (int v = n * n; v < 2 * n * n; ++v) {
+    const Eigen::Vector3d p = with.row(v).transpose();
+    for (int t = 0; t < 2 * (n - 1) * (n - 1); ++t) {
+      const auto& tri = s.triangles[t];
+      const Eigen::Vector3d a = with.row(tri[0]).transpose(), b = with.row(tri[1]).transpose(),
+                            c = with.row(tri[2]).transpose();
+      const Eigen::Vector3d normal = (b - a).cross(c - a);
+      const double area2 = normal.squaredNorm();
+      const double bv = (p - a).cross(c - a).dot(normal) / area2, bw = (b - a).cross(p - a).dot(normal) / area2;
+      if (bv < 0 || bw < 0 || bv + bw > 1) continue;
+      lowest = std::min(lowest, (p - a).dot(normal.normalized()) * (normal.y() > 0 ? 1 : -1));
+    }
+  }
+  EXPECT_GT(lowest, 0.5 * thickness);
+  EXPECT_LT(lowest, 3.0 * thickness);
+  const int middle = (n * n) / 2;
+  EXPECT_LT(without(n * n + middle, 1), without(middle, 1) - 0.1);
+}
+
+// A short strip dropped across another whose vertices never lie over the
+// other's triangles: only edge-edge contact can hold it.
+TEST(SelfContact, AStripFallingAcrossAnotherIsHeldByItsEdges) {
+  // Lower strip along x, 1 cm wide, 5 cm cells, pinned at its four corners;
+  // upper strip along z, 1 cm wide, 10 cm long, crossing the lower one
+  // between the lower one's vertices and between its own.
+  const QuadMesh mesh = sheets({{{-0.5, 0, -0.005}, {0.05, 0, 0}, {0, 0, 0.01}, 21, 2},
+                                {{0.02, 0.01, -0.025}, {0.01, 0, 0}, {0, 0, 0.05}, 2, 2}});
+  DynamicsOptions d;
+  d.pinned = {0, 20, 21, 41};
+  const DynamicsModel m = build_dynamics(mesh, d);
+  const auto [crossed_with, with] = run(m, contact_options(0.003), 24);
+  const auto [crossed_without, without] = run(m, contact_options(0.0), 24);
+  EXPECT_EQ(crossed_with, 0);
+  // The upper strip lies on the lower one, a thickness above; without
+  // contact it falls through.
+  const double lower = 0.5 * (with(10, 1) + with(31, 1));
+  const double upper = with.bottomRows(4).col(1).mean();
+  EXPECT_GT(upper - lower, 0.5 * 0.003);
+  EXPECT_LT(upper - lower, 0.02);
+  EXPECT_LT(without.bottomRows(4).col(1).mean(), 0.5 * (without(10, 1) + without(31, 1)) - 0.05);
+}
+
+TEST(SelfContact, RefusesBadOptions) {
+  const DynamicsModel m = build_dynamics(test::make_sheet(3, 0.1), {});
+  SelfContact contact;
+  EXPECT_THROW(contact.precompute(m, {-0.001, 0.01, 2}), ArgumentError);
+  EXPECT_THROW(contact.precompute(m, {0.001, -0.01, 2}), ArgumentError);
+  EXPECT_THROW(contact.precompute(m, {0.001, 0.01, 0}), ArgumentError);
+}
+
+}  // namespace
+}  // namespace mrcloth
