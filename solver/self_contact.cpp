@@ -150,8 +150,10 @@ std::uint64_t cell_key(int i, int j, int k) {
 class BoxGrid {
  public:
   BoxGrid(const std::vector<Box>& items, double cell) : items_(items), cell_(cell) {
+    ranges_.reserve(items.size());
     for (std::size_t i = 0; i < items.size(); ++i) {
       const CellRange r = cells_of(items[i], cell);
+      ranges_.push_back(r);
       if (((r.hi - r.lo) > 64).any()) continue;  // a runaway element: not filed (it is non-finite or huge)
       for (int x = r.lo[0]; x <= r.hi[0]; ++x)
         for (int y = r.lo[1]; y <= r.hi[1]; ++y)
@@ -166,8 +168,9 @@ class BoxGrid {
       i = j;
     }
   }
+  /// Visits every item after `after` whose box overlaps `query`.
   template <class F>
-  void candidates(const Box& query, F&& visit) const {
+  void candidates(const Box& query, F&& visit, int after = -1) const {
     const CellRange r = cells_of(query, cell_);
     if (((r.hi - r.lo) > 64).any()) return;
     for (int x = r.lo[0]; x <= r.hi[0]; ++x)
@@ -177,10 +180,11 @@ class BoxGrid {
           const auto cell = cells_.find(key);
           if (cell == cells_.end()) continue;
           for (auto it = entries_.begin() + cell->second.first; it != entries_.begin() + cell->second.second; ++it) {
+            if (it->second <= after) continue;
             const Box& item = items_[static_cast<std::size_t>(it->second)];
             if (!overlap(query, item)) continue;
             // Only in the lowest cell common to both, so each pair once.
-            const CellRange ir = cells_of(item, cell_);
+            const CellRange& ir = ranges_[static_cast<std::size_t>(it->second)];
             if (std::max(r.lo[0], ir.lo[0]) != x || std::max(r.lo[1], ir.lo[1]) != y ||
                 std::max(r.lo[2], ir.lo[2]) != z)
               continue;
@@ -192,6 +196,7 @@ class BoxGrid {
  private:
   const std::vector<Box>& items_;
   double cell_;
+  std::vector<CellRange> ranges_;  // per item
   std::vector<std::pair<std::uint64_t, int>> entries_;  // (cell, item), sorted
   std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;  // cell -> its run in entries_
 };
@@ -286,7 +291,7 @@ void SelfContact::precompute(const DynamicsModel& model, const SelfContactOption
   memory_.clear();
   if (options.thickness <= 0.0) return;
   surface_ = contact_surface(model);
-  cell_ = mean_edge_length(surface_, model.rest) + options.thickness + options.reach;
+  cell_ = 2.0 * (mean_edge_length(surface_, model.rest) + options.thickness + options.reach);
 }
 
 void SelfContact::gather(const Positions& x0, const Positions& x1) {
@@ -343,8 +348,7 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
     Box query = edge_boxes[e];
     query.lo.array() -= near;
     query.hi.array() += near;
-    edges.candidates(query, [&](int other) {
-      if (other <= static_cast<int>(e)) return;  // each pair once (the widening is symmetric)
+    edges.candidates(query, [&](int other) {  // each pair once, from its lower edge (the widening is symmetric)
       if (share_support(edge_support[e], edge_support[static_cast<std::size_t>(other)])) return;
       const auto& second = s.edges[static_cast<std::size_t>(other)];
       const EdgeEdge e0 = edge_edge(corner(x0, first[0]), corner(x0, first[1]), corner(x0, second[0]), corner(x0, second[1]));
@@ -352,7 +356,7 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
       if (!e0.valid || !e1.valid) return;
       keep(pair_key(true, static_cast<int>(e), other), e0.inside(), e0.near_over() || e1.near_over(), e0.distance,
            e1.distance);
-    });
+    }, static_cast<int>(e));
   }
   std::sort(pairs_.begin(), pairs_.end(), [](const Pair& a, const Pair& b) { return a.key < b.key; });
 }

@@ -45,7 +45,7 @@ namespace mrcloth {
 struct SelfContactOptions {
   double thickness = 0.0;  ///< metres kept between two layers of the cloth; 0: no cloth-cloth contact
   double reach = 0.01;     ///< metres beyond the thickness around each step's motion where pairs are gathered
-  int passes = 2;          ///< Gauss-Seidel passes over the gathered pairs per collision round, >= 1
+  int passes = 1;          ///< Gauss-Seidel passes over the gathered pairs per collision round, >= 1
 };
 
 /// The garment's contact surface: triangles and edges of corner vertices,

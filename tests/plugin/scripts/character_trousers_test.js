@@ -44,7 +44,7 @@ for (const type of ["mesh", "capsules", "mesh+self"]) {
 }
 // Cloth-cloth contact (README, Cloth-cloth contact): the legs' inner faces
 // pass through each other without it (442 edge-triangle crossings at the
-// worst frame), not with it (15, where the skinned thighs overlap).
+// worst frame), hardly with it (6).
 expectAtLeast(crossings.mesh, 100, "crossings without cloth-cloth contact");
 expectAtMost(crossings["mesh+self"], 40, "crossings with cloth-cloth contact");
 print("character trousers: ok");
