@@ -7,6 +7,7 @@
 // surface at an output frame.
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
+//                        [--self-contact METRES]
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/uniform_refine.h"
@@ -27,6 +28,7 @@ struct BenchOptions {
   double preroll = 0.5;    // seconds, not timed in the table
   std::string garment = "all";  // coarse | refined | all: which rows to run (one row is handy under a profiler)
   std::string body = "all";     // capsules | mesh | all
+  double self_contact = 0.0;    // cloth-cloth contact thickness, metres (0: off, the default)
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -62,6 +64,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
   o.garment_pose = garment_pose;  // the A-pose base.obj (and the skirt) were modelled in
   if (waist_skin) waist_follows_skin(o, *waist_skin, motion, model);  // as the plugin does with MakeHuman
   o.arm_clearance = std::move(arms);  // as the plugin does by default
+  o.simulation.self_contact.thickness = b.self_contact;
   Row row;
   row.garment = name;
   row.body = body_name;
@@ -72,9 +75,9 @@ Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d&
 
 void print(const Row& r) {
   const SimulationReport& m = r.report.motion;
-  std::printf("| %-22s | %-8s | %8zu | %9.1f | %9.1f | %9.1f | %7.2f %% | %9.2f | %s |\n", r.garment.c_str(),
+  std::printf("| %-22s | %-8s | %8zu | %9.1f | %9.1f | %9.1f | %7.2f %% | %9.2f | %9d | %s |\n", r.garment.c_str(),
               r.body.c_str(), r.vertices, m.ms_per_frame_dynamics, m.ms_per_frame_collision, m.ms_per_frame_total,
-              100.0 * m.max_stretch, 1000.0 * m.max_depth, m.non_finite ? "NaN!" : "ok");
+              100.0 * m.max_stretch, 1000.0 * m.max_depth, m.max_self_crossings, m.non_finite ? "NaN!" : "ok");
 }
 
 }  // namespace
@@ -87,10 +90,11 @@ int main(int argc, char** argv) {
     else if (key == "--preroll") b.preroll = std::atof(argv[a + 1]);
     else if (key == "--garment") b.garment = argv[a + 1];
     else if (key == "--body") b.body = argv[a + 1];
+    else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
     else {
       std::fprintf(stderr,
                    "unknown option %s\nusage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] "
-                   "[--body capsules|mesh|all]\n",
+                   "[--body capsules|mesh|all] [--self-contact METRES]\n",
                    argv[a]);
       return 2;
     }
@@ -145,13 +149,14 @@ int main(int argc, char** argv) {
       make_arm_clearance(motion.skeleton, {}, skinned.rest_vertices, skinned.weights, skinned.joint_rest));
   CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
   SkinnedPosedBody mesh(skinned, motion.skeleton, 0.004, 0.3, bridges);
-  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core, leg bridges %.0f\n\n",
-              b.frames, b.preroll, reach);
-  std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices", "dyn ms/f",
-              "coll ms/f", "total", "stretch", "depth mm");
-  std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
+  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core, leg bridges %.0f, cloth-cloth contact %.1f mm\n\n",
+              b.frames, b.preroll, reach, 1000.0 * b.self_contact);
+  std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
+              "dyn ms/f", "coll ms/f", "total", "stretch", "depth mm", "crossings");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
               std::string(10, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str(),
-              std::string(11, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str());
+              std::string(11, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str(),
+              std::string(11, '-').c_str());
   const QuadMesh* garments[] = {&coarse, &high};
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
