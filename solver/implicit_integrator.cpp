@@ -484,9 +484,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     full_.noalias() = m.S * q;
     full_ += pinned_part_;
     self_contact_.gather(full_positions(m, q_previous, state.pinned), full_);
-    report.self_pairs = self_contact_.pair_count();
-    report.self_contact_ms = ms_since(gather_start);
-    report.collision_ms = report.self_contact_ms;
+    report.collision_ms = ms_since(gather_start);
   }
 
   // Strain limiting and collisions alternate: a collision push-out can
@@ -511,10 +509,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     const double excess = limit_strain(q);
     report.dynamics_ms += ms_since(limit_start);
     const auto collide_start = Clock::now();
-    if (self_contact_.enabled()) {
-      self_contact_.project(q, pinned_part_);
-      report.self_contact_ms += ms_since(collide_start);
-    }
+    if (self_contact_.enabled()) self_contact_.project(q, pinned_part_);
     report.max_correction = std::max(report.max_correction,
                                      resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
                                                         round == 0 ? nullptr : &settled_));

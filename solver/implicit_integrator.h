@@ -67,8 +67,6 @@ ClothState rest_state(const DynamicsModel& model);
 struct StepReport {
   double dynamics_ms = 0.0;        ///< local/global iterations and strain limiting
   double collision_ms = 0.0;       ///< collision resolution, bodies and cloth-cloth contact
-  double self_contact_ms = 0.0;    ///< the cloth-cloth part of collision_ms
-  std::size_t self_pairs = 0;      ///< cloth-cloth pairs gathered this step
   double max_correction = 0.0;     ///< largest collision push-out this step, metres
   int rounds = 0;                  ///< rounds of (strain limiting, collisions) taken
   bool finite = true;              ///< false if any position became NaN or infinite

@@ -84,7 +84,6 @@ class SelfContact {
   /// (#V x 3). Returns the largest single correction, metres.
   double project(Positions& q, const Positions& pinned_part);
 
-  std::size_t pair_count() const { return pairs_.size(); }
   const ContactSurface& surface() const { return surface_; }
 
  private:
