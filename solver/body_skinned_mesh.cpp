@@ -1182,7 +1182,7 @@ struct MeshBody::Impl {
     const double moved = (p - memo->centre).norm();
     // Clear of every triangle by more than the caller acts on, on the
     // centre's (outside) side: what the loop below would conclude.
-    if (memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
+    if (memo->sided && memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
     const double slack = memo->radius - moved;
     const Closest c = closest_among(p, memo->items);
     if (c.triangle >= 0 && c.d2 < slack * slack) {
@@ -1196,7 +1196,7 @@ struct MeshBody::Impl {
     }
     // Nothing within slack of p: no contact within search2 if that is
     // inside the slack, and p is on the centre's side.
-    if (std::min(search2, need2) <= slack * slack && memo->outside) return false;
+    if (std::min(search2, need2) <= slack * slack && memo->outside && memo->sided) return false;
     return contact(p, search2, deep, out);
   }
 
@@ -1214,13 +1214,22 @@ struct MeshBody::Impl {
     memo->items.erase(std::remove_if(memo->items.begin(), memo->items.end(),
                                      [&](int t) { return !(triangle_box_distance2(p, t) <= radius * radius); }),
                       memo->items.end());
+    // Near an ignored (turned) triangle the seen surface is not closed, so
+    // "nothing seen near, so on the centre's side" proves nothing: a point
+    // passing through the fold would keep an outside it no longer has (the
+    // tree calls it inside, 15-30 mm deep) and hand it on to every later
+    // memo. Such a memo still finds closest triangles, never sides.
+    const bool near_fold = any_ignored && std::any_of(memo->items.begin(), memo->items.end(), [&](int t) {
+                             return ignored[static_cast<std::size_t>(t)] != 0;
+                           });
     const Closest c = closest_among(p, memo->items);
     // The later queries are near p: with its closest triangle first, the
     // boxes of most others are rejected at once.
     if (c.triangle >= 0) std::iter_swap(memo->items.begin(), std::find(memo->items.begin(), memo->items.end(), c.triangle));
     if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
-    else if (outside_known) memo->outside = true;
+    else if (outside_known && !near_fold) memo->outside = true;
     else return;  // side unknown: nothing remembered
+    memo->sided = !near_fold;
     memo->centre = p;
     memo->radius = radius;
     memo->clear = c.triangle >= 0 && c.d2 < radius * radius ? std::sqrt(c.d2) : radius;

@@ -23,6 +23,7 @@ struct ContactMemo {
   double radius = -1.0;                 ///< < 0: nothing remembered
   bool outside = true;                  ///< whether centre was outside the surface
   double clear = 0.0;                   ///< MeshBody: no (seen) triangle is nearer than this to centre
+  bool sided = true;                    ///< MeshBody: false near ignored triangles, where `outside` may not carry to points near centre
   const void* owner = nullptr;          ///< the scene that wrote it
   unsigned long long serial = 0;        ///< that scene's pose then
 };

@@ -420,6 +420,48 @@ TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
   EXPECT_NEAR(body.query(centre).distance, 0.01, 1e-12);
 }
 
+TEST(MeshBody, AMemoNearIgnoredTrianglesNeverChangesAnAnswer) {
+  // Ignored (turned) triangles leave the seen surface open: a point can
+  // pass from outside to what the tree calls inside without meeting a seen
+  // triangle, so a memo there must not vouch for a side. A patch of the
+  // cube's top face is ignored; points walk down through it in small
+  // steps, resolved with and without memos: the answers must be the same.
+  Mesh cube = subdivided_cube(6);
+  const double thickness = 0.004;
+  std::vector<char> ignored(cube.triangles.size(), 0);
+  int patch = 0;
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t) {
+    const Vector3d c = (cube.vertex(cube.triangles[t](0)) + cube.vertex(cube.triangles[t](1)) + cube.vertex(cube.triangles[t](2))) / 3.0;
+    if (c.y() > 0.99 && std::abs(c.x()) < 0.5 && std::abs(c.z()) < 0.5) patch += ignored[t] = 1;
+  }
+  ASSERT_GT(patch, 8);
+  MeshBody with(cube.vertices, cube.triangles, thickness, 0.3), without(cube.vertices, cube.triangles, thickness, 0.3);
+  with.update(cube.vertices, ignored);
+  without.update(cube.vertices, ignored);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> across(-0.45, 0.45), down(0.0005, 0.0049);
+  int differing_sides = 0;
+  for (int walk = 0; walk < 200; ++walk) {
+    // The first walk is the case that failed: remembered 4.5 mm above the
+    // patch with nothing seen near, then 4.9 mm down, 0.4 mm below it.
+    Vector3d a = walk == 0 ? Vector3d(0.0, 1.0045, 0.0) : Vector3d(across(rng), 1.012, across(rng));
+    ContactMemo memo;
+    for (int round = 0; round < 8 && a.y() > 0.99; ++round) {
+      Vector3d b = a;
+      const double ca = with.resolve(a, a, false, &memo);
+      const double cb = without.resolve(b, b, false);
+      ASSERT_LT((a - b).norm(), 1e-12) << "walk " << walk << " round " << round;
+      ASSERT_NEAR(ca, cb, 1e-12) << "walk " << walk << " round " << round;
+      if (cb > 0.1) {
+        ++differing_sides;  // the tree called it inside: pushed to the seen surface, far off
+        break;
+      }
+      a.y() -= walk == 0 ? 0.0049 : down(rng);
+    }
+  }
+  EXPECT_GT(differing_sides, 100) << "most walks should reach what the tree calls inside";
+}
+
 TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
   // A point pushed out of the cube's top face (interior of a face: the
   // surface is the plane y = 1 there) must move exactly as against a plane
