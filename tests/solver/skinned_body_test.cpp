@@ -270,27 +270,89 @@ TEST(MeshBody, StaysExactAfterUpdate) {
   expect_matches_brute_force(moving, sheared, sample_points(sheared, rng, 1200, 0.4), "moved cube");
 }
 
+/// Brute force, written apart from the library: where segment a-b first
+/// crosses a triangle of `mesh` against its outward normal (smallest t), by
+/// the plane crossing and three edge-side tests.
+bool brute_first_entry(const Mesh& mesh, const Vector3d& a, const Vector3d& b, Vector3d& hit, Vector3d& normal) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vector3i& t : mesh.triangles) {
+    const Vector3d p0 = mesh.vertex(t(0)), p1 = mesh.vertex(t(1)), p2 = mesh.vertex(t(2));
+    const Vector3d n = (p1 - p0).cross(p2 - p0);
+    const double da = (a - p0).dot(n), db = (b - p0).dot(n);
+    if (!(da >= 0.0 && db < 0.0)) continue;  // not from outside to inside this plane
+    const double s = da / (da - db);
+    const Vector3d q = a + s * (b - a);
+    if ((p1 - p0).cross(q - p0).dot(n) < 0 || (p2 - p1).cross(q - p1).dot(n) < 0 || (p0 - p2).cross(q - p2).dot(n) < 0)
+      continue;
+    if (s < best) {
+      best = s;
+      hit = q;
+      normal = n.normalized();
+    }
+  }
+  return best <= 1.0;
+}
+
 TEST(MeshBody, ResolveLeavesNoPointWithinThickness) {
+  // On convex meshes: a point in the thickness layer goes out along the
+  // normal by its penetration; a point inside that entered on its way from
+  // its start goes out where it entered (brute-force oracle), thickness
+  // off that face; one that started inside too, by its penetration.
   std::mt19937 rng(3);
   const double thickness = 0.02;
   for (const auto& [name, mesh] : {std::pair<std::string, Mesh>{"icosphere", icosphere(3)}, {"cube", subdivided_cube(5)}}) {
     const MeshBody body(mesh.vertices, mesh.triangles, thickness, 0.3);
-    int pushed = 0;
+    int pushed = 0, entered = 0;
     for (const Vector3d& p : sample_points(mesh, rng, 1500, 0.5)) {
-      Vector3d position = p;
-      const double before = body.penetration(p);
-      const double correction = body.resolve(p + Vector3d(0.01, -0.02, 0.005), position);
-      EXPECT_GE(body.query(position).distance, thickness - 1e-12) << name << " from (" << p.transpose() << ")";
-      EXPECT_LE(body.penetration(position), 1e-12);
-      if (before == 0.0) {
-        EXPECT_EQ(correction, 0.0);
-        EXPECT_EQ(position, p) << "a clear point is left alone";
-      } else {
-        ++pushed;
-        EXPECT_NEAR(correction, before, 1e-12) << "the first push is the penetration depth (convex mesh)";
+      for (const Vector3d& offset : {Vector3d(0.01, -0.02, 0.005), Vector3d(0.2, 0.3, -0.25)}) {
+        const Vector3d start = p + offset;
+        Vector3d position = p;
+        const double before = body.penetration(p);
+        const double correction = body.resolve(start, position);
+        EXPECT_GE(body.query(position).distance, thickness - 1e-12) << name << " from (" << p.transpose() << ")";
+        EXPECT_LE(body.penetration(position), 1e-12);
+        Vector3d hit, normal;
+        if (before == 0.0) {
+          EXPECT_EQ(correction, 0.0);
+          EXPECT_EQ(position, p) << "a clear point is left alone";
+        } else if (body.query(p).distance < 0.0 && brute_first_entry(mesh, start, p, hit, normal)) {
+          ++entered;
+          EXPECT_LT((position - (hit + thickness * normal)).norm(), 1e-12) << name << ": out where it entered";
+          EXPECT_NEAR(correction, (hit + thickness * normal - p).norm(), 1e-12);
+        } else {
+          ++pushed;
+          EXPECT_NEAR(correction, before, 1e-12) << "the push is the penetration depth (convex mesh)";
+        }
       }
     }
     EXPECT_GT(pushed, 300) << name;
+    EXPECT_GT(entered, 200) << name;
+  }
+}
+
+TEST(MeshBody, ALimbThatPassedMostOfTheWayThroughAPointCarriesItOut) {
+  // A slab 4 cm thick (a shin, seen edge-on) moves 3.5 cm down in one step
+  // onto a point resting 5 mm below it: the point ends 1 cm below the
+  // slab's top face and 3 cm above its bottom. The nearest face is the top,
+  // the wrong side: the slab came from above. The point must leave by the
+  // bottom, the face it entered, carried along by the slab. The same
+  // moving up.
+  Mesh slab = subdivided_cube(4);
+  slab.vertices.col(1) *= 0.02;
+  const double thickness = 0.004;
+  for (const double direction : {-1.0, 1.0}) {
+    MeshBody body(slab.vertices, slab.triangles, thickness, 0.3);
+    Mesh moved = slab;
+    moved.vertices.col(1).array() += direction * 0.035;
+    body.update(moved.vertices);
+    const Vector3d start(0.1, direction * 0.025, -0.2);
+    Vector3d position = start;
+    ASSERT_LT(body.query(position).distance, -0.009) << "the slab moved over the point";
+    const double correction = body.resolve(start, position);
+    EXPECT_NEAR(position.y(), direction * (0.035 + 0.02 + thickness), 1e-12) << "out of the face it entered";
+    EXPECT_NEAR(position.x(), 0.1, 1e-12);
+    EXPECT_NEAR(position.z(), -0.2, 1e-12);
+    EXPECT_NEAR(correction, 0.034, 1e-12);
   }
 }
 
@@ -463,30 +525,36 @@ TEST(MeshBody, AMemoNearIgnoredTrianglesNeverChangesAnAnswer) {
 }
 
 TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
-  // A point pushed out of the cube's top face (interior of a face: the
-  // surface is the plane y = 1 there) must move exactly as against a plane
-  // collider with the same thickness and friction.
+  // A point that ends within the thickness of the cube's top face, outside
+  // it (interior of a face: the surface is the plane y = 1 there), must
+  // move exactly as against a plane collider with the same thickness and
+  // friction. (A point that ends inside, having entered on its way, goes
+  // out where it entered: ResolveLeavesNoPointWithinThickness.)
   const Mesh cube = subdivided_cube(4);
   const double thickness = 0.004, mu = 0.5;
   const MeshBody body(cube.vertices, cube.triangles, thickness, mu);
   const std::vector<Collider> plane = {Collider{PlaneCollider{Vector3d(0, 1, 0), Vector3d(0, 1, 0)}, thickness, mu}};
   const Vector3d previous(0.1, 1.01, 0.2);
-  for (const Vector3d& step : {Vector3d(0.001, -0.02, 0.0005), Vector3d(0.03, -0.02, -0.01), Vector3d(0.0, -0.05, 0.0),
-                               Vector3d(-0.2, -0.003, 0.1)}) {
+  int pushed = 0;
+  for (const Vector3d& step : {Vector3d(0.001, -0.008, 0.0005), Vector3d(0.03, -0.0095, -0.01), Vector3d(0.0, -0.0099, 0.0),
+                               Vector3d(-0.2, -0.007, 0.1), Vector3d(-0.2, -0.003, 0.1)}) {
     Vector3d mesh_position = previous + step, plane_position = previous + step;
     const double mesh_correction = body.resolve(previous, mesh_position);
     const double plane_correction = resolve_point(plane, previous, plane_position);
+    pushed += mesh_correction > 0.0;
     EXPECT_NEAR(mesh_correction, plane_correction, 1e-12);
     EXPECT_LT((mesh_position - plane_position).norm(), 1e-12) << "step (" << step.transpose() << ")";
   }
+  EXPECT_EQ(pushed, 4);
   // Static friction: a small slide is removed entirely; a large one is
   // reduced by exactly mu times the push.
-  Vector3d sticks = previous + Vector3d(0.001, -0.02, 0.0);
+  Vector3d sticks = previous + Vector3d(0.001, -0.0095, 0.0);
   body.resolve(previous, sticks);
   EXPECT_NEAR(sticks.x(), previous.x(), 1e-12);
   EXPECT_NEAR(sticks.y(), 1.0 + thickness, 1e-12);
-  Vector3d slides = previous + Vector3d(0.05, -0.02, 0.0);
+  Vector3d slides = previous + Vector3d(0.05, -0.0095, 0.0);
   const double push = body.resolve(previous, slides);
+  EXPECT_NEAR(push, 0.0035, 1e-12);
   EXPECT_NEAR(slides.x(), previous.x() + 0.05 - mu * push, 1e-12);
 }
 

@@ -44,12 +44,12 @@ expectEqual(report.waistFollows, "skin", "the waist follows the skin on the mesh
 expectAtMost(report.maxDepth, 0.002, "depth inside the body during the motion (issue 4: 2 mm)");
 expectAtMost(report.maxPenetration, 0.006, "penetration of body + 4 mm thickness during the motion");
 if (!(report.armsOpened.maxDegrees > 0)) throw new Error("07_06's hands should have been kept out of the hips");
-// The stated bound: a few edges at the knees, where the ankle-length tube
-// spans the stride between the legs, stretch most (291 % measured; the
-// same skirt 17 % on 07_03, 91 % on 02_01: the hem's path between the legs
-// is chaotic; 251 % before the strain limiter kept pushed points in front
-// of their contact planes).
-expectAtMost(report.maxStretch, 3.0, "stretch");
+// The stated bound: the ankle-length tube spans the stride between the
+// legs, and a few hem edges stretch most (83 % measured; 15-73 % on the
+// other shared walks; the hem's path between the legs is chaotic). Before
+// points a shin had swept more than half through went out where they
+// entered, it was 291 %: the cloth ended on both sides of the shin.
+expectAtMost(report.maxStretch, 1.5, "stretch");
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
 
 // The same skirt on capsules fitted to the body (bridges to the ankles too).
