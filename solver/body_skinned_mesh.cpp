@@ -1131,12 +1131,12 @@ struct MeshBody::Impl {
     return true;
   }
 
-  /// Whether no triangle can have crossed the segment a-b since the last
-  /// update but one: no leaf's swept box meets it. A point that moved along
-  /// it while the surface moved (straight) between those poses then stayed
-  /// on its side. Conservative: a false "no" only costs a query.
-  bool segment_clear(const Vector3d& a, const Vector3d& b) const {
-    const Vector3d d = b - a;
+  /// Visits the leaves whose box meets the segment a + t d, t in [0, 1]:
+  /// their current boxes, or with `over_last_two` their boxes over the last
+  /// two poses. `visit(first, count)` (the leaf's triangles) returns false
+  /// to stop; the result is false when it stopped.
+  template <typename Visit>
+  bool leaves_on_segment(const Vector3d& a, const Vector3d& d, bool over_last_two, Visit visit) const {
     int stack[kStackSize];
     int top = 0;
     stack[top++] = 0;
@@ -1145,12 +1145,22 @@ struct MeshBody::Impl {
       const Node& node = nodes[i];
       for (int k = 0; k < 2; ++k) {
         if (node.count[k] == 0 && node.index[k] < 0) continue;
-        if (!segment_meets_box(a, d, swept[i].lo[k], swept[i].hi[k])) continue;
-        if (node.count[k] > 0) return false;
-        stack[top++] = node.index[k];
+        const float* lo = over_last_two ? swept[i].lo[k] : node.lo[k];
+        const float* hi = over_last_two ? swept[i].hi[k] : node.hi[k];
+        if (!segment_meets_box(a, d, lo, hi)) continue;
+        if (node.count[k] == 0) stack[top++] = node.index[k];
+        else if (!visit(node.index[k], node.count[k])) return false;
       }
     }
     return true;
+  }
+
+  /// Whether no triangle can have crossed the segment a-b since the last
+  /// update but one: no leaf's swept box meets it. A point that moved along
+  /// it while the surface moved (straight) between those poses then stayed
+  /// on its side. Conservative: a false "no" only costs a query.
+  bool segment_clear(const Vector3d& a, const Vector3d& b) const {
+    return leaves_on_segment(a, b - a, true, [](int, int) { return false; });
   }
 
   /// Where segment a-b first enters the surface (in the current pose),
@@ -1161,45 +1171,32 @@ struct MeshBody::Impl {
   bool first_entry(const Vector3d& a, const Vector3d& b, Contact& out) const {
     const Vector3d d = b - a;
     double best = std::numeric_limits<double>::infinity();
-    int stack[kStackSize];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const auto i = static_cast<std::size_t>(stack[--top]);
-      const Node& node = nodes[i];
-      for (int k = 0; k < 2; ++k) {
-        if (node.count[k] == 0 && node.index[k] < 0) continue;
-        if (!segment_meets_box(a, d, node.lo[k], node.hi[k])) continue;
-        if (node.count[k] == 0) {
-          stack[top++] = node.index[k];
-          continue;
-        }
-        for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) {
-          if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
-          // Moller-Trumbore, one-sided: only crossings into the body.
-          const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
-          const Vector3d n = e1.cross(e2);
-          const double facing = d.dot(n);
-          if (!(facing < 0.0)) continue;
-          const Vector3d pv = d.cross(e2);
-          const double det = e1.dot(pv);
-          const Vector3d tv = a - corner(t, 0);
-          const double u = tv.dot(pv) / det;
-          if (u < 0.0 || u > 1.0) continue;
-          const Vector3d qv = tv.cross(e1);
-          const double v = d.dot(qv) / det;
-          if (v < 0.0 || u + v > 1.0) continue;
-          const double s = e2.dot(qv) / det;
-          if (s < 0.0 || s > 1.0 || s >= best) continue;
-          best = s;
-          out.triangle = t;
-          out.b0 = 1.0 - u - v;
-          out.b1 = u;
-          out.b2 = v;
-          out.normal = n.normalized();
-        }
+    leaves_on_segment(a, d, false, [&](int first, int count) {
+      for (int t = first; t < first + count; ++t) {
+        if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
+        // Moller-Trumbore, one-sided: only crossings into the body.
+        const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
+        const Vector3d n = e1.cross(e2);
+        if (!(d.dot(n) < 0.0)) continue;
+        const Vector3d pv = d.cross(e2);
+        const double det = e1.dot(pv);
+        const Vector3d tv = a - corner(t, 0);
+        const double u = tv.dot(pv) / det;
+        if (u < 0.0 || u > 1.0) continue;
+        const Vector3d qv = tv.cross(e1);
+        const double v = d.dot(qv) / det;
+        if (v < 0.0 || u + v > 1.0) continue;
+        const double s = e2.dot(qv) / det;
+        if (s < 0.0 || s > 1.0 || s >= best) continue;
+        best = s;
+        out.triangle = t;
+        out.b0 = 1.0 - u - v;
+        out.b1 = u;
+        out.b2 = v;
+        out.normal = n.normalized();
       }
-    }
+      return true;
+    });
     if (!(best <= 1.0)) return false;
     out.distance = 0.0;
     return true;
