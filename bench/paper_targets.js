@@ -7,8 +7,13 @@
 //   detail: at least 90 % of the high-resolution bending energy kept in the
 //           top-mode region
 // Motions named like a squat are the paper's stated limit: shown, not judged.
-// A result stretched beyond 100 % somewhere is torn, no longer cloth: its
-// distances and energies measure the tear, so it meets no target.
+// A result in which an edge at least doubled in length and opened more than
+// 1 cm (maxTearOpening) is torn: cloth parted around a limb, whose
+// distances and energies measure the tear, so it meets no target; and a
+// torn high-resolution (or equal-size uniform) result voids the checks
+// measured against it. Relative stretch alone is no gate: on edges shorter
+// than the body's 4 mm thickness a collision push of a few millimetres is
+// 100-400 % (the trousers' 2.3 mm edges).
 // The pipeline runs on one core, so its times are one-core times.
 //
 // Usage: mrcloth -q -b bench/paper_targets.js -- OUT_DIR [OUT_DIR ...]
@@ -17,7 +22,7 @@
 
 const TARGETS = {costShare: 0.35, msPerFrame: 33.0, detailKept: 0.90};
 const LIMIT_MOTION = /squat/i;
-const TORN_STRETCH = 1.0;
+const TORN_OPENING = 0.01;  // metres
 
 function fixed(value, digits) {
   return value === undefined || value === null || !isFinite(value) ? "-" : Number(value).toFixed(digits);
@@ -34,11 +39,19 @@ function readReport(folder) {
   }
   for (const key of ["table3", "detail", "uniformEqual", "garment"])
     if (report[key] === undefined) throw new Error(path + ": no \"" + key + "\"; expected the pipeline's report.json");
+  for (const row of report.table3)
+    if (typeof row.maxTearOpening !== "number")
+      throw new Error(path + ": " + row.model + " on " + row.motion + " has no maxTearOpening; expected a report " +
+                      "from a pipeline that measures it (re-run the pipeline without --resume)");
   return report;
 }
 
 function rowOf(rows, motion, model) {
   return rows.find((row) => row.motion === motion && row.model === model);
+}
+
+function torn(row) {
+  return row !== undefined && row.maxTearOpening > TORN_OPENING;
 }
 
 /// One line per (motion, multi-resolution mesh), and the checks it passed.
@@ -51,6 +64,8 @@ function judge(folder, report) {
   for (const motion of motions) {
     const high = rowOf(report.table3, motion, "high");
     const equal = rowOf(report.detail, motion, equalName);
+    const highTorn = torn(high);
+    const equalTorn = torn(rowOf(report.table3, motion, equalName));
     const limit = LIMIT_MOTION.test(motion);
     for (const run of report.table3.filter((row) => row.motion === motion && row.model.startsWith("multires_"))) {
       const detail = rowOf(report.detail, motion, run.model) || {};
@@ -61,8 +76,10 @@ function judge(folder, report) {
         ["closer", equal !== undefined && detail.meanRms < equal.meanRms],
         ["detail", detail.wrinkleKeptRegion >= TARGETS.detailKept],
       ];
-      const torn = !(run.maxStretch <= TORN_STRETCH);
-      if (torn) for (const check of checks) check[1] = false;
+      const runTorn = torn(run);
+      if (runTorn) for (const check of checks) check[1] = false;
+      if (highTorn) for (const check of checks) if (check[0] === "closer" || check[0] === "detail") check[1] = false;
+      if (equalTorn) for (const check of checks) if (check[0] === "closer") check[1] = false;
       const passed = checks.filter((check) => check[1]).map((check) => check[0]);
       const failed = checks.filter((check) => !check[1]).map((check) => check[0]);
       if (!limit) {
@@ -71,10 +88,13 @@ function judge(folder, report) {
       }
       lines.push("| " + [garment, motion, run.model, run.vertices, fixed(run.totalMs, 1), fixed(100 * share, 1) + " %",
                          fixed(1000 * detail.meanRms, 1) + " / " + (equal ? fixed(1000 * equal.meanRms, 1) : "-"),
-                         fixed(100 * detail.wrinkleKeptRegion, 1) + " %", fixed(100 * run.maxStretch, 0) + " %",
+                         fixed(100 * detail.wrinkleKeptRegion, 1) + " %",
+                         fixed(100 * run.maxStretch, 0) + " % / " + fixed(1000 * run.maxTearOpening, 1) + " mm",
                          limit ? "limit motion: not judged" :
-                         torn ? "torn (stretch > " + 100 * TORN_STRETCH + " %): none met" :
-                                 (failed.length === 0 ? "all met" : "missed: " + failed.join(", "))].join(" | ") + " |");
+                         runTorn ? "torn (an edge doubled and opened > " + 1000 * TORN_OPENING + " mm): none met" :
+                                 (failed.length === 0 ? "all met" : "missed: " + failed.join(", ")) +
+                                 (highTorn ? " (high torn: closer, detail void)" : equalTorn ? " (uniform torn: closer void)" : "")]
+                            .join(" | ") + " |");
     }
   }
   return {lines: lines, met: met, judged: judged, folder: folder};
@@ -87,7 +107,7 @@ print("Issue 7 targets per multi-resolution mesh and test motion: cost <= " + 10
       " % of high, speed <= " + TARGETS.msPerFrame + " ms/frame (one core), closer to high than the equal-size uniform " +
       "mesh (mean RMS), detail >= " + 100 * TARGETS.detailKept + " % of high's bending energy in the top-mode region.");
 print("");
-print("| garment | motion | mesh | vertices | ms/frame | % of high | RMS to high mm (uniform) | detail kept | max stretch | targets |");
+print("| garment | motion | mesh | vertices | ms/frame | % of high | RMS to high mm (uniform) | detail kept | max stretch / tear opening | targets |");
 print("|---|---|---|---:|---:|---:|---:|---:|---:|---|");
 let met = 0, judged = 0;
 for (let k = 0; k < folders.length; ++k) {

@@ -4,6 +4,7 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/lumped_mass.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -195,8 +196,14 @@ StretchPeak most_stretched(const DynamicsModel& model, const Positions& full) {
   StretchPeak peak;
   for (const Spring& s : model.springs) {
     if (s.kind != SpringKind::stretch) continue;
-    const double strain = ((full.row(s.i) - full.row(s.j)).norm() - s.rest) / s.rest;
-    if (strain > peak.strain) peak = {strain, s.i, s.j};
+    const double excess = (full.row(s.i) - full.row(s.j)).norm() - s.rest;
+    const double strain = excess / s.rest;
+    if (strain > peak.strain) {
+      peak.strain = strain;
+      peak.i = s.i;
+      peak.j = s.j;
+    }
+    if (strain >= 1.0) peak.tear_opening = std::max(peak.tear_opening, excess);
   }
   return peak;
 }

@@ -109,10 +109,15 @@ QuadMesh mesh_at_positions(const QuadMesh& mesh, const Positions& x);
 double max_stretch(const DynamicsModel& model, const Positions& full);
 
 /// The most stretched stretch spring: its strain (as max_stretch) and end
-/// vertices (full ids; -1 when no spring is stretched).
+/// vertices (full ids; -1 when no spring is stretched); and how far a tear
+/// opened: the largest excess over its rest length (metres) of a spring at
+/// least doubled in length (0 when none is). Relative strain alone calls a
+/// 2 mm edge stretched 4 mm by a collision push "torn"; a spring doubled
+/// and centimetres longer is cloth parted around something.
 struct StretchPeak {
   double strain = 0.0;
   int i = -1, j = -1;
+  double tear_opening = 0.0;
 };
 StretchPeak most_stretched(const DynamicsModel& model, const Positions& full);
 

@@ -31,6 +31,7 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
                    const Positions& x, int frame, SimulationReport& report) {
   report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x));
   const StretchPeak peak = most_stretched(model, x);
+  report.max_tear_opening = std::max(report.max_tear_opening, peak.tear_opening);
   if (peak.strain > report.max_stretch) {
     report.max_stretch = peak.strain;
     report.stretch_vertices[0] = peak.i;

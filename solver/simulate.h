@@ -52,6 +52,7 @@ struct SimulationReport {
   double ms_per_frame_collision = 0.0;
   double ms_per_frame_total = 0.0;
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
+  double max_tear_opening = 0.0;       ///< largest StretchPeak::tear_opening at any output frame, metres (0: no spring ever doubled)
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
   double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres

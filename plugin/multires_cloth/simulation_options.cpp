@@ -292,6 +292,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
                                                  {QStringLiteral("collision"), report.ms_per_frame_collision},
                                                  {QStringLiteral("total"), report.ms_per_frame_total}}},
       {QStringLiteral("maxStretch"), report.max_stretch},
+      {QStringLiteral("maxTearOpening"), report.max_tear_opening},
       {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("maxDepth"), report.max_depth},

@@ -51,7 +51,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 
 /// The script's view of a finished (or cancelled) run: frames, steps,
 /// timeStep, precomputeMs, msPerFrame {dynamics, collision, total},
-/// maxStretch, maxPenetration, nonFinite, cancelled, output, vertices,
+/// maxStretch, maxTearOpening, maxPenetration, nonFinite, cancelled, output, vertices,
 /// freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear,
 /// bend}, perFrameMs [{dynamics, collision}].
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model);

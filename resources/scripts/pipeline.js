@@ -289,7 +289,8 @@ function runPipeline(options) {
   };
   const simulationNumbers = (report) => ({
     vertices: report.vertices, frames: report.frames, msPerFrame: report.msPerFrame,
-    perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxPenetration: report.maxPenetration,
+    perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxTearOpening: report.maxTearOpening,
+    maxPenetration: report.maxPenetration,
     meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
     nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
   });
@@ -457,7 +458,8 @@ function runPipeline(options) {
                                                                    faces: coarseInfo.faces, area: coarseInfo.area},
     table1Instance: {vertices: highRecord.vertices, frames: instanceRecord.frames, seconds: instanceRecord.seconds,
                      msPerFrame: instanceRecord.msPerFrame, maxStretch: instanceRecord.maxStretch,
-                     maxPenetration: instanceRecord.maxPenetration, motion: baseName(options.instance)},
+                     maxTearOpening: instanceRecord.maxTearOpening, maxPenetration: instanceRecord.maxPenetration,
+                     motion: baseName(options.instance)},
     table2Refinement: [{model: "high", vertices: highRecord.vertices, verticesPerLevel: highRecord.verticesPerLevel,
                         milliseconds: highRecord.milliseconds}].concat(
         multiRecord.meshes.map((mesh) => ({model: mesh.name, delta: mesh.delta, vertices: mesh.vertices,
@@ -468,7 +470,8 @@ function runPipeline(options) {
     table3: runs.map((run) => ({motion: run.motion, model: run.model, vertices: run.numbers.vertices,
                                 dynamicsMs: run.numbers.msPerFrame.dynamics,
                                 collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
-                                maxStretch: run.numbers.maxStretch, maxPenetration: run.numbers.maxPenetration,
+                                maxStretch: run.numbers.maxStretch, maxTearOpening: run.numbers.maxTearOpening,
+                                maxPenetration: run.numbers.maxPenetration,
                                 meanRounds: run.numbers.meanRounds, cache: run.cache})),
     detail: detail,
     previews: previewRecord.images,
@@ -577,11 +580,12 @@ function reportMarkdown(report) {
              "; material " + report.options.material + "; " + report.options.fps + " fps.", "");
   lines.push("## Instance (Table 1)", "");
   const t1 = report.table1Instance;
-  lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | max penetration |",
-             "|---|---:|---:|---|---:|---:|---:|---:|",
+  lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | tear opening | max penetration |",
+             "|---|---:|---:|---|---:|---:|---:|---:|---:|",
              "| high (" + report.options.levels + " uniform levels) | " + t1.vertices + " | " + t1.frames + " | " +
                  t1.motion + " | " + fixed(t1.seconds, 1) + " | " + fixed(t1.msPerFrame.total, 1) + " | " +
-                 fixed(100 * t1.maxStretch, 1) + " % | " + fixed(1000 * t1.maxPenetration, 2) + " mm |", "");
+                 fixed(100 * t1.maxStretch, 1) + " % | " + fixed(1000 * t1.maxTearOpening, 1) + " mm | " +
+                 fixed(1000 * t1.maxPenetration, 2) + " mm |", "");
   lines.push("## Refinement (Table 2)", "");
   lines.push("| mesh | delta | vertices | hanging nodes | vertices per level | ms |", "|---|---:|---:|---:|---|---:|");
   for (const row of report.table2Refinement)
@@ -604,12 +608,12 @@ function reportMarkdown(report) {
   const motions = report.table3.map((row) => row.motion).filter((m, k, all) => all.indexOf(m) === k);
   for (const motion of motions) {
     lines.push("### " + motion, "");
-    lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | max penetration |",
-               "|---|---:|---:|---:|---:|---:|---:|");
+    lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | tear opening | max penetration |",
+               "|---|---:|---:|---:|---:|---:|---:|---:|");
     for (const row of report.table3.filter((r) => r.motion === motion))
       lines.push("| " + row.model + " | " + row.vertices + " | " + fixed(row.dynamicsMs, 2) + " | " +
                  fixed(row.collisionMs, 2) + " | " + fixed(row.totalMs, 2) + " | " + fixed(100 * row.maxStretch, 1) +
-                 " % | " + fixed(1000 * row.maxPenetration, 2) + " mm |");
+                 " % | " + fixed(1000 * row.maxTearOpening, 1) + " mm | " + fixed(1000 * row.maxPenetration, 2) + " mm |");
     lines.push("");
   }
   lines.push("## Detail against the high-resolution result", "");

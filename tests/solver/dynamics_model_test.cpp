@@ -98,5 +98,45 @@ TEST(DynamicsModel, BadPinsAreRefused) {
     }
 }
 
+TEST(DynamicsModel, MostStretchedAndTearOpeningAgreeWithBruteForce) {
+  // A 4 x 3 grid (edges 0.1 m) deformed at random, and then with one edge
+  // pulled to 2.5x (a tear 0.15 m open) and another to 1.9x (stretched,
+  // not doubled): strain and opening against a loop over the springs.
+  const DynamicsModel m = build_dynamics(test::make_grid(4, 3, 0.1), {});
+  Positions x = m.rest;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) x.row(v) += 0.004 * Eigen::RowVector3d(std::sin(3.0 * v), std::cos(5.0 * v), 0.5);
+  const auto brute = [&](double& strain, double& opening) {
+    strain = 0.0;
+    opening = 0.0;
+    for (const Spring& s : m.springs) {
+      if (s.kind != SpringKind::stretch) continue;
+      const double length = (x.row(s.i) - x.row(s.j)).norm();
+      strain = std::max(strain, length / s.rest - 1.0);
+      if (length >= 2.0 * s.rest) opening = std::max(opening, length - s.rest);
+    }
+  };
+  double strain = 0.0, opening = 0.0;
+  brute(strain, opening);
+  StretchPeak peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.strain, strain, 1e-12);
+  EXPECT_EQ(peak.tear_opening, 0.0) << "nothing doubled";
+  ASSERT_GT(strain, 0.0);
+  EXPECT_NEAR(max_stretch(m, x), strain, 1e-12);
+  // The last vertex of the grid's first row pulled out along x: its edge
+  // to its neighbour becomes 0.25 m long (2.5x); a vertex of the top row
+  // pulled up to make its vertical edge 0.19 m (1.9x).
+  x = m.rest;
+  x(4, 0) += 0.15;
+  x(19, 1) += 0.09;
+  brute(strain, opening);
+  peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.strain, 1.5, 1e-12);
+  EXPECT_NEAR(peak.strain, strain, 1e-12);
+  EXPECT_NEAR(peak.tear_opening, 0.15, 1e-12);
+  EXPECT_NEAR(peak.tear_opening, opening, 1e-12);
+  EXPECT_EQ(std::min(peak.i, peak.j), 3);
+  EXPECT_EQ(std::max(peak.i, peak.j), 4);
+}
+
 }  // namespace
 }  // namespace mrcloth

@@ -50,6 +50,7 @@ if (!(report.armsOpened.maxDegrees > 0)) throw new Error("07_06's hands should h
 // points a shin had swept more than half through went out where they
 // entered, it was 291 %: the cloth ended on both sides of the shin.
 expectAtMost(report.maxStretch, 1.5, "stretch");
+expectAtMost(report.maxTearOpening, 0.0, "tear opening (an edge at least doubled)");
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
 
 // The same skirt on capsules fitted to the body (bridges to the ankles too).
@@ -66,6 +67,7 @@ if (!(onCapsules.maxWaistError <= 1e-9)) throw new Error("capsules: maxWaistErro
 expectAtMost(onCapsules.maxDepth, 0.002, "the shared skirt on capsules: depth (issue 4: 2 mm)");
 expectAtMost(onCapsules.maxPenetration, 0.006, "the shared skirt on capsules: penetration");
 expectAtMost(onCapsules.maxStretch, 2.5, "the shared skirt on capsules: stretch");
+print("character mesh: the shared skirt on fitted capsules: maxTearOpening " + (1000 * onCapsules.maxTearOpening).toFixed(1) + " mm");
 
 // Capsules fitted to the same body, under the knee-length skirt: the fit
 // centres them in the limbs (twins across the pelvis and chest) and shrinks
