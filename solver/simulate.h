@@ -39,8 +39,8 @@ struct MovingBodies {
 };
 
 struct FrameTiming {
-  double dynamics_ms = 0.0;
-  double collision_ms = 0.0;
+  double dynamics_ms = 0.0;    ///< local/global iterations and strain limiting
+  double collision_ms = 0.0;   ///< posing the moving bodies (skinning, refitting the tree) and resolving contacts
 };
 
 struct SimulationReport {
