@@ -88,7 +88,11 @@ Pose mesh_pose(const SkinnedBody& body, const Skeleton& skeleton);
 /// closed) for points within `thickness` plus a margin of the surface, and
 /// for points deeper inside. resolve() is resolve_point's response, with
 /// friction acting on the motion relative to the surface (the surface's
-/// displacement between the last two update() calls).
+/// displacement between the last two update() calls); a point inside goes
+/// back out, thickness off the triangle, where its way relative to the
+/// surface (`start` carried by the surface's motion, to `position`) first
+/// entered, unless that way enters nowhere or that place is inside the body
+/// too (then, as at the surface, to the nearest surface).
 class MeshBody : public CollisionScene {
  public:
   MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i> triangles, double thickness = 0.004,
