@@ -681,6 +681,10 @@ struct MeshBody::Impl {
   /// cost trade-off (points farther than this outside are clear, deeper
   /// inside go to the unbounded search), never a change of result.
   static constexpr double kMargin = 0.05;
+  /// Beyond this distance from the nearest seen triangle, while some are
+  /// left out, the side comes from the whole mesh (inside_whole_mesh),
+  /// metres: well outside the thickness layer, where pushes are decided.
+  static constexpr double kWholeMeshSideBeyond = 0.01;
 
   /// An internal node holding both children's boxes (one 64-byte line
   /// decides both), stored as floats rounded outwards: a box can only grow,
@@ -1028,7 +1032,12 @@ struct MeshBody::Impl {
     const double distance = std::sqrt(c.d2);
     Vector3d pseudo = pseudo_normal(c.triangle, c.at.feature);
     if (!(pseudo.squaredNorm() > 0.0)) pseudo = face_normal(c.triangle);
-    const bool inside = diff.dot(pseudo) < 0.0;
+    bool inside = diff.dot(pseudo) < 0.0;
+    // With turned triangles left out the seen surface is open, and a point
+    // a few centimetres from it can be nearest to a triangle whose side is
+    // the wrong one (on 08_03 a point 29 mm inside the leg was called 22
+    // mm outside): there the whole closed mesh decides.
+    if (any_ignored && distance > kWholeMeshSideBeyond) inside = inside_whole_mesh(p);
     contact.distance = inside ? -distance : distance;
     // The outward normal is the distance field's gradient, (p - c) / |p - c|
     // (signed), so a push along it lands exactly at the new distance; on the
@@ -1161,6 +1170,33 @@ struct MeshBody::Impl {
   /// on its side. Conservative: a false "no" only costs a query.
   bool segment_clear(const Vector3d& a, const Vector3d& b) const {
     return leaves_on_segment(a, b - a, true, [](int, int) { return false; });
+  }
+
+  /// Whether p is inside the closed mesh, every triangle counted (the
+  /// ignored ones too): the parity of a ray's crossings, the ray in a
+  /// direction no face or edge of a body is likely to be aligned with.
+  bool inside_whole_mesh(const Vector3d& p) const {
+    if (!inside_root(p)) return false;
+    const Vector3d d = Vector3d(0.3170, 0.7412, 0.5918).normalized() * (2.0 * (root_hi - root_lo).norm() + 1.0);
+    int crossings = 0;
+    leaves_on_segment(p, d, false, [&](int first, int count) {
+      for (int t = first; t < first + count; ++t) {
+        const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
+        const Vector3d pv = d.cross(e2);
+        const double det = e1.dot(pv);
+        if (det == 0.0) continue;
+        const Vector3d tv = p - corner(t, 0);
+        const double u = tv.dot(pv) / det;
+        if (u < 0.0 || u > 1.0) continue;
+        const Vector3d qv = tv.cross(e1);
+        const double v = d.dot(qv) / det;
+        if (v < 0.0 || u + v > 1.0) continue;
+        const double s = e2.dot(qv) / det;
+        if (s > 0.0 && s <= 1.0) ++crossings;
+      }
+      return true;
+    });
+    return crossings % 2 == 1;
   }
 
   /// Where segment a-b first enters the surface (in the current pose),

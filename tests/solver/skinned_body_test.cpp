@@ -622,6 +622,39 @@ TEST(MeshBody, IgnoredTrianglesAreNotSurface) {
   EXPECT_NEAR(body.query(above).distance, 0.001, 1e-12);
 }
 
+TEST(MeshBody, FarFromTheSeenSurfaceTheWholeMeshDecidesTheSide) {
+  // The cube with its top face left out: 2-40 cm above the top, a point is
+  // nearest to a side face's top edge, whose pseudo-normal calls it inside.
+  // More than 1 cm from every seen triangle the side comes from the whole
+  // closed mesh: it must agree with the winding number, above the top and
+  // anywhere else.
+  const Mesh cube = subdivided_cube(4);
+  MeshBody body(cube.vertices, cube.triangles, 0.01, 0.3);
+  std::vector<char> top(cube.triangles.size(), 0);
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t) {
+    const Vector3i& tri = cube.triangles[t];
+    top[t] = cube.vertex(tri(0)).z() > 0.999 && cube.vertex(tri(1)).z() > 0.999 && cube.vertex(tri(2)).z() > 0.999;
+  }
+  body.update(cube.vertices, top);
+  for (const double height : {0.02, 0.1, 0.4}) {
+    const Vector3d above(0.1, -0.2, 1.0 + height);
+    EXPECT_GT(body.query(above).distance, 0.0) << height << " m above the open top";
+    EXPECT_EQ(body.depth(above), 0.0);
+    EXPECT_EQ(body.penetration(above), 0.0);
+  }
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> coordinate(-1.3, 1.3);
+  int far = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const Vector3d p(coordinate(rng), coordinate(rng), coordinate(rng));
+    const double distance = body.query(p).distance;
+    if (!(std::abs(distance) > 0.01)) continue;
+    ++far;
+    EXPECT_EQ(distance < 0.0, winding_number(cube, p) > 0.5) << "(" << p.transpose() << ")";
+  }
+  EXPECT_GT(far, 2500);
+}
+
 // ---- the MakeHuman body ----------------------------------------------------------
 
 bool have_body() {
