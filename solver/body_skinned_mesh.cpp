@@ -1181,22 +1181,32 @@ struct MeshBody::Impl {
     int crossings = 0;
     leaves_on_segment(p, d, false, [&](int first, int count) {
       for (int t = first; t < first + count; ++t) {
-        const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
-        const Vector3d pv = d.cross(e2);
-        const double det = e1.dot(pv);
-        if (det == 0.0) continue;
-        const Vector3d tv = p - corner(t, 0);
-        const double u = tv.dot(pv) / det;
-        if (u < 0.0 || u > 1.0) continue;
-        const Vector3d qv = tv.cross(e1);
-        const double v = d.dot(qv) / det;
-        if (v < 0.0 || u + v > 1.0) continue;
-        const double s = e2.dot(qv) / det;
-        if (s > 0.0 && s <= 1.0) ++crossings;
+        SegmentHit hit;
+        if (segment_meets_triangle(p, d, t, hit) && hit.s > 0.0) ++crossings;
       }
       return true;
     });
     return crossings % 2 == 1;
+  }
+
+  /// Where the segment a + s d, s in [0, 1], meets triangle t (Moller-
+  /// Trumbore): its parameter s and barycentrics u, v (of corners 1 and 2).
+  struct SegmentHit {
+    double s = 0.0, u = 0.0, v = 0.0;
+  };
+  bool segment_meets_triangle(const Vector3d& a, const Vector3d& d, int t, SegmentHit& hit) const {
+    const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
+    const Vector3d pv = d.cross(e2);
+    const double det = e1.dot(pv);
+    if (det == 0.0) return false;
+    const Vector3d tv = a - corner(t, 0);
+    hit.u = tv.dot(pv) / det;
+    if (hit.u < 0.0 || hit.u > 1.0) return false;
+    const Vector3d qv = tv.cross(e1);
+    hit.v = d.dot(qv) / det;
+    if (hit.v < 0.0 || hit.u + hit.v > 1.0) return false;
+    hit.s = e2.dot(qv) / det;
+    return hit.s >= 0.0 && hit.s <= 1.0;
   }
 
   /// Where segment a-b first enters the surface (in the current pose),
@@ -1210,25 +1220,15 @@ struct MeshBody::Impl {
     leaves_on_segment(a, d, false, [&](int first, int count) {
       for (int t = first; t < first + count; ++t) {
         if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
-        // Moller-Trumbore, one-sided: only crossings into the body.
-        const Vector3d e1 = corner(t, 1) - corner(t, 0), e2 = corner(t, 2) - corner(t, 0);
-        const Vector3d n = e1.cross(e2);
-        if (!(d.dot(n) < 0.0)) continue;
-        const Vector3d pv = d.cross(e2);
-        const double det = e1.dot(pv);
-        const Vector3d tv = a - corner(t, 0);
-        const double u = tv.dot(pv) / det;
-        if (u < 0.0 || u > 1.0) continue;
-        const Vector3d qv = tv.cross(e1);
-        const double v = d.dot(qv) / det;
-        if (v < 0.0 || u + v > 1.0) continue;
-        const double s = e2.dot(qv) / det;
-        if (s < 0.0 || s > 1.0 || s >= best) continue;
-        best = s;
+        // One-sided: only crossings into the body.
+        const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
+        SegmentHit hit;
+        if (!(d.dot(n) < 0.0) || !segment_meets_triangle(a, d, t, hit) || hit.s >= best) continue;
+        best = hit.s;
         out.triangle = t;
-        out.b0 = 1.0 - u - v;
-        out.b1 = u;
-        out.b2 = v;
+        out.b0 = 1.0 - hit.u - hit.v;
+        out.b1 = hit.u;
+        out.b2 = hit.v;
         out.normal = n.normalized();
       }
       return true;
