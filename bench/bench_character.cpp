@@ -85,18 +85,26 @@ void print(const Row& r) {
 
 int main(int argc, char** argv) {
   BenchOptions b;
-  for (int a = 1; a + 1 < argc; a += 2) {
+  const char* usage =
+      "usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all] "
+      "[--self-contact METRES]\n";
+  for (int a = 1; a < argc; a += 2) {
     const std::string key = argv[a];
+    if (key == "--help" || key == "-h") {
+      std::printf("%s", usage);
+      return 0;
+    }
+    if (a + 1 == argc) {
+      std::fprintf(stderr, "option %s needs a value\n%s", argv[a], usage);
+      return 2;
+    }
     if (key == "--frames") b.frames = std::atoi(argv[a + 1]);
     else if (key == "--preroll") b.preroll = std::atof(argv[a + 1]);
     else if (key == "--garment") b.garment = argv[a + 1];
     else if (key == "--body") b.body = argv[a + 1];
     else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
     else {
-      std::fprintf(stderr,
-                   "unknown option %s\nusage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] "
-                   "[--body capsules|mesh|all] [--self-contact METRES]\n",
-                   argv[a]);
+      std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage);
       return 2;
     }
   }

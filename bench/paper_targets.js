@@ -77,9 +77,11 @@ function judge(folder, report) {
         ["detail", detail.wrinkleKeptRegion >= TARGETS.detailKept],
       ];
       const runTorn = torn(run);
-      if (runTorn) for (const check of checks) check[1] = false;
-      if (highTorn) for (const check of checks) if (check[0] === "closer" || check[0] === "detail") check[1] = false;
-      if (equalTorn) for (const check of checks) if (check[0] === "closer") check[1] = false;
+      // What a tear voids: everything of a torn run; what is measured
+      // against a torn high (closer, detail) or uniform result (closer).
+      const voided = (name) => runTorn || (highTorn && (name === "closer" || name === "detail")) ||
+                               (equalTorn && name === "closer");
+      for (const check of checks) check[1] = check[1] && !voided(check[0]);
       const passed = checks.filter((check) => check[1]).map((check) => check[0]);
       const failed = checks.filter((check) => !check[1]).map((check) => check[0]);
       if (!limit) {
