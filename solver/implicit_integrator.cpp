@@ -144,7 +144,6 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   solver_.factorize(Q);
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
-  sweep_order_ = wavefront_order(model);
   self_contact_.precompute(model, options.self_contact);
   std::vector<char> has_pinned_part(model.num_vertices, 0);
   for (int col = 0; col < model.P.outerSize(); ++col)
@@ -155,6 +154,18 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     if (st.size() == 1 && st[0].weight == 1.0 && !has_pinned_part[v]) direct_free_[v] = st[0].free;
   }
   inverse_mass_ = model.free_mass.cwiseInverse();
+  const double limit = 1.0 + model.material.stretch_limit;
+  sweep_.clear();
+  for (int k : wavefront_order(model)) {
+    const Spring& s = model.springs[static_cast<std::size_t>(k)];
+    LimitedSpring l;
+    const bool direct = direct_free_[s.i] >= 0 && direct_free_[s.j] >= 0;
+    l.fi = direct ? direct_free_[s.i] : -1;
+    l.fj = direct ? direct_free_[s.j] : k;
+    l.max_length = limit * s.rest;
+    l.rest = s.rest;
+    sweep_.push_back(l);
+  }
   const Eigen::Index plane_rows = static_cast<Eigen::Index>(model.free_vertices.size() + model.hanging_vertices.size());
   plane_point_.resize(plane_rows, 3);
   plane_normal_.resize(plane_rows, 3);
@@ -297,13 +308,14 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     return true;
   };
   // Both ends free vertices: plain mass-weighted projection.
-  const auto limit_direct = [&](const Spring& s, int fi, int fj) {
+  const auto limit_direct = [&](const LimitedSpring& s) {
+    const int fi = s.fi, fj = s.fj;
     double e[3], length2 = 0.0;
     for (int c = 0; c < 3; ++c) {
       e[c] = q(fi, c) - q(fj, c);
       length2 += e[c] * e[c];
     }
-    const double max_length = limit * s.rest;
+    const double max_length = s.max_length;
     if (length2 <= max_length * max_length) return false;
     const double length = std::sqrt(length2);
     largest = std::max(largest, (length - max_length) / s.rest);
@@ -334,17 +346,17 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     for (std::size_t f = 0; f < free_count; ++f)
       if (q.row(static_cast<Eigen::Index>(f)) != limited_.row(static_cast<Eigen::Index>(f))) dirty[f] = 1;
   }
-  const auto limit_spring = [&](int k) {
-    const Spring& s = m.springs[k];
-    const int g = general_of_[static_cast<std::size_t>(k)];
-    if (g < 0) {
-      const int fi = direct_free_[s.i], fj = direct_free_[s.j];
-      if (!dirty[static_cast<std::size_t>(fi)] && !dirty[static_cast<std::size_t>(fj)]) return false;
-      if (!limit_direct(s, fi, fj)) return false;
-      dirty[static_cast<std::size_t>(fi)] = dirty[static_cast<std::size_t>(fj)] = 1;
-      moved[static_cast<std::size_t>(fi)] = moved[static_cast<std::size_t>(fj)] = 1;
+  const auto limit_spring = [&](const LimitedSpring& l) {
+    if (l.fi >= 0) {
+      const auto fi = static_cast<std::size_t>(l.fi), fj = static_cast<std::size_t>(l.fj);
+      if (!dirty[fi] && !dirty[fj]) return false;
+      if (!limit_direct(l)) return false;
+      dirty[fi] = dirty[fj] = 1;
+      moved[fi] = moved[fj] = 1;
       return true;
     }
+    const Spring& s = m.springs[static_cast<std::size_t>(l.fj)];
+    const int g = general_of_[static_cast<std::size_t>(l.fj)];
     const GeneralSpring& spring = general_[static_cast<std::size_t>(g)];
     const GeneralTerm* terms = general_terms_.data() + spring.first;
     if (spring.count == 0) return limit_general(s, spring);  // both ends pinned: measured, never moved
@@ -357,13 +369,13 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   };
   // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
   // across the whole cloth in a few sweeps instead of one row per sweep.
-  const std::size_t count = sweep_order_.size();
+  const std::size_t count = sweep_.size();
   for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
     bool any = false;
     if (sweep % 2 == 0)
-      for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_order_[k]);
+      for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_[k]);
     else
-      for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_order_[k]);
+      for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_[k]);
     keep_t_nodes_in_front(q, moved);
     if (options_.active_set) {
       dirty.swap(moved);  // the next sweep evaluates the springs of what moved in this one

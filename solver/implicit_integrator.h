@@ -133,7 +133,17 @@ class ImplicitIntegrator {
   mutable std::vector<char> has_plane_;
   mutable std::vector<int> planes_;
   mutable std::vector<int> t_node_planes_;  // T-node indices (into hanging_vertices) with a plane
-  std::vector<int> sweep_order_;       // stretch springs in strain-limiting order
+  /// A stretch spring as the limiter reads it, in sweep order: one
+  /// contiguous read where the spring, its ends' free indices and its kind
+  /// were four scattered ones (the limiter visits about a million per step
+  /// on an 11088-vertex skirt).
+  struct LimitedSpring {
+    int fi = -1;              // free index of end i if both ends are free vertices; -1: a general spring
+    int fj = -1;              // free index of end j; for a general spring, its index in model.springs
+    double max_length = 0.0;  // (1 + stretch limit) * rest, metres
+    double rest = 0.0;        // metres
+  };
+  std::vector<LimitedSpring> sweep_;   // stretch springs in strain-limiting order
   // The limiter's active set (see limit_strain): per free vertex, moved
   // since its springs were last evaluated / moved in the current sweep; q
   // as the last pass left it; whether the next pass is the step's first.
