@@ -1067,8 +1067,10 @@ struct MeshBody::Impl {
     return out.distance < 0.0;
   }
 
-  /// Every triangle whose box lies within sqrt(radius2) of p (a superset of
-  /// those within that distance), appended to `out`.
+  /// Every triangle whose own box lies within sqrt(radius2) of p (a
+  /// superset of those within that distance), appended to `out` in tree
+  /// order. (A leaf's box lets in all its triangles; each triangle's own
+  /// box then keeps only those within reach.)
   void gather(const Vector3d& p, double radius2, std::vector<int>& out) const {
     int stack[kStackSize];
     int top = 0;
@@ -1079,7 +1081,8 @@ struct MeshBody::Impl {
       for (int k = 0; k < 2; ++k) {
         if (!(box_distance2(node, k, p) <= radius2)) continue;
         if (node.count[k] > 0) {
-          for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) out.push_back(t);
+          for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t)
+            if (triangle_box_distance2(p, t) <= radius2) out.push_back(t);
         } else if (node.index[k] >= 0) {
           stack[top++] = node.index[k];
         }
@@ -1243,12 +1246,12 @@ struct MeshBody::Impl {
     return c.b0 * corner(c.triangle, 0) + c.b1 * corner(c.triangle, 1) + c.b2 * corner(c.triangle, 2);
   }
 
-  /// Whether the side memo->outside records still holds at p: the memo was
-  /// made in this pose or the one before, and no surface crossed the way
-  /// from its centre to p.
-  bool side_carries(const ContactMemo* memo, const Vector3d& p) const {
-    return memo && memo->owner == this && memo->radius > 0.0 && (memo->serial == serial || memo->serial + 1 == serial) &&
-           segment_clear(memo->centre, p);
+  /// Whether memo says its centre was outside in this pose or the one
+  /// before: then that side still holds at a point the way to which no
+  /// surface crossed (segment_clear).
+  bool recently_outside(const ContactMemo* memo) const {
+    return memo && memo->owner == this && memo->radius > 0.0 && memo->outside &&
+           (memo->serial == serial || memo->serial + 1 == serial);
   }
 
   /// Whether `memo` holds this body's triangles near p in the current pose.
@@ -1265,8 +1268,9 @@ struct MeshBody::Impl {
   /// on contacts closer than sqrt(need2) (resolve: thickness) may be told
   /// "none" for an outside point with nothing that close, though a triangle
   /// lies within sqrt(search2).
+  /// `known`, if given, is closest_among(p, memo->items), already found.
   bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo,
-                    double need2 = -1.0) const {
+                    double need2 = -1.0, const Closest* known = nullptr) const {
     if (need2 < 0.0) need2 = search2;
     if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
     const double moved = (p - memo->centre).norm();
@@ -1274,7 +1278,7 @@ struct MeshBody::Impl {
     // centre's (outside) side: what the loop below would conclude.
     if (memo->sided && memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
     const double slack = memo->radius - moved;
-    const Closest c = closest_among(p, memo->items);
+    const Closest c = known ? *known : closest_among(p, memo->items);
     if (c.triangle >= 0 && c.d2 < slack * slack) {
       if (c.d2 < search2) {
         out = signed_contact(p, c);
@@ -1291,19 +1295,18 @@ struct MeshBody::Impl {
   }
 
   /// Remembers the triangles near p (where the point ended a resolve) for
-  /// the later rounds of this pose; `outside_known`: the resolve found p
-  /// clear without a push, so it is outside.
-  void remember(const Vector3d& p, bool outside_known, ContactMemo* memo) const {
-    if (!memo) return;
+  /// the later rounds of this pose, and returns the closest of them
+  /// (triangle -1: none). `outside_known()`: whether p is known to be
+  /// outside (the resolve found it clear without a push; or its way from
+  /// where it was outside crossed no surface); asked only when the
+  /// triangles near p cannot tell, as it may cost a query.
+  template <typename OutsideKnown>
+  Closest remember(const Vector3d& p, OutsideKnown outside_known, ContactMemo* memo) const {
+    if (!memo) return Closest{};
     memo->items.clear();
     memo->radius = -1.0;
     const double radius = thickness + kMemoMargin;
     gather(p, radius * radius, memo->items);
-    // A leaf's box lets in all its triangles; later rounds test only those
-    // whose own box is within reach (still every triangle that is).
-    memo->items.erase(std::remove_if(memo->items.begin(), memo->items.end(),
-                                     [&](int t) { return !(triangle_box_distance2(p, t) <= radius * radius); }),
-                      memo->items.end());
     // Near an ignored (turned) triangle the seen surface is not closed, so
     // "nothing seen near, so on the centre's side" proves nothing: a point
     // passing through the fold would keep an outside it no longer has (the
@@ -1317,14 +1320,15 @@ struct MeshBody::Impl {
     // boxes of most others are rejected at once.
     if (c.triangle >= 0) std::iter_swap(memo->items.begin(), std::find(memo->items.begin(), memo->items.end(), c.triangle));
     if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
-    else if (outside_known && !near_fold) memo->outside = true;
-    else return;  // side unknown: nothing remembered
+    else if (!near_fold && outside_known()) memo->outside = true;
+    else return c;  // side unknown: nothing remembered
     memo->sided = !near_fold;
     memo->centre = p;
     memo->radius = radius;
     memo->clear = c.triangle >= 0 && c.d2 < radius * radius ? std::sqrt(c.d2) : radius;
     memo->owner = this;
     memo->serial = serial;
+    return c;
   }
 
   /// Pushes p out to thickness along the distance's gradient, searching
@@ -1500,19 +1504,26 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // gather); where that cannot say which side the point is on (nothing
   // within reach of the gather), the tree answers and the memo is filled
   // where the point ends.
+  const auto yes = [] { return true; };
+  const auto no = [] { return false; };
   bool reuse = m.memo_applies(memo, position);
+  Impl::Closest near;  // the closest of the memo's triangles, when just gathered at `position`
+  const Impl::Closest* known = nullptr;
   if (memo && !reuse) {
     // A point that was outside stays outside while no surface crossed its
     // way here: with nothing near, the memo then answers without the tree.
-    const bool stays_outside = memo->outside && m.side_carries(memo, position);
-    m.remember(position, stays_outside, memo);
+    const bool was_outside = m.recently_outside(memo);
+    const Vector3d from = memo->centre;
+    near = m.remember(position, [&] { return was_outside && m.segment_clear(from, position); }, memo);
     reuse = m.memo_applies(memo, position);
+    if (reuse) known = &near;
   }
   ContactMemo* refill = reuse ? nullptr : memo;
   Impl::Contact c;
   // Only a contact within thickness (or inside) is acted on.
-  if (!m.contact_with(position, m.reach2, true, c, memo, m.thickness * m.thickness) || !(c.distance - m.thickness < 0.0)) {
-    m.remember(position, true, refill);
+  if (!m.contact_with(position, m.reach2, true, c, memo, m.thickness * m.thickness, known) ||
+      !(c.distance - m.thickness < 0.0)) {
+    m.remember(position, yes, refill);
     return 0.0;
   }
   // Inside, the nearest surface may be the far side of a limb that moved
@@ -1533,7 +1544,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
         double largest = (out - position).norm();
         position = out;
         m.project(position, m.thickness * m.thickness, largest, memo);
-        m.remember(position, false, refill);
+        m.remember(position, no, refill);
         return largest;
       }
     }
@@ -1548,7 +1559,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   double largest = correction;
   if (!friction) {
     m.project(position, m.thickness * m.thickness, largest, memo);
-    m.remember(position, false, refill);
+    m.remember(position, no, refill);
     return largest;
   }
   const Vector3d step = position - start - m.surface_motion(c);
@@ -1563,7 +1574,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // along); pushes from there on are frictionless.
   const double reach = m.thickness + move.norm();
   m.project(position, reach * reach, largest, memo);
-  m.remember(position, false, refill);
+  m.remember(position, no, refill);
   return largest;
 }
 
