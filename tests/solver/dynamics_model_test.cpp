@@ -138,5 +138,21 @@ TEST(DynamicsModel, MostStretchedAndTearOpeningAgreeWithBruteForce) {
   EXPECT_EQ(std::max(peak.i, peak.j), 4);
 }
 
+TEST(DynamicsModel, AnEdgeExactlyDoubledCountsAsATearAndOneJustShortDoesNot) {
+  // Edges of 1/8 m, so positions and lengths are exact binary fractions:
+  // the first row's last vertex pulled out by exactly one edge length
+  // doubles its edge (strain 1 exactly), which counts; one ulp less does not.
+  const DynamicsModel m = build_dynamics(test::make_grid(4, 3, 0.125), {});
+  Positions x = m.rest;
+  x(4, 0) += 0.125;
+  StretchPeak peak = most_stretched(m, x);
+  EXPECT_EQ(peak.strain, 1.0);
+  EXPECT_EQ(peak.tear_opening, 0.125);
+  x(4, 0) = std::nextafter(x(4, 0), 0.0);
+  peak = most_stretched(m, x);
+  EXPECT_LT(peak.strain, 1.0);
+  EXPECT_EQ(peak.tear_opening, 0.0);
+}
+
 }  // namespace
 }  // namespace mrcloth
