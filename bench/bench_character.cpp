@@ -4,7 +4,8 @@
 // split into dynamics and collision, one core, set up as the plugin sets up
 // a run by default (fitted capsules, leg bridges, the waist on the skin, arm
 // clearance, the garment cleared of the skinned body). Prints a table; depth is the deepest vertex below the body's
-// surface at an output frame, tear the largest opening of an edge at least doubled (SimulationReport::max_tear_opening).
+// surface at an output frame, tear the largest opening of an edge at least doubled (SimulationReport::max_tear_opening);
+// then where each row's time went (solve, limiter, posing, first and later collision rounds, rounds per step).
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
 //                        [--self-contact METRES]
@@ -18,6 +19,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -79,6 +81,25 @@ void print(const Row& r) {
               r.body.c_str(), r.vertices, m.ms_per_frame_dynamics, m.ms_per_frame_collision, m.ms_per_frame_total,
               100.0 * m.max_stretch, 1000.0 * m.max_tear_opening, 1000.0 * m.max_depth, m.max_self_crossings,
               m.non_finite ? "NaN!" : "ok");
+}
+
+/// Where each row's time went, ms per output frame: the solve and the
+/// strain limiter (dynamics), posing the body, each step's first collision
+/// round and the later rounds (with cloth-cloth contact's gather).
+void print_parts(const std::vector<Row>& rows) {
+  std::printf("\nwhere the time goes, ms per frame (dynamics = solve + limiter; collision = posing + first round + later rounds)\n\n");
+  std::printf("| %-22s | %-8s | %8s | %8s | %8s | %11s | %12s | %11s |\n", "garment", "body", "solve", "limiter", "posing",
+              "first round", "later rounds", "rounds/step");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
+              std::string(10, '-').c_str(), std::string(10, '-').c_str(), std::string(10, '-').c_str(),
+              std::string(13, '-').c_str(), std::string(14, '-').c_str(), std::string(13, '-').c_str());
+  for (const Row& r : rows) {
+    const SimulationReport& m = r.report.motion;
+    const FrameTiming& t = m.mean_frame;
+    std::printf("| %-22s | %-8s | %8.1f | %8.1f | %8.1f | %11.1f | %12.1f | %11.2f |\n", r.garment.c_str(),
+                r.body.c_str(), t.dynamics_ms - t.limiter_ms, t.limiter_ms, t.posing_ms, t.first_round_ms,
+                t.collision_ms - t.posing_ms - t.first_round_ms, m.mean_rounds);
+  }
 }
 
 }  // namespace
@@ -167,12 +188,18 @@ int main(int argc, char** argv) {
               std::string(11, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str(),
               std::string(11, '-').c_str(), std::string(11, '-').c_str());
   const QuadMesh* garments[] = {&coarse, &high};
+  std::vector<Row> rows;
+  const auto keep = [&](Row row) {  // printed as soon as it is measured
+    print(row);
+    rows.push_back(std::move(row));
+  };
   for (const QuadMesh* g : garments) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
     if (b.garment != "all" && b.garment != (g == &coarse ? "coarse" : "refined")) continue;
     if (b.body == "all" || b.body == "capsules")
-      print(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned, arms));
-    if (b.body == "all" || b.body == "mesh") print(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned, arms));
+      keep(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned, arms));
+    if (b.body == "all" || b.body == "mesh") keep(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned, arms));
   }
+  print_parts(rows);
   return 0;
 }

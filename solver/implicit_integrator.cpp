@@ -519,13 +519,17 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   for (int round = 0; round < options_.collision_rounds; ++round) {
     const auto limit_start = Clock::now();
     const double excess = limit_strain(q);
-    report.dynamics_ms += ms_since(limit_start);
+    const double limit_ms = ms_since(limit_start);
+    report.dynamics_ms += limit_ms;
+    report.limiter_ms += limit_ms;
     const auto collide_start = Clock::now();
     if (self_contact_.enabled()) self_contact_.project(q, pinned_part_);
     report.max_correction = std::max(report.max_correction,
                                      resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
                                                         round == 0 ? nullptr : &settled_));
-    report.collision_ms += ms_since(collide_start);
+    const double collide_ms = ms_since(collide_start);
+    report.collision_ms += collide_ms;
+    if (round == 0) report.first_round_ms = collide_ms;
     ++report.rounds;
     if (round > 0 && excess <= options_.round_tolerance) break;
     settled_ = q;

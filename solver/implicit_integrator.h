@@ -67,6 +67,8 @@ ClothState rest_state(const DynamicsModel& model);
 struct StepReport {
   double dynamics_ms = 0.0;        ///< local/global iterations and strain limiting
   double collision_ms = 0.0;       ///< collision resolution, bodies and cloth-cloth contact
+  double limiter_ms = 0.0;         ///< of dynamics_ms: strain limiting, all rounds
+  double first_round_ms = 0.0;     ///< of collision_ms: the first round (every vertex against the new pose)
   double max_correction = 0.0;     ///< largest collision push-out this step, metres
   int rounds = 0;                  ///< rounds of (strain limiting, collisions) taken
   bool finite = true;              ///< false if any position became NaN or infinite

@@ -95,11 +95,16 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
         // tree's refit) is part of what collision costs.
         const auto pose_start = std::chrono::steady_clock::now();
         bodies.pose(state.time + io.time_step);
-        timing.collision_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pose_start).count();
+        const double posing_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pose_start).count();
+        timing.collision_ms += posing_ms;
+        timing.posing_ms += posing_ms;
       }
       const StepReport step = integrator.step(state, pinned_next, scene);
       timing.dynamics_ms += step.dynamics_ms;
       timing.collision_ms += step.collision_ms;
+      timing.limiter_ms += step.limiter_ms;
+      timing.first_round_ms += step.first_round_ms;
       report.mean_rounds += step.rounds;
       ++report.steps;
       if (!step.finite) {
@@ -119,14 +124,20 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
       break;
     }
   }
+  FrameTiming& mean = report.mean_frame;
   for (const FrameTiming& t : report.per_frame) {
-    report.ms_per_frame_dynamics += t.dynamics_ms;
-    report.ms_per_frame_collision += t.collision_ms;
+    mean.dynamics_ms += t.dynamics_ms;
+    mean.collision_ms += t.collision_ms;
+    mean.limiter_ms += t.limiter_ms;
+    mean.posing_ms += t.posing_ms;
+    mean.first_round_ms += t.first_round_ms;
   }
   if (report.frames > 0) {
-    report.ms_per_frame_dynamics /= report.frames;
-    report.ms_per_frame_collision /= report.frames;
+    for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms})
+      *part /= report.frames;
   }
+  report.ms_per_frame_dynamics = mean.dynamics_ms;
+  report.ms_per_frame_collision = mean.collision_ms;
   report.ms_per_frame_total = report.ms_per_frame_dynamics + report.ms_per_frame_collision;
   if (report.steps > 0) report.mean_rounds /= report.steps;
   // Only a complete, finite run leaves a cache; the writer removes its

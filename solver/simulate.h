@@ -41,6 +41,10 @@ struct MovingBodies {
 struct FrameTiming {
   double dynamics_ms = 0.0;    ///< local/global iterations and strain limiting
   double collision_ms = 0.0;   ///< posing the moving bodies (skinning, refitting the tree) and resolving contacts
+  // Parts of the two, for finding where the time goes:
+  double limiter_ms = 0.0;      ///< of dynamics_ms: strain limiting
+  double posing_ms = 0.0;       ///< of collision_ms: posing the moving bodies
+  double first_round_ms = 0.0;  ///< of collision_ms: each step's first round (every vertex against the new pose)
 };
 
 struct SimulationReport {
@@ -65,6 +69,7 @@ struct SimulationReport {
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)
   std::vector<FrameTiming> per_frame;  ///< timings of every output frame
+  FrameTiming mean_frame;              ///< their mean (dynamics and collision as ms_per_frame_dynamics / _collision)
   std::string cache_path;              ///< the PC2 written, empty if none
 };
 

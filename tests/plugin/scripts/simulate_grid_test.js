@@ -25,7 +25,8 @@ const types = {
   objFiles: "array",
 };
 for (const [key, type] of Object.entries(types)) expectType(report[key], type, "report." + key);
-for (const key of ["dynamics", "collision", "total"]) expectType(report.msPerFrame[key], "number", "msPerFrame." + key);
+for (const key of ["dynamics", "collision", "total", "limiter", "posing", "firstRound"])
+  expectType(report.msPerFrame[key], "number", "msPerFrame." + key);
 for (const key of ["stretch", "shear", "bend"]) expectType(report.springs[key], "number", "springs." + key);
 expectEqual(report.perFrameMs.length, frames, "perFrameMs has one entry per frame");
 // Every step takes at least one round and at most the integrator's 8.
@@ -37,6 +38,13 @@ report.perFrameMs.forEach((timing, frame) => {
 if (report.resultId !== undefined) throw new Error("resultId without updateObject: " + report.resultId);
 expectNear(report.msPerFrame.total, report.msPerFrame.dynamics + report.msPerFrame.collision, 1e-9, "total = dynamics + collision");
 if (!(report.precomputeMs >= 0 && report.msPerFrame.dynamics >= 0)) throw new Error("negative timings");
+// The parts lie within their wholes; a grid with no body poses nothing.
+{
+  const t = report.msPerFrame;
+  if (!(t.limiter > 0 && t.limiter <= t.dynamics)) throw new Error("limiter " + t.limiter + " of dynamics " + t.dynamics);
+  if (!(t.firstRound >= 0 && t.posing + t.firstRound <= t.collision)) throw new Error("parts of collision " + JSON.stringify(t));
+  expectEqual(t.posing, 0, "posing without a body");
+}
 
 // Values.
 expectEqual([report.operation, report.source, report.material], ["simulate", grid, "cotton"], "report header");
