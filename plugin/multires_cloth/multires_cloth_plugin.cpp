@@ -770,7 +770,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
-                      "{dynamics, collision, total}, maxStretch (strain), maxTearOpening (m: the largest excess over its "
+                      "{dynamics, collision, total, and their parts limiter (of dynamics), posing and firstRound (of "
+                      "collision: posing moving bodies, each step's first collision round)}, maxStretch (strain), maxTearOpening (m: the largest excess over its "
                       "rest length of an edge at least doubled, at an output frame; 0: none doubled), meanRounds (strain-limiting and "
                       "collision rounds per step, 1 .. 8: the dynamics cost grows with them), maxPenetration (m: deepest "
                       "vertex inside a collider's surface + thickness at an output frame), maxDepth (m: deepest below "

@@ -50,7 +50,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
                                          SimulationCall call = SimulationCall::simulate);
 
 /// The script's view of a finished (or cancelled) run: frames, steps,
-/// timeStep, precomputeMs, msPerFrame {dynamics, collision, total},
+/// timeStep, precomputeMs, msPerFrame {dynamics, collision, total, limiter,
+/// posing, firstRound},
 /// maxStretch, maxTearOpening, maxPenetration, nonFinite, cancelled, output, vertices,
 /// freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear,
 /// bend}, perFrameMs [{dynamics, collision}].
