@@ -3,7 +3,7 @@
 # writes every file its report names; `mrcloth -b pipeline.js` with the same
 # options gives the same numbers; --resume runs nothing again and reports the
 # same; Ctrl-C stops it with 130 and leaves only complete files, and a resume
-# then finishes the run.
+# then finishes the run; bench/distance_floor.js reproduces its distances.
 #
 # pipeline_test.sh <mrcloth> <resources> <test scripts> <tmp folder>
 set -u
@@ -68,6 +68,13 @@ leftovers=$(find "$tmp/interrupted" -name '.*tmp*')
 grep -q "resumed)" "$tmp/int_resume.out" && ! grep -q "(0 stages run" "$tmp/int_resume.out" ||
   fail "resume after Ctrl-C: $(cat "$tmp/int_resume.out")"
 grep -Eq ", [1-9][0-9]* resumed\)" "$tmp/int_resume.out" || fail "nothing was resumed: $(cat "$tmp/int_resume.out")"
+
+# 6. bench/distance_floor.js re-runs every model as the pipeline did: with
+# no perturbation each distance comes out as the pipeline measured it.
+"$host" -q -b "$resources/../bench/distance_floor.js" -- "$tmp/command" 0 > "$tmp/floor.out" 2> "$tmp/floor.err" ||
+  { fail "distance_floor.js exit code $?"; cat "$tmp/floor.err"; }
+grep -q "every re-run reproduces the pipeline's distances" "$tmp/floor.out" || fail "distance floor: $(cat "$tmp/floor.out")"
+grep -Eq "^\| walk_new \| 0\.0 \| coarse " "$tmp/floor.out" || fail "distance floor table: $(cat "$tmp/floor.out")"
 
 [ "$failed" -eq 0 ] && echo "pipeline: ok"
 exit "$failed"
