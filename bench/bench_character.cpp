@@ -3,9 +3,11 @@
 // (capsules along the bones, the skinned MakeHuman mesh): ms per output frame
 // split into dynamics and collision, one core, set up as the plugin sets up
 // a run by default (fitted capsules, leg bridges, the waist on the skin, arm
-// clearance, the garment cleared of the skinned body). Prints a table; depth is the deepest vertex below the body's
-// surface at an output frame, tear the largest opening of an edge at least doubled (SimulationReport::max_tear_opening);
-// then where each row's time went (solve, limiter, posing, first and later collision rounds, rounds per step).
+// clearance, the garment cleared of the skinned body). Prints a table (depth:
+// the deepest vertex below the body's surface at an output frame; tear: the
+// largest opening of an edge at least doubled, SimulationReport::
+// max_tear_opening), then where each row's time went (solve, limiter, posing,
+// first and later collision rounds, rounds per step).
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
 //                        [--self-contact METRES]
