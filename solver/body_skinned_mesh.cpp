@@ -1540,7 +1540,10 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
     Impl::Contact entry, there;
     if (m.first_entry(start + m.surface_motion(c), position, entry)) {
       const Vector3d out = m.surface_point(entry) + m.thickness * entry.normal;
-      if (!(m.contact(out, m.reach2, true, there) && there.distance < 0.0)) {
+      // The entry triangle lies within thickness of `out`, so the closest
+      // one does too: searching no farther finds the same one, sooner.
+      const double within = m.thickness + 1e-9;
+      if (!(m.contact(out, within * within, true, there) && there.distance < 0.0)) {
         double largest = (out - position).norm();
         position = out;
         m.project(position, m.thickness * m.thickness, largest, memo);
