@@ -39,9 +39,10 @@ struct SurfaceQuery {
 };
 SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p);
 
-/// True when p is certainly farther than thickness from a capsule (outside
-/// its bounding ball grown by the thickness): one dot product, for skipping
-/// the exact query. Always false for planes and spheres.
+/// True when p is certainly farther than thickness from a capsule (farther
+/// from its axis segment than its larger radius plus the thickness): a few
+/// dot products, for skipping the exact query. Always false for planes and
+/// spheres.
 bool surely_clear(const Collider& collider, const Eigen::Vector3d& p);
 
 /// Throws ArgumentError for a non-positive radius, a zero normal, negative

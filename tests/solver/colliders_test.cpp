@@ -152,8 +152,8 @@ std::vector<CapsuleCollider> random_tapered_capsules(std::mt19937& rng, int coun
 // query_surface against closed forms
 
 TEST(SurelyClear, NeverSkipsAPointWithinTheThickness) {
-  // The bounding-ball cull may only skip points the exact query finds
-  // farther than the thickness, and must skip points well outside the ball.
+  // The cull may only skip points the exact query finds farther than the
+  // thickness, and must skip points well away from the axis.
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-0.6, 0.6);
   Collider capsule{CapsuleCollider{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.3, 0.1, 0), 0.12, 0.05}, 0.01, 0.3};
@@ -169,6 +169,27 @@ TEST(SurelyClear, NeverSkipsAPointWithinTheThickness) {
   EXPECT_FALSE(surely_clear(capsule, Eigen::Vector3d(0.15, 0.05, 0.12 + 0.005)));
   EXPECT_FALSE(surely_clear(Collider{SphereCollider{Eigen::Vector3d::Zero(), 0.1}, 0.0, 0.0}, Eigen::Vector3d(5, 0, 0)))
       << "only capsules are culled";
+  // Tighter than a bounding ball: beside the middle of a long capsule,
+  // 2 cm beyond its thickness, well inside the ball round it.
+  const Collider rod{CapsuleCollider{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), 0.05, 0.05}, 0.01, 0.3};
+  EXPECT_TRUE(surely_clear(rod, Eigen::Vector3d(0.5, 0.08, 0)));
+  // A point a push left exactly at the thickness (resting cloth) goes to the
+  // exact query, whatever the rounding of the cull: points pushed out of
+  // the rod and of the tapered capsule are never culled.
+  EXPECT_FALSE(surely_clear(rod, Eigen::Vector3d(0.5, 0.06, 0)));
+  int pushed = 0;
+  for (const Collider& c : {rod, capsule}) {
+    const std::vector<Collider> one{c};
+    for (int i = 0; i < 20000; ++i) {
+      Eigen::Vector3d p(u(rng), u(rng), u(rng));
+      p *= 0.3;
+      p.x() += 0.3;
+      if (resolve_point(one, one, p, p, false) <= 0.0) continue;
+      ++pushed;
+      EXPECT_FALSE(surely_clear(c, p)) << "a point pushed to the thickness was culled: " << p.transpose();
+    }
+  }
+  EXPECT_GT(pushed, 1000);
 }
 
 TEST(QuerySurface, PlaneIsTheSignedDistanceAlongTheNormalisedNormal) {
