@@ -7,8 +7,7 @@
 // where the floor, or a model's change, is as large as the gap between two
 // models, "closer to the high-resolution result" does not tell them apart.
 //
-// Usage (from where the pipeline ran, as its options.json holds paths
-// relative to there):
+// Usage (from where the pipeline ran, as its report holds paths as given):
 //   build/bin/mrcloth -b bench/distance_floor.js -- <pipeline output folder> [perturbation seconds = 0.001]
 // Writes <output>/floor/<model>_<motion>.pc2 (+ .obj) and prints a table.
 // A perturbation of 0 checks that the re-runs are the pipeline's own: every
@@ -22,56 +21,52 @@ const perturbation = args.length > 1 ? Number(args[1]) : 0.001;
 if (!(perturbation >= 0)) throw new Error("the perturbation must be a number of seconds >= 0, got " + args[1]);
 const differences = [];  // with perturbation 0: what did not reproduce
 
-const optionsPath = out + "/stages/options.json";
-if (!core.fileReadable(optionsPath)) throw new Error(optionsPath + " is not readable: expected a pipeline output folder");
-const o = JSON.parse(core.readTextFile(optionsPath));
-const required = (path, what) => {
-  if (!core.fileReadable(path)) throw new Error(what + " " + path + " (from " + optionsPath + ") is not readable here: run from where the pipeline ran");
-  return path;
-};
-// The body as the pipeline gives it (resources/scripts/pipeline.js).
-const body = o.makehuman ? {type: o.body, obj: required(o.makehuman + "/base.obj", "the body"),
-                            skeleton: required(o.makehuman + "/rigs/cmu_mb.mhskel", "the rig"),
-                            weights: required(o.makehuman + "/rigs/default_weights.mhw", "the skin weights")}
-                         : o.body;
-const high = core.loadObject(required(out + "/meshes/high_modes.om", "the high-resolution mesh"));
-const name = (path) => path.split("/").pop().replace(/\.bvh$/i, "");
-core.makePath(out + "/floor");
-
-// The model files as the pipeline names them (resources/scripts/pipeline.js).
-const modelFile = (model) => model === "coarse" ? "meshes/coarse_modes.om"
-                           : model.startsWith("uniform_L") ? "meshes/uniform_equal.om" : "meshes/" + model + ".om";
+// The pipeline's report says what each test run was given and which mesh
+// each model is, so the re-runs are its own runs, not a copy of its rules.
+const reportPath = out + "/report.json";
+if (!core.fileReadable(reportPath)) throw new Error(reportPath + " is not readable: expected a finished pipeline run");
+const report = JSON.parse(core.readTextFile(reportPath));
+if (!report.testSettings || !report.table3.every((row) => row.modelFile))
+  throw new Error(reportPath + " has no testSettings or modelFile: expected a report from a pipeline that records " +
+                  "them (re-run the pipeline)");
 const ms = (x) => (1000 * x).toFixed(1);
+const name = (path) => path.split("/").pop().replace(/\.bvh$/i, "");
+
 print("Mean RMS distance to the pipeline's high-resolution result, mm: as the pipeline measured it, and with the " +
       "pre-roll " + ms(perturbation) + " ms longer (the high-resolution garment itself first: the noise floor).\n");
 print("| motion | high (floor) | models: pipeline -> pre-roll longer |");
 print("|---|---|---|");
-for (const motionPath of o.test) {
+core.makePath(out + "/floor");
+for (const motionPath of report.options.test) {
   const motion = name(motionPath);
-  const reference = out + "/caches/high_" + motion + ".pc2";
-  const comparePath = out + "/stages/compare-" + motion + ".json";
-  if (!core.fileReadable(reference) || !core.fileReadable(comparePath)) {
-    print("| " + motion + " | not compared by the pipeline (" + comparePath + ") | |");
+  const high = report.table3.find((row) => row.motion === motion && row.model === "high");
+  const compared = report.detail.filter((row) => row.motion === motion);
+  if (!high || compared.length === 0) {
+    print("| " + motion + " | not compared by the pipeline | |");
     continue;
   }
-  const options = {motion: {path: required(motionPath, "the motion"), units: o.motionUnits}, body: body, place: o.place,
-                   preroll: o.preroll + perturbation, frames: o.testFrames, fps: o.fps, material: o.material};
-  // Simulates `id` with the longer pre-roll and measures it against the pipeline's high result.
-  const rerun = (id, model) => {
-    const cache = out + "/floor/" + model + "_" + motion + ".pc2";
-    multirescloth.simulate(id, Object.assign({}, options, {output: cache}));
-    return multirescloth.compareResults(id, cache, high, reference).meanRms;
+  const reference = out + "/" + high.cache;
+  const highId = core.loadObject(out + "/" + high.modelFile);
+  const settings = Object.assign({}, report.testSettings, {motion: {path: motionPath, units: report.options.motionUnits},
+                                                           preroll: report.testSettings.preroll + perturbation});
+  // Simulates model `row` with the longer pre-roll; its distance to the pipeline's high result.
+  const rerun = (row) => {
+    const id = row === high ? highId : core.loadObject(out + "/" + row.modelFile);
+    const cache = out + "/floor/" + row.model + "_" + motion + ".pc2";
+    multirescloth.simulate(id, Object.assign({}, settings, {output: cache}));
+    const distance = multirescloth.compareResults(id, cache, highId, reference).meanRms;
+    if (id !== highId) core.deleteObject(id);
+    return distance;
   };
-  const floor = rerun(high, "high");
+  const floor = rerun(high);
   if (perturbation === 0 && floor !== 0) differences.push(motion + ": high is " + ms(floor) + " mm from itself");
-  const models = JSON.parse(core.readTextFile(comparePath)).rows.map((row) => {
-    const id = core.loadObject(required(out + "/" + modelFile(row.model), "the model"));
-    const again = rerun(id, row.model);
-    core.deleteObject(id);
+  const models = compared.map((row) => {
+    const again = rerun(report.table3.find((r) => r.motion === motion && r.model === row.model));
     if (perturbation === 0 && Math.abs(again - row.meanRms) > 1e-12)
       differences.push(motion + ": " + row.model + " " + again + " m, the pipeline measured " + row.meanRms);
     return row.model + " " + ms(row.meanRms) + " -> " + ms(again);
   });
+  core.deleteObject(highId);
   print("| " + motion + " | " + ms(floor) + " | " + models.join(", ") + " |");
 }
 if (perturbation === 0) {

@@ -281,9 +281,11 @@ function runPipeline(options) {
   const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2]}
                          : options.body;
   const motion = (path) => ({path: path, units: options.motionUnits});
+  // What a run on the character is given besides its motion and files.
+  const characterSettings = (frames) => ({body: body, place: options.place, frames: frames, fps: options.fps,
+                                          preroll: options.preroll, material: options.material});
   const onCharacter = (frames, output, bodyOutput) => {
-    const settings = {motion: null, body: body, place: options.place, frames: frames, fps: options.fps,
-                      preroll: options.preroll, material: options.material, output: out + "/" + output};
+    const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
     return settings;
   };
@@ -472,7 +474,10 @@ function runPipeline(options) {
                                 collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
                                 maxStretch: run.numbers.maxStretch, maxTearOpening: run.numbers.maxTearOpening,
                                 maxPenetration: run.numbers.maxPenetration,
-                                meanRounds: run.numbers.meanRounds, cache: run.cache})),
+                                meanRounds: run.numbers.meanRounds, cache: run.cache, modelFile: run.modelFile})),
+    // What every test run was given besides its motion and output (for
+    // re-running one, as bench/distance_floor.js does).
+    testSettings: characterSettings(options.testFrames),
     detail: detail,
     previews: previewRecord.images,
     stages: {ran: stages.ran, skipped: stages.skipped},
