@@ -89,7 +89,7 @@ std::vector<int> parse_sizes(const std::string& text) {
 void print(const Row& r) {
   const SimulationReport& p = r.report;
   std::printf("| %-34s | %8zu | %9.1f | %9.1f | %9.1f | %7.2f %% | %9.2e | %s |\n", r.model.c_str(), r.vertices,
-              p.ms_per_frame_dynamics, p.ms_per_frame_collision, p.ms_per_frame_total, 100.0 * p.max_stretch,
+              p.mean_frame.dynamics_ms, p.mean_frame.collision_ms, p.ms_per_frame_total, 100.0 * p.max_stretch,
               p.max_penetration, p.non_finite ? "NaN!" : "ok");
 }
 

@@ -52,9 +52,7 @@ struct SimulationReport {
   int steps = 0;                       ///< time steps taken
   double time_step = 0.0;              ///< seconds
   double precompute_ms = 0.0;          ///< model factorisation
-  double ms_per_frame_dynamics = 0.0;  ///< mean over frames
-  double ms_per_frame_collision = 0.0;
-  double ms_per_frame_total = 0.0;
+  double ms_per_frame_total = 0.0;     ///< mean_frame's dynamics + collision
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
   double max_tear_opening = 0.0;       ///< largest StretchPeak::tear_opening at any output frame, metres (0: no spring ever doubled)
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
@@ -69,7 +67,7 @@ struct SimulationReport {
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)
   std::vector<FrameTiming> per_frame;  ///< timings of every output frame
-  FrameTiming mean_frame;              ///< their mean (dynamics and collision as ms_per_frame_dynamics / _collision)
+  FrameTiming mean_frame;              ///< their mean, ms per frame
   std::string cache_path;              ///< the PC2 written, empty if none
 };
 

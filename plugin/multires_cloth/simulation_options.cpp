@@ -289,8 +289,8 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("timeStep"), report.time_step},
       {QStringLiteral("precomputeMs"), report.precompute_ms},
       // limiter is part of dynamics; posing and firstRound are parts of collision.
-      {QStringLiteral("msPerFrame"), QVariantMap{{QStringLiteral("dynamics"), report.ms_per_frame_dynamics},
-                                                 {QStringLiteral("collision"), report.ms_per_frame_collision},
+      {QStringLiteral("msPerFrame"), QVariantMap{{QStringLiteral("dynamics"), report.mean_frame.dynamics_ms},
+                                                 {QStringLiteral("collision"), report.mean_frame.collision_ms},
                                                  {QStringLiteral("total"), report.ms_per_frame_total},
                                                  {QStringLiteral("limiter"), report.mean_frame.limiter_ms},
                                                  {QStringLiteral("posing"), report.mean_frame.posing_ms},
