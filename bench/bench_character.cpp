@@ -1,9 +1,10 @@
 // Issue 4's benchmark: the shared MakeHuman skirt, unrefined (720 vertices)
 // and refined uniformly twice (11088), on CMU walk 07_06 with each body kind
 // (capsules along the bones, the skinned MakeHuman mesh): ms per output frame
-// split into dynamics and collision, one core, set up as the plugin sets up
-// a run by default (fitted capsules, leg bridges, the waist on the skin, arm
-// clearance, the garment cleared of the skinned body). Prints a table (depth:
+// split into dynamics and collision, one core, set up by the same calls as
+// the plugin's multirescloth.simulate with its defaults (character_setup.h:
+// fitted capsules, leg bridges, the waist on the skin, arm clearance, the
+// garment cleared of the skinned body). Prints a table (depth:
 // the deepest vertex below the body's surface at an output frame; tear: the
 // largest opening of an edge at least doubled, SimulationReport::
 // max_tear_opening), then where each row's time went (solve, limiter, posing,
@@ -14,7 +15,7 @@
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/uniform_refine.h"
-#include "solver/character_sim.h"
+#include "solver/character_setup.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -43,37 +44,31 @@ struct Row {
   CharacterRunReport report;
 };
 
-Row run(const std::string& name, const QuadMesh& garment, const Eigen::Vector3d& offset, const Motion& motion,
-        PosedBody& body, const std::string& body_name, const BenchOptions& b, const Pose& garment_pose,
-        const SkinnedBody* waist_skin = nullptr, std::shared_ptr<const ArmClearance> arms = nullptr) {
-  QuadMesh placed = copy_mesh(garment);
-  for (auto v : placed.vertices()) placed.point(v) += OpenMesh::Vec3d(offset.x(), offset.y(), offset.z());
-  if (body_name == "mesh") {
-    // As the plugin does on the skinned body: the garment starts clear of
-    // it (these uniform meshes have no T-nodes).
-    CharacterRunOptions start;
-    start.garment_pose = garment_pose;
-    Eigen::MatrixX3d points(static_cast<Eigen::Index>(placed.n_vertices()), 3);
-    for (auto v : placed.vertices()) points.row(v.idx()) << placed.point(v)[0], placed.point(v)[1], placed.point(v)[2];
-    clear_garment_of_body(body, motion, start, points, {});
-    for (auto v : placed.vertices()) placed.set_point(v, OpenMesh::Vec3d(points(v.idx(), 0), points(v.idx(), 1), points(v.idx(), 2)));
-  }
+/// One row: `garment` (as modelled on base.obj) on a character built as
+/// the plugin builds one for `body` (make_character, place_garment,
+/// character_run_options with the plugin's defaults).
+Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, CharacterBodyKind body,
+        const BenchOptions& b) {
+  CharacterSetup setup;
+  setup.body = body;
+  setup.makehuman = makehuman_files(data("bodies/makehuman"));
+  setup.place = GarmentPlacement::makehuman;
+  setup.preroll_seconds = b.preroll;
+  const Character character = make_character(clip, setup, garment);
+  const PlacedGarment placed = place_garment(character, setup, garment);
   DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed, "top");
-  const DynamicsModel model = build_dynamics(placed, d);
+  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  const DynamicsModel model = build_dynamics(placed.mesh, d);
   ClothState state = rest_state(model);
-  CharacterRunOptions o;
-  o.frames = b.frames;
-  o.preroll_seconds = b.preroll;
-  o.garment_pose = garment_pose;  // the A-pose base.obj (and the skirt) were modelled in
-  if (waist_skin) waist_follows_skin(o, *waist_skin, motion, model);  // as the plugin does with MakeHuman
-  o.arm_clearance = std::move(arms);  // as the plugin does by default
-  o.simulation.self_contact.thickness = b.self_contact;
+  SimulationOptions simulation;
+  simulation.frames = b.frames;
+  simulation.self_contact.thickness = b.self_contact;
+  const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
   Row row;
   row.garment = name;
-  row.body = body_name;
-  row.vertices = placed.n_vertices();
-  row.report = simulate_on_character(model, state, motion, body, o);
+  row.body = body == CharacterBodyKind::mesh ? "mesh" : "capsules";
+  row.vertices = placed.mesh.n_vertices();
+  row.report = simulate_on_character(model, state, *character.motion, *character.body, o);
   return row;
 }
 
@@ -137,52 +132,15 @@ int main(int argc, char** argv) {
     return 0;
   }
   BvhReadOptions bvh;
-  bvh.scale = 0.056444;  // CMU units to metres
-  bvh.skip_first_frame = true;
-  const Motion motion = read_bvh(data("motions/cmu_mb/07_06.bvh"), bvh);
-  MakeHumanOptions mh;
-  mh.base_obj = data("bodies/makehuman/base.obj");
-  mh.skeleton_file = data("bodies/makehuman/rigs/cmu_mb.mhskel");
-  mh.weights_file = data("bodies/makehuman/rigs/default_weights.mhw");
-  const SkinnedBody skinned = load_makehuman_body(mh, motion.skeleton);
-
-  CapsuleRig rig = make_capsule_rig(motion.skeleton);
-  fit_capsules_to_body(rig, motion.skeleton, skinned);  // as the plugin fits them
-
+  bvh.scale = 0.056444;         // CMU units to metres
+  bvh.skip_first_frame = false;  // make_character drops CMU's added T-pose
+  const Motion clip = read_bvh(data("motions/cmu_mb/07_06.bvh"), bvh);
   const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
   QuadMesh high = copy_mesh(coarse);
   uniform_refine(high, 2);
-
-  // base.obj x 0.1 + obj_offset is the garment on the body bound to the rest
-  // pose; garment_shift moves it to where the clip starts.
-  CharacterRunOptions reference;
-  const Eigen::Vector3d offset =
-      skinned.obj_offset + garment_shift(motion, reference, rest_pose(motion.skeleton).position(0));
-  const Pose a_pose = mesh_pose(skinned, motion.skeleton);
-  // As the plugin does: shrink the capsules the skirt starts inside of.
-  CharacterRunOptions start;
-  start.garment_pose = a_pose;
-  Eigen::MatrixX3d skirt_points(static_cast<Eigen::Index>(coarse.n_vertices()), 3);
-  for (auto v : coarse.vertices())
-    skirt_points.row(v.idx()) = (Eigen::Vector3d(coarse.point(v)[0], coarse.point(v)[1], coarse.point(v)[2]) + offset).transpose();
-  clear_capsules_for_garment(rig, motion, start, skinned.joint_rest, skirt_points);
-  // As the plugin does by default: bridges between the legs for a skirt
-  // (to the ankles for this one), for both body kinds; judged, as there,
-  // with the skirt where base.obj puts it in the skeleton's rest space.
-  const Eigen::MatrixX3d rest_space = skirt_points.rowwise() - (offset - skinned.obj_offset).transpose();
-  const double reach = automatic_leg_bridges(static_cast<int>(boundary_loops(coarse).size()), rest_space, motion.skeleton);
-  CapsuleRig bridges = make_capsule_rig(motion.skeleton);
-  if (reach > 0.0) {
-    add_leg_bridges(rig, motion.skeleton, reach);
-    add_leg_bridges(bridges, motion.skeleton, reach);
-  }
-  bridges.bones.clear();
-  const auto arms = std::make_shared<const ArmClearance>(
-      make_arm_clearance(motion.skeleton, {}, skinned.rest_vertices, skinned.weights, skinned.joint_rest));
-  CapsulePosedBody capsules(rig, motion.skeleton, skinned.joint_rest);
-  SkinnedPosedBody mesh(skinned, motion.skeleton, 0.004, 0.3, bridges);
-  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core, leg bridges %.0f, cloth-cloth contact %.1f mm\n\n",
-              b.frames, b.preroll, reach, 1000.0 * b.self_contact);
+  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core, set up as "
+              "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm\n\n",
+              b.frames, b.preroll, 1000.0 * b.self_contact);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
               "dyn ms/f", "coll ms/f", "total", "stretch", "tear mm", "depth mm", "crossings");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
@@ -199,8 +157,8 @@ int main(int argc, char** argv) {
     const std::string name = g == &coarse ? "skirt (coarse)" : "skirt (uniform x2)";
     if (b.garment != "all" && b.garment != (g == &coarse ? "coarse" : "refined")) continue;
     if (b.body == "all" || b.body == "capsules")
-      keep(run(name, *g, offset, motion, capsules, "capsules", b, a_pose, &skinned, arms));
-    if (b.body == "all" || b.body == "mesh") keep(run(name, *g, offset, motion, mesh, "mesh", b, a_pose, &skinned, arms));
+      keep(run(name, *g, clip, CharacterBodyKind::capsules, b));
+    if (b.body == "all" || b.body == "mesh") keep(run(name, *g, clip, CharacterBodyKind::mesh, b));
   }
   print_parts(rows);
   return 0;

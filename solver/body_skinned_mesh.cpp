@@ -393,6 +393,14 @@ TrianglePoint closest_on_triangle(const Vector3d& p, const Vector3d& a, const Ve
 
 }  // namespace
 
+MakeHumanOptions makehuman_files(const std::string& folder) {
+  MakeHumanOptions files;
+  files.base_obj = folder + "/base.obj";
+  files.skeleton_file = folder + "/rigs/cmu_mb.mhskel";
+  files.weights_file = folder + "/rigs/default_weights.mhw";
+  return files;
+}
+
 // ---------------------------------------------------------------------------
 // load_makehuman_body
 

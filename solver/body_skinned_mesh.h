@@ -46,6 +46,11 @@ struct MakeHumanOptions {
   std::string weights_file;    ///< rigs/default_weights.mhw (JSON)
 };
 
+/// The three files of a MakeHuman folder laid out as the shared data's
+/// bodies/makehuman: `folder`/base.obj, rigs/cmu_mb.mhskel and
+/// rigs/default_weights.mhw (not checked for existence).
+MakeHumanOptions makehuman_files(const std::string& folder);
+
 /// Loads the MakeHuman body and binds it to `skeleton` (a CMU skeleton in
 /// metres, rest pose = T-pose): a CMU bone's weight is the sum of its
 /// mhskel `weights_reference` bones' weights (`reference` when it has none);

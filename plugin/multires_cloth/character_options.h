@@ -7,6 +7,7 @@
 #include "plugin/core/option_fields.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/body_skinned_mesh.h"
+#include "solver/character_setup.h"
 #include "solver/character_sim.h"
 #include "solver/skeleton.h"
 
@@ -24,47 +25,13 @@
 
 namespace mrcloth {
 
-/// What the pinned waist of a garment on a character follows.
-enum class WaistFollows { automatic, pelvis, skin };
-enum class CharacterBodyType { capsules, mesh };
-
-/// Where the garment's rest positions are, relative to the skeleton's rest
-/// pose (which simulate_on_character needs them in).
-enum class GarmentPlacement {
-  none,        ///< already in the skeleton's rest space
-  makehuman,   ///< modelled on MakeHuman's base.obj (loaded in dm): + SkinnedBody::obj_offset
-  firstFrame,  ///< modelled on the clip's frame 0 (CMU's added T-pose, the embedded walks' T-pose)
-};
-
+/// A character run's options: what solver/character_setup.h sets up, and
+/// where the motion and the body's cache come from.
 struct CharacterRequest {
   QString motionPath;
   double motionScale = 1.0;     ///< metres per BVH unit
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01")
-  bool skipFirst = true;        ///< drop frame 0 (CMU's added T-pose)
-  double motionStart = 0.0;     ///< seconds into the clip (after skipFirst)
-  CharacterBodyType body = CharacterBodyType::capsules;
-  bool hasMakeHuman = false;    ///< the three MakeHuman files were given
-  MakeHumanOptions makehuman;
-  double thickness = 0.004;     ///< body thickness, metres
-  double friction = 0.3;
-  /// Capsule radius overrides by joint name (head, tail), metres; 0 removes the capsule.
-  std::map<std::string, std::pair<double, double>> radii;
-  /// Bridges between the legs (add_leg_bridges): < 0 automatic (down to the
-  /// knees, or the ankles if the garment reaches below them, for a garment
-  /// that is one tube with two boundary loops, none otherwise), 0 none,
-  /// else the reach in bones from the hips (0.5 .. 2).
-  double legBridges = -1.0;
-  /// How the pinned waist moves: rigidly with the pelvis, or skinned like
-  /// the MakeHuman body under it (CharacterRunOptions::waist_weights).
-  /// Automatic: with the skin whenever the MakeHuman body is given (its
-  /// mesh, or capsules fitted to it), else with the pelvis.
-  WaistFollows waistFollows = WaistFollows::automatic;
-  /// Arms opened just enough to keep the hands this far (metres) from the
-  /// hips and thighs (solver/arm_clearance.h); < 0: the clip's arms as they are.
-  double armClearance = ArmClearanceOptions{}.clearance;
-  GarmentPlacement place = GarmentPlacement::none;
-  double prerollSeconds = 1.0;
-  double stepRate = 120.0;      ///< time steps per second
+  CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
 };
 
@@ -77,38 +44,11 @@ QStringList characterOptionKeys();
 /// option); errors name the option.
 CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
 
-/// A loaded character: the motion (kept at a fixed address: the posed body
-/// refers to its skeleton), the collision body, and the rigid transform
-/// taking the garment's rest positions into the skeleton's rest space.
-struct LoadedCharacter {
-  std::unique_ptr<Motion> motion;
-  std::unique_ptr<PosedBody> body;
-  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
-  Pose garmentPose;             ///< the pose the garment was modelled on (empty: the rest pose)
-  int bodyVertices = 0;         ///< skinned mesh vertices (0 for capsules)
-  int bodyCapsules = 0;         ///< capsules (0 for a mesh)
-  double legBridges = 0.0;      ///< the reach of the bridges between the legs, bones (0: none)
-  bool fittedCapsules = false;  ///< capsule radii fitted to the MakeHuman body
-  int capsulesShrunk = 0;       ///< capsules shrunk so the garment starts outside them (clear_capsules_of)
-  /// The MakeHuman body whose skin the waist follows; null: the waist follows the pelvis.
-  std::shared_ptr<const SkinnedBody> waistSkin;
-  /// The hands kept out of the hips (on the body's own proportions); null: off.
-  std::shared_ptr<const ArmClearance> armClearance;
-};
+/// Reads the BVH and builds the character (make_character). Errors name the
+/// option they come from ("option 'motion': <file>:<line>: ...").
+Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
 
-/// Reads the BVH, finds the placement, builds the body (with bridges between
-/// the legs as the request and the garment ask). Errors name the option
-/// they come from ("option 'motion': <file>:<line>: ...").
-LoadedCharacter loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
-
-/// Settings for simulate_on_character from the request, the loaded
-/// character (its garment pose, the skin the waist follows), the garment's
-/// model (its pinned waist) and the run's frames, fps and solver settings
-/// (iterations, gravity, colliders, cache).
-CharacterRunOptions characterRunOptions(const CharacterRequest& request, const LoadedCharacter& character,
-                                        const DynamicsModel& model, const SimulationOptions& simulation);
-
-QString bodyTypeName(CharacterBodyType type);
+QString bodyTypeName(CharacterBodyKind type);
 QString placementName(GarmentPlacement place);
 
 /// What a character run adds to simulate's report: preroll {frames, steps,
@@ -118,6 +58,6 @@ QString placementName(GarmentPlacement place);
 /// capsulesShrunk, waistFollows ("pelvis" | "skin"); with bodyOutput,
 /// bodyCache and bodyMesh (added by the caller once written).
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
-                               const LoadedCharacter& character, const CharacterRunOptions& run);
+                               const Character& character, const CharacterRunOptions& run);
 
 }  // namespace mrcloth

@@ -538,59 +538,20 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
-  const LoadedCharacter character = loadCharacter(wanted, *input.mesh);
+  const Character character = loadCharacter(wanted, *input.mesh);
   const Motion& motion = *character.motion;
 
-  // The garment in the skeleton's rest space; the object itself is untouched.
-  std::shared_ptr<QuadMesh> placed;
-  const QuadMesh* garment = input.mesh.get();
-  if (!character.placement.isApprox(Eigen::Isometry3d::Identity())) {
-    placed = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
-    for (const auto vertex : placed->all_vertices()) {
-      const auto& p = placed->point(vertex);
-      const Eigen::Vector3d moved = character.placement * Eigen::Vector3d(p[0], p[1], p[2]);
-      placed->set_point(vertex, OpenMesh::Vec3d(moved.x(), moved.y(), moved.z()));
-    }
-    garment = placed.get();
-  }
-  // On the skinned body every garment starts outside it, out to its
-  // thickness: a refined garment's new points lie on its flat coarse faces,
-  // chords that cut into the curved body, and garments as modelled touch it
-  // (the MakeHuman trousers' waistband starts 2 mm inside, and a pinned
-  // waist stays where it starts relative to the skin). (Before the strain
-  // limiter kept pushed points in front of their contact planes, moving the
-  // trousers' few touching points made them stretch 802 % instead of 116 %;
-  // now 57 %.) Capsules are shrunk to the garment instead.
-  GarmentClearance clearance;
-  if (wanted.body == CharacterBodyType::mesh) {
-    if (!placed) placed = std::make_shared<QuadMesh>(copy_mesh(*input.mesh));
-    Eigen::MatrixX3d points(static_cast<Eigen::Index>(placed->n_vertices()), 3);
-    for (const auto vertex : placed->vertices()) {
-      const auto& p = placed->point(vertex);
-      points.row(vertex.idx()) << p[0], p[1], p[2];
-    }
-    std::vector<std::array<int, 3>> hanging;
-    const Layers layers = get_layers(*placed);
-    for (const auto vertex : placed->vertices())
-      if (placed->property(layers.hanging, vertex)) {
-        const OpenMesh::Vec2i ends = placed->property(layers.parents, vertex);
-        hanging.push_back({vertex.idx(), ends[0], ends[1]});
-      }
-    CharacterRunOptions start;
-    start.garment_pose = character.garmentPose;
-    start.motion_start = wanted.motionStart;
-    clearance = clear_garment_of_body(*character.body, motion, start, points, hanging);
-    for (const auto vertex : placed->vertices())
-      placed->set_point(vertex, OpenMesh::Vec3d(points(vertex.idx(), 0), points(vertex.idx(), 1), points(vertex.idx(), 2)));
-    garment = placed.get();
-    if (clearance.moved > 0)
-      emit log(LOGINFO, QStringLiteral("%1: %2 garment vertices started inside the body or within its thickness; moved "
-                                       "out (at most %3 mm) before the run")
-                            .arg(slot).arg(clearance.moved).arg(1000.0 * clearance.largest_move, 0, 'f', 1));
-  }
+  // The garment in the skeleton's rest space (on the skinned body, moved
+  // clear of it); the object itself is untouched.
+  const PlacedGarment placed = place_garment(character, wanted.setup, *input.mesh);
+  const QuadMesh* garment = &placed.mesh;
+  if (placed.clearance.moved > 0)
+    emit log(LOGINFO, QStringLiteral("%1: %2 garment vertices started inside the body or within its thickness; moved "
+                                     "out (at most %3 mm) before the run")
+                          .arg(slot).arg(placed.clearance.moved).arg(1000.0 * placed.clearance.largest_move, 0, 'f', 1));
   const DynamicsModel model = build_dynamics(*garment, request.dynamics);
   ClothState state = rest_state(model);
-  const CharacterRunOptions run = characterRunOptions(wanted, character, model, request.simulation);
+  const CharacterRunOptions run = character_run_options(character, wanted.setup, model, request.simulation);
 
   // Warnings a script author can act on before waiting for the run.
   const int pelvis = motion.skeleton.find(run.pelvis_joint);
@@ -605,10 +566,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                        "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
                             .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint)));
   }
-  if (character.capsulesShrunk > 0)
+  if (character.capsules_shrunk > 0)
     emit log(LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
                                      "capsules stand out of the body where it is narrower than a taper)")
-                          .arg(slot).arg(character.capsulesShrunk).arg(character.bodyCapsules));
+                          .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules));
   const double end_time = run.motion_start + run.frames / run.fps;
   if (end_time > motion.duration() + 0.5 / run.fps)
     emit log(LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
@@ -624,8 +585,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                  QStringLiteral("simulation of %1 on %2 (%3, %4 body): %5 vertices, pre-roll %6 s, then %7 frames at %8 fps x %9 "
                                 "substeps, %10, waist %11")
                      .arg(describeObject(input), QFileInfo(wanted.motionPath).fileName(), wanted.motionUnits,
-                          bodyTypeName(wanted.body))
-                     .arg(model.num_vertices).arg(wanted.prerollSeconds).arg(run.frames).arg(run.fps).arg(substeps)
+                          bodyTypeName(wanted.setup.body))
+                     .arg(model.num_vertices).arg(wanted.setup.preroll_seconds).arg(run.frames).arg(run.fps).arg(substeps)
                      .arg(QString::fromStdString(request.dynamics.material.name), request.pinsText),
                  run.frames);
     const SimulationProgress progress = [&](int frames_done, int) {
@@ -664,8 +625,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                        {QStringLiteral("objFiles"), obj_files}});
   last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
   last_report_.insert(QStringLiteral("garmentCleared"),
-                      QVariantMap{{QStringLiteral("vertices"), clearance.moved},
-                                  {QStringLiteral("largestMove"), clearance.largest_move}});
+                      QVariantMap{{QStringLiteral("vertices"), placed.clearance.moved},
+                                  {QStringLiteral("largestMove"), placed.clearance.largest_move}});
   if (!body_mesh.isEmpty())
     last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
   if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);

@@ -139,10 +139,7 @@ TEST(ArmClearance, SkeletonsWithoutCmuArmsAreLeftAlone) {
 TEST(ArmClearance, MakeHumanOnCmuWalkEveryFrameEndsClear) {
   namespace fs = std::filesystem;
   const std::string bvh = test::shared_data("motions/cmu_mb/07_06.bvh");
-  MakeHumanOptions files;
-  files.base_obj = test::shared_data("bodies/makehuman/base.obj");
-  files.skeleton_file = test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel");
-  files.weights_file = test::shared_data("bodies/makehuman/rigs/default_weights.mhw");
+  const MakeHumanOptions files = makehuman_files(test::shared_data("bodies/makehuman"));
   for (const std::string& f : {bvh, files.base_obj, files.skeleton_file, files.weights_file})
     if (!fs::exists(f)) GTEST_SKIP() << "shared data absent: " << f;
   const Motion walk = read_bvh(bvh, {0.056444, true});

@@ -5,3 +5,4 @@ mrcloth_add_gtest(body_test ${CMAKE_CURRENT_LIST_DIR}/skinned_body_test.cpp ${CM
 mrcloth_add_gtest(capsule_rig_test ${CMAKE_CURRENT_LIST_DIR}/capsule_rig_test.cpp LIBS mrcloth::solver)
 mrcloth_add_gtest(body_surface_test ${CMAKE_CURRENT_LIST_DIR}/body_surface_test.cpp LIBS mrcloth::solver)
 mrcloth_add_gtest(arm_clearance_test ${CMAKE_CURRENT_LIST_DIR}/arm_clearance_test.cpp LIBS mrcloth::solver)
+mrcloth_add_gtest(character_setup_test ${CMAKE_CURRENT_LIST_DIR}/character_setup_test.cpp LIBS mrcloth::solver)

@@ -692,11 +692,7 @@ class SkinnedBodyTest : public ::testing::Test {
   static void SetUpTestSuite() {
     if (!have_body()) return;
     motion_ = new Motion(read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, false}));
-    MakeHumanOptions files;
-    files.base_obj = test::shared_data("bodies/makehuman/base.obj");
-    files.skeleton_file = test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel");
-    files.weights_file = test::shared_data("bodies/makehuman/rigs/default_weights.mhw");
-    body_ = new SkinnedBody(load_makehuman_body(files, motion_->skeleton));
+    body_ = new SkinnedBody(load_makehuman_body(makehuman_files(test::shared_data("bodies/makehuman")), motion_->skeleton));
   }
   static void TearDownTestSuite() {
     delete body_;

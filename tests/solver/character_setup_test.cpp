@@ -1,0 +1,141 @@
+// The character set-up the plugin and bench_character share: the root
+// re-centred on where the recording starts with every pose unchanged, the
+// refusals, the garment placed exactly, and on the skinned body cleared of
+// it (the shared MakeHuman data; skipped without it).
+#include "solver/character_setup.h"
+
+#include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "mesh_ops/uniform_refine.h"
+#include "solver/dynamics_model.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace mrcloth {
+namespace {
+
+std::string resource(const std::string& relative) { return std::string(MRCLOTH_RESOURCES) + "/" + relative; }
+std::string shared(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
+
+Motion walk() { return read_bvh(resource("characters/walk_new.bvh"), {}); }
+
+QuadMesh default_skirt() { return load_garment(resource("garments/default_skirt.obj"), {}).mesh; }
+
+TEST(CharacterSetup, WithoutFirstFrameDropsExactlyTheFirst) {
+  const Motion full = walk();
+  const Motion clip = without_first_frame(full);
+  ASSERT_EQ(clip.frames.rows(), full.frames.rows() - 1);
+  EXPECT_EQ(clip.frame_time, full.frame_time);
+  EXPECT_TRUE(clip.frames == full.frames.bottomRows(full.frames.rows() - 1));
+}
+
+TEST(CharacterSetup, RecentringTheRootKeepsEveryPose) {
+  const Motion before = walk();
+  Motion after = before;
+  const Eigen::Vector3d start = pose_at(before, 2.5).position(0);
+  recentre_root(after, start);
+  EXPECT_LT((rest_pose(after.skeleton).position(0) - start).norm(), 1e-12);
+  for (int frame : {0, 1, 300, static_cast<int>(before.frames.rows()) - 1}) {
+    const Pose a = frame_pose(before, frame), b = frame_pose(after, frame);
+    for (std::size_t j = 0; j < before.skeleton.joints.size(); ++j)
+      EXPECT_LT((a.position(static_cast<int>(j)) - b.position(static_cast<int>(j))).norm(), 1e-12)
+          << "joint " << before.skeleton.joints[j].name << " at frame " << frame;
+  }
+}
+
+TEST(CharacterSetup, RefusesWhatItCannotBuild) {
+  const Motion full = walk();
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup mesh_without_files;
+  mesh_without_files.body = CharacterBodyKind::mesh;
+  EXPECT_THROW(make_character(full, mesh_without_files, skirt), ArgumentError);
+  CharacterSetup unknown_joint;
+  unknown_joint.radii["Tail"] = {0.05, 0.05};
+  EXPECT_THROW(make_character(full, unknown_joint, skirt), ArgumentError);
+  CharacterSetup too_late;
+  too_late.motion_start = without_first_frame(full).duration() + 0.1;
+  EXPECT_THROW(make_character(full, too_late, skirt), ArgumentError);
+  CharacterSetup skin_without_files;
+  skin_without_files.waist = WaistFollows::skin;
+  EXPECT_THROW(make_character(full, skin_without_files, skirt), ArgumentError);
+  Motion no_pelvis = full;
+  no_pelvis.skeleton.joints.front().name = "Root";
+  EXPECT_THROW(make_character(no_pelvis, CharacterSetup{}, skirt), ArgumentError);
+}
+
+TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedExactly) {
+  const Motion full = walk();
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup setup;
+  setup.place = GarmentPlacement::first_frame;
+  setup.motion_start = 1.5;
+  const Character character = make_character(full, setup, skirt);
+  // The clip without its T-pose, from where the recording starts.
+  const Motion clip = without_first_frame(full);
+  EXPECT_EQ(character.motion->frames.rows(), clip.frames.rows());
+  EXPECT_LT((rest_pose(character.motion->skeleton).position(0) - pose_at(clip, 1.5).position(0)).norm(), 1e-12);
+  EXPECT_LT((pose_at(*character.motion, 1.5).position(0) - pose_at(clip, 1.5).position(0)).norm(), 1e-12);
+  EXPECT_GT(character.leg_bridges, 0.0) << "a skirt (two boundary loops) gets bridges between the legs";
+  EXPECT_GT(character.body_capsules, 0);
+  EXPECT_TRUE(character.arm_clearance != nullptr);
+  EXPECT_TRUE(character.waist_skin == nullptr) << "no MakeHuman body: the waist follows the pelvis";
+
+  const PlacedGarment placed = place_garment(character, setup, skirt);
+  ASSERT_EQ(placed.mesh.n_vertices(), skirt.n_vertices());
+  EXPECT_EQ(placed.clearance.moved, 0) << "on capsules the capsules are shrunk, the garment is not moved";
+  for (const auto v : skirt.vertices()) {
+    const auto& p = skirt.point(v);
+    const Eigen::Vector3d expected = character.placement * Eigen::Vector3d(p[0], p[1], p[2]);
+    const auto& q = placed.mesh.point(v);
+    EXPECT_EQ(Eigen::Vector3d(q[0], q[1], q[2]), expected) << "vertex " << v.idx();
+  }
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  const DynamicsModel model = build_dynamics(placed.mesh, d);
+  SimulationOptions simulation;
+  simulation.frames = 7;
+  const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
+  EXPECT_EQ(run.frames, 7);
+  EXPECT_EQ(run.motion_start, 1.5);
+  EXPECT_EQ(run.preroll_seconds, setup.preroll_seconds);
+  EXPECT_TRUE(run.waist_weights.empty());
+}
+
+TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {
+  const std::string skirt_path = shared("garments/makehuman/skirthelper.obj");
+  if (!std::filesystem::exists(skirt_path)) GTEST_SKIP() << "shared data absent (" << skirt_path << ")";
+  BvhReadOptions bvh;
+  bvh.scale = 0.056444;
+  const Motion full = read_bvh(shared("motions/cmu_mb/07_06.bvh"), bvh);
+  QuadMesh skirt = load_garment(skirt_path, {"dm"}).mesh;
+  uniform_refine(skirt, 1);
+  CharacterSetup setup;
+  setup.body = CharacterBodyKind::mesh;
+  setup.makehuman = makehuman_files(shared("bodies/makehuman"));
+  setup.place = GarmentPlacement::makehuman;
+  const Character character = make_character(full, setup, skirt);
+  EXPECT_GT(character.body_vertices, 10000);
+  ASSERT_TRUE(character.waist_skin != nullptr);
+  const PlacedGarment placed = place_garment(character, setup, skirt);
+  EXPECT_GT(placed.clearance.moved, 0) << "refined points on flat coarse faces cut into the hips";
+  // The body is left in the garment's pose: nothing is within its thickness.
+  const CollisionScene& scene = character.body->scene();
+  double deepest = 0.0;
+  for (const auto v : placed.mesh.vertices()) {
+    const auto& p = placed.mesh.point(v);
+    deepest = std::max(deepest, scene.penetration(Eigen::Vector3d(p[0], p[1], p[2])));
+  }
+  EXPECT_LT(deepest, 1e-6);
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  const DynamicsModel model = build_dynamics(placed.mesh, d);
+  const CharacterRunOptions run = character_run_options(character, setup, model, SimulationOptions{});
+  EXPECT_EQ(run.waist_weights.size(), model.pinned_vertices.size()) << "the waist follows the skin";
+}
+
+}  // namespace
+}  // namespace mrcloth
