@@ -163,8 +163,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     const QString follows = fields.choice(QStringLiteral("waistFollows"), QStringLiteral("auto"),
                                           {QStringLiteral("auto"), QStringLiteral("pelvis"), QStringLiteral("skin")});
     request.setup.waist = follows == QLatin1String("pelvis") ? WaistFollows::pelvis
-                           : follows == QLatin1String("skin") ? WaistFollows::skin
-                                                              : WaistFollows::automatic;
+                          : follows == QLatin1String("skin")   ? WaistFollows::skin
+                                                               : WaistFollows::automatic;
     if (request.setup.waist == WaistFollows::skin && !request.setup.makehuman)
       fail(QStringLiteral("%1 \"skin\" needs a body to skin by: give the MakeHuman files (obj, skeleton, weights)")
                .arg(fields.label(QStringLiteral("waistFollows"))));
