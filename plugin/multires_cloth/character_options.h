@@ -1,27 +1,18 @@
 #pragma once
 // The character side of multirescloth.simulate and recordInstance: the
 // `motion`, `body`, `place`, `preroll`, `stepRate` and `skipFirst` options
-// checked strictly, then the BVH motion, the collision body and the garment
-// placement they ask for, loaded for solver/character_sim.h. The waist
-// (`waist` / `pins`) is parsed with the other pins in simulation_options.cpp.
+// checked strictly, then the BVH motion read and the character built by
+// solver/character_setup.h (the same calls bench_character makes). The
+// waist (`waist` / `pins`) is parsed with the other pins in
+// simulation_options.cpp.
 #include "plugin/core/option_fields.h"
 #include "mesh_ops/quad_mesh.h"
-#include "solver/body_skinned_mesh.h"
 #include "solver/character_setup.h"
 #include "solver/character_sim.h"
-#include "solver/skeleton.h"
-
-#include <Eigen/Geometry>
 
 #include <QString>
 #include <QStringList>
 #include <QVariantMap>
-
-#include <map>
-#include <memory>
-#include <optional>
-#include <string>
-#include <utility>
 
 namespace mrcloth {
 
