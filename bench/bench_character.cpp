@@ -54,7 +54,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   setup.makehuman = makehuman_files(data("bodies/makehuman"));
   setup.place = GarmentPlacement::makehuman;
   setup.preroll_seconds = b.preroll;
-  const Character character = make_character(clip, setup, garment);
+  Character character = make_character(clip, setup, garment);
   const PlacedGarment placed = place_garment(character, setup, garment);
   DynamicsOptions d;
   d.pinned = boundary_loop_by_name(placed.mesh, "top");

@@ -137,7 +137,7 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
   return character;
 }
 
-PlacedGarment place_garment(const Character& character, const CharacterSetup& setup, const QuadMesh& garment) {
+PlacedGarment place_garment(Character& character, const CharacterSetup& setup, const QuadMesh& garment) {
   PlacedGarment placed{copy_mesh(garment), {}};
   QuadMesh& mesh = placed.mesh;
   if (!character.placement.isApprox(Eigen::Isometry3d::Identity())) {

@@ -106,7 +106,7 @@ struct PlacedGarment {
   QuadMesh mesh;
   GarmentClearance clearance;  ///< what the clearing moved (nothing on capsules)
 };
-PlacedGarment place_garment(const Character& character, const CharacterSetup& setup, const QuadMesh& garment);
+PlacedGarment place_garment(Character& character, const CharacterSetup& setup, const QuadMesh& garment);
 
 /// simulate_on_character's settings for `model` (built from the placed
 /// garment): the garment pose, pre-roll, step rate and motion start from

@@ -538,7 +538,7 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
-  const Character character = loadCharacter(wanted, *input.mesh);
+  Character character = loadCharacter(wanted, *input.mesh);
   const Motion& motion = *character.motion;
 
   // The garment in the skeleton's rest space (on the skinned body, moved

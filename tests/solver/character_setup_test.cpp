@@ -73,7 +73,7 @@ TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedEx
   CharacterSetup setup;
   setup.place = GarmentPlacement::first_frame;
   setup.motion_start = 1.5;
-  const Character character = make_character(full, setup, skirt);
+  Character character = make_character(full, setup, skirt);
   // The clip without its T-pose, from where the recording starts.
   const Motion clip = without_first_frame(full);
   EXPECT_EQ(character.motion->frames.rows(), clip.frames.rows());
@@ -117,7 +117,7 @@ TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {
   setup.body = CharacterBodyKind::mesh;
   setup.makehuman = makehuman_files(shared("bodies/makehuman"));
   setup.place = GarmentPlacement::makehuman;
-  const Character character = make_character(full, setup, skirt);
+  Character character = make_character(full, setup, skirt);
   EXPECT_GT(character.body_vertices, 10000);
   ASSERT_TRUE(character.waist_skin != nullptr);
   const PlacedGarment placed = place_garment(character, setup, skirt);
