@@ -106,11 +106,6 @@ Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   return pose;
 }
 
-Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& options,
-                              const Eigen::Vector3d& authored_root) {
-  return reference_pose(motion, options).position(0) - authored_root;
-}
-
 std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const SkinnedBody& body,
                                                                     const Eigen::MatrixX3d& body_vertices,
                                                                     const Eigen::MatrixX3d& points) {

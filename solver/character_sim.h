@@ -110,13 +110,6 @@ struct CharacterRunReport {
 /// its place relative to the pelvis as posed here.
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
 
-/// Where a garment authored around a body whose root was at `authored_root`
-/// (in the skeleton's space: the rest root for garments modelled on a body
-/// bound to the rest pose, the first frame's root for garments modelled on a
-/// T-pose first frame) must be translated to sit on the reference pose.
-Eigen::Vector3d garment_shift(const Motion& motion, const CharacterRunOptions& options,
-                              const Eigen::Vector3d& authored_root);
-
 /// Per point, the skin weights of the body vertex nearest to it: `points`
 /// (#P x 3, metres) and `body_vertices` (the body's vertices in the same
 /// pose and space, #V x 3). For CharacterRunOptions::waist_weights, with
@@ -183,7 +176,7 @@ Pose character_pose(const Motion& motion, double time, const CharacterRunOptions
                     double* arm_angle = nullptr);
 
 /// Runs the pre-roll and the motion. The model's rest shape must sit on the
-/// reference pose (see garment_shift); its pinned vertices follow the pelvis
+/// reference pose (place_garment in character_setup.h puts it there); its pinned vertices follow the pelvis
 /// joint rigidly from there. `state` starts at rest and is advanced.
 /// The cache (options.simulation.cache_path) holds the motion frames only.
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
