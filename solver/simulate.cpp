@@ -67,6 +67,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.time_step = 1.0 / (options.fps * options.substeps);
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
+  io.collision_rounds = options.collision_rounds;
   io.gravity = options.gravity;
   io.self_contact = options.self_contact;
   report.time_step = io.time_step;

@@ -1,9 +1,11 @@
 #include "test_meshes.h"
 
 #include "mesh_ops/adaptive_refine.h"
+#include "mesh_ops/errors.h"
 #include "mesh_ops/mode_layer.h"
 #include "solver/implicit_integrator.h"
 #include "solver/material.h"
+#include "solver/simulate.h"
 
 #include <gtest/gtest.h>
 
@@ -122,6 +124,25 @@ TEST(ImplicitIntegrator, SheetPinnedAtTwoCornersSettlesWithinTheStretchBound) {
   // Equilibrium: nothing moves more than 1 mm in the last 0.1 s.
   EXPECT_LT((s.positions - before).rowwise().norm().maxCoeff(), 1e-3) << "not settled after 8 s";
   EXPECT_LT(x.col(1).minCoeff(), -0.2) << "the sheet should hang down";
+}
+
+// simulate's collision_rounds reaches the integrator: one round a step when
+// asked, and at least two by default (the first round's friction leaves
+// stretch the second limits).
+TEST(ImplicitIntegrator, SimulateTakesItsRoundsFromTheOptions) {
+  DynamicsOptions d;
+  d.pinned = {0, 10};
+  const DynamicsModel m = build_dynamics(test::make_sheet(11, 0.5), d);
+  SimulationOptions s;
+  s.frames = 3;
+  ClothState state = rest_state(m);
+  EXPECT_GE(simulate(m, state, s).mean_rounds, 2.0);
+  s.collision_rounds = 1;
+  state = rest_state(m);
+  EXPECT_EQ(simulate(m, state, s).mean_rounds, 1.0);
+  s.collision_rounds = 0;
+  state = rest_state(m);
+  EXPECT_THROW(simulate(m, state, s), ArgumentError);
 }
 
 TEST(ImplicitIntegrator, TheLimiterHoldsStretchSpringsAtTheMaterialsLimit) {
