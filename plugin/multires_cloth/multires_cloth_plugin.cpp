@@ -756,7 +756,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text,
         QStringLiteral(
             "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
-            "iterations: int >= 1 = 2 (per step), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
+            "iterations: int >= 1 = 2 (per step), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
+            "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collisions per step, at most; fewer: "
+            "faster, and refined garments on a moving body tear), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
             "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
             "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 2 (stiffness x "
             "2^(alpha (level - 1))), gravity: [x, y, z] m/s^2 = [0, -9.81, 0], pins: vertex ids or a boundary "

@@ -185,7 +185,8 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
-                     QStringLiteral("iterations"), QStringLiteral("material"),   QStringLiteral("alpha"),
+                     QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("collisionRounds"),
+                     QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
                      QStringLiteral("updateObject"), QStringLiteral("selfContact")} +
@@ -217,6 +218,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
   if (!character) sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
+  sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
+  sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
   if (fields.has(QStringLiteral("selfContact"))) {

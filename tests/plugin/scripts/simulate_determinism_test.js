@@ -49,4 +49,17 @@ options.colliders = colliders;
 options.iterations = 5;
 multirescloth.simulate(refined, options);
 if (core.filesEqual(paths[0], options.output)) throw new Error("more iterations wrote the same cache");
+// One collision round a step: a different cache, and the report says one.
+options.output = tmpDir + "/run_one_round.pc2";
+options.iterations = 2;
+options.collisionRounds = 1;
+const oneRound = multirescloth.simulate(refined, options);
+if (oneRound.meanRounds !== 1) throw new Error("collisionRounds 1 took " + oneRound.meanRounds + " rounds a step");
+if (core.filesEqual(paths[0], options.output)) throw new Error("one collision round wrote the same cache");
+// No limiter sweeps at all: a different cache again.
+options.output = tmpDir + "/run_no_sweeps.pc2";
+delete options.collisionRounds;
+options.limiterSweeps = 0;
+multirescloth.simulate(refined, options);
+if (core.filesEqual(paths[0], options.output)) throw new Error("no limiter sweeps wrote the same cache");
 print("simulate determinism: ok");

@@ -14,7 +14,8 @@ const sim = options => () => multirescloth.simulate(grid, options);
 expectThrows(() => multirescloth.simulate(99), "ArgumentError", "multirescloth.simulate: no object with id 99");
 expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options must be an object, got the number 5");
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
-             "accepted: frames, fps, substeps, iterations, material, alpha, alphaBend, gravity, pins, colliders, " +
+             "accepted: frames, fps, substeps, iterations, limiterSweeps, collisionRounds, material, alpha, alphaBend, " +
+             "gravity, pins, colliders, " +
              "output, objSequence, updateObject, selfContact");
 
 // Scalars: wrong types and ranges name the option.
@@ -25,6 +26,9 @@ expectThrows(sim({fps: 0}), "ArgumentError", "option 'fps' must be a number > 0,
 expectThrows(sim({fps: "30"}), "ArgumentError", "option 'fps' must be a finite number");
 expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer >= 1");
 expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer >= 1");
+expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
+expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer >= 1");
+expectThrows(sim({collisionRounds: 1.5}), "ArgumentError", "option 'collisionRounds' must be an integer, got the number 1.5");
 expectThrows(sim({alpha: NaN}), "ArgumentError", "option 'alpha' must be a finite number");
 expectThrows(sim({alphaBend: "1"}), "ArgumentError", "option 'alphaBend' must be a finite number");
 expectThrows(sim({selfContact: 0.05}), "ArgumentError",
