@@ -217,6 +217,18 @@ SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p) {
       collider.shape);
 }
 
+namespace {
+
+/// Squared distance from p to the capsule's axis segment a-b.
+double axis_distance2(const CapsuleCollider& capsule, const Vector3d& p) {
+  const Vector3d axis = capsule.b - capsule.a, offset = p - capsule.a;
+  const double axis2 = axis.squaredNorm();
+  const double t = axis2 > 0.0 ? std::clamp(offset.dot(axis) / axis2, 0.0, 1.0) : 0.0;
+  return (offset - t * axis).squaredNorm();
+}
+
+}  // namespace
+
 bool surely_clear(const Collider& collider, const Eigen::Vector3d& p) {
   const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape);
   if (!capsule) return false;
@@ -226,11 +238,8 @@ bool surely_clear(const Collider& collider, const Eigen::Vector3d& p) {
   // more leaves the points a push put exactly at the thickness (resting
   // cloth) to the exact query, whose rounding may still push them.
   constexpr double kRoundingMargin = 1e-6;  // metres
-  const Vector3d axis = capsule->b - capsule->a, offset = p - capsule->a;
-  const double axis2 = axis.squaredNorm();
-  const double t = axis2 > 0.0 ? std::clamp(offset.dot(axis) / axis2, 0.0, 1.0) : 0.0;
   const double reach = std::max(capsule->radius_a, capsule->radius_b) + collider.thickness + kRoundingMargin;
-  return (offset - t * axis).squaredNorm() > reach * reach;
+  return axis_distance2(*capsule, p) > reach * reach;
 }
 
 void validate_colliders(const std::vector<Collider>& colliders) {
@@ -320,10 +329,7 @@ void colliders_near(const std::vector<Collider>& colliders, const Eigen::Vector3
     // plus thickness plus margin, compared squared.
     double distance2 = 0.0, reach = 0.0;
     if (const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape)) {
-      const Vector3d axis = capsule->b - capsule->a;
-      const double length2 = axis.squaredNorm();
-      const double t = length2 > 0.0 ? std::clamp((p - capsule->a).dot(axis) / length2, 0.0, 1.0) : 0.0;
-      distance2 = (p - (capsule->a + t * axis)).squaredNorm();
+      distance2 = axis_distance2(*capsule, p);
       reach = std::max(capsule->radius_a, capsule->radius_b);
     } else if (const auto* sphere = std::get_if<SphereCollider>(&collider.shape)) {
       distance2 = (p - sphere->center).squaredNorm();
