@@ -80,7 +80,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
 void print(const Row& r) {
   const SimulationReport& m = r.report.motion;
   std::printf("| %-22s | %-8s | %8zu | %9.1f | %9.1f | %9.1f | %7.2f %% | %9.1f | %9.2f | %9d | %s |\n", r.garment.c_str(),
-              r.body.c_str(), r.vertices, m.mean_frame.dynamics_ms, m.mean_frame.collision_ms, m.ms_per_frame_total,
+              r.body.c_str(), r.vertices, m.mean_frame.dynamics_ms, m.mean_frame.collision_ms, m.mean_frame.total_ms(),
               100.0 * m.max_stretch, 1000.0 * m.max_tear_opening, 1000.0 * m.max_depth, m.max_self_crossings,
               m.non_finite ? "NaN!" : "ok");
 }

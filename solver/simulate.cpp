@@ -137,7 +137,6 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms})
       *part /= report.frames;
   }
-  report.ms_per_frame_total = mean.dynamics_ms + mean.collision_ms;
   if (report.steps > 0) report.mean_rounds /= report.steps;
   // Only a complete, finite run leaves a cache; the writer removes its
   // temporary file otherwise.

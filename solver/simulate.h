@@ -46,6 +46,7 @@ struct FrameTiming {
   double limiter_ms = 0.0;      ///< of dynamics_ms: strain limiting
   double posing_ms = 0.0;       ///< of collision_ms: posing the moving bodies
   double first_round_ms = 0.0;  ///< of collision_ms: each step's first round (every vertex against the new pose)
+  double total_ms() const { return dynamics_ms + collision_ms; }
 };
 
 struct SimulationReport {
@@ -53,7 +54,6 @@ struct SimulationReport {
   int steps = 0;                       ///< time steps taken
   double time_step = 0.0;              ///< seconds
   double precompute_ms = 0.0;          ///< model factorisation
-  double ms_per_frame_total = 0.0;     ///< mean_frame's dynamics + collision
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
   double max_tear_opening = 0.0;       ///< largest StretchPeak::tear_opening at any output frame, metres (0: no spring ever doubled)
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres

@@ -291,7 +291,7 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
                    {QStringLiteral("steps"), pre.steps},
                    {QStringLiteral("msPerFrame"), QVariantMap{{QStringLiteral("dynamics"), pre.mean_frame.dynamics_ms},
                                                               {QStringLiteral("collision"), pre.mean_frame.collision_ms},
-                                                              {QStringLiteral("total"), pre.ms_per_frame_total}}},
+                                                              {QStringLiteral("total"), pre.mean_frame.total_ms()}}},
                    {QStringLiteral("maxStretch"), pre.max_stretch},
                    {QStringLiteral("maxPenetration"), pre.max_penetration},
                    {QStringLiteral("maxDepth"), pre.max_depth},

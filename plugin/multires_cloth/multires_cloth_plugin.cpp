@@ -344,7 +344,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
       emit log(LOGINFO, QStringLiteral("simulate: object %1: %2 frames, %3 steps, %4 ms/frame (dynamics %5, "
                                        "collision %6), max stretch %7 %, max penetration %8 mm%9")
                             .arg(input.id).arg(report.frames).arg(report.steps)
-                            .arg(report.ms_per_frame_total, 0, 'f', 2).arg(report.mean_frame.dynamics_ms, 0, 'f', 2)
+                            .arg(report.mean_frame.total_ms(), 0, 'f', 2).arg(report.mean_frame.dynamics_ms, 0, 'f', 2)
                             .arg(report.mean_frame.collision_ms, 0, 'f', 2).arg(100.0 * report.max_stretch, 0, 'f', 2)
                             .arg(1000.0 * report.max_penetration, 0, 'f', 3)
                             .arg(report.cache_path.empty() ? QString()
@@ -651,7 +651,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                      "m%12%13")
                           .arg(slot).arg(input.id).arg(QFileInfo(wanted.motionPath).fileName())
                           .arg(report.preroll.frames).arg(motion_report.frames)
-                          .arg(motion_report.ms_per_frame_total, 0, 'f', 2)
+                          .arg(motion_report.mean_frame.total_ms(), 0, 'f', 2)
                           .arg(motion_report.mean_frame.dynamics_ms, 0, 'f', 2)
                           .arg(motion_report.mean_frame.collision_ms, 0, 'f', 2)
                           .arg(100.0 * motion_report.max_stretch, 0, 'f', 2)
