@@ -1225,28 +1225,51 @@ struct MeshBody::Impl {
   /// outward normal. `out`: that triangle, the crossing's barycentrics and
   /// the triangle's unit normal (distance 0). False when the segment
   /// enters nowhere.
-  bool first_entry(const Vector3d& a, const Vector3d& b, Contact& out) const {
+  /// With `memo` (made in this pose), its triangles answer when they
+  /// certainly include every triangle the segment meets: both ends within
+  /// its radius of its centre (the segment then lies within that ball).
+  bool first_entry(const Vector3d& a, const Vector3d& b, Contact& out, const ContactMemo* memo = nullptr) const {
     const Vector3d d = b - a;
     double best = std::numeric_limits<double>::infinity();
-    leaves_on_segment(a, d, false, [&](int first, int count) {
-      for (int t = first; t < first + count; ++t) {
-        if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
-        // One-sided: only crossings into the body.
-        const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
-        SegmentHit hit;
-        if (!(d.dot(n) < 0.0) || !segment_meets_triangle(a, d, t, hit) || hit.s >= best) continue;
-        best = hit.s;
-        out.triangle = t;
-        out.b0 = 1.0 - hit.u - hit.v;
-        out.b1 = hit.u;
-        out.b2 = hit.v;
-        out.normal = n.normalized();
-      }
-      return true;
-    });
+    // One-sided: only crossings into the body.
+    const auto consider = [&](int t) {
+      if (any_ignored && ignored[static_cast<std::size_t>(t)]) return;
+      const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
+      SegmentHit hit;
+      if (!(d.dot(n) < 0.0) || !segment_meets_triangle(a, d, t, hit) || hit.s >= best) return;
+      best = hit.s;
+      out.triangle = t;
+      out.b0 = 1.0 - hit.u - hit.v;
+      out.b1 = hit.u;
+      out.b2 = hit.v;
+      out.normal = n.normalized();
+    };
+    if (memo_current(memo) && (a - memo->centre).norm() <= memo->radius && (b - memo->centre).norm() <= memo->radius) {
+      for (int t : memo->items) consider(t);
+    } else {
+      leaves_on_segment(a, d, false, [&](int first, int count) {
+        for (int t = first; t < first + count; ++t) consider(t);
+        return true;
+      });
+    }
     if (!(best <= 1.0)) return false;
     out.distance = 0.0;
     return true;
+  }
+
+  /// contact(p, search2, true, out) for a point p whose answer lies within
+  /// sqrt(search2): from `memo`'s triangles when they certainly include
+  /// every triangle that near p (p within radius - sqrt(search2) of the
+  /// memo's centre) and one of them is; else from the tree.
+  bool contact_near(const Vector3d& p, double search2, Contact& out, const ContactMemo* memo) const {
+    if (memo_current(memo) && (p - memo->centre).norm() + std::sqrt(search2) <= memo->radius) {
+      const Closest c = closest_among(p, memo->items);
+      if (c.triangle >= 0 && c.d2 < search2) {
+        out = signed_contact(p, c);
+        return true;
+      }
+    }
+    return contact(p, search2, true, out);
   }
 
   /// The point of a contact's triangle at its barycentrics.
@@ -1260,6 +1283,11 @@ struct MeshBody::Impl {
   bool recently_outside(const ContactMemo* memo) const {
     return memo && memo->owner == this && memo->radius > 0.0 && memo->outside &&
            (memo->serial == serial || memo->serial + 1 == serial);
+  }
+
+  /// Whether `memo` holds this body's triangles gathered in the current pose.
+  bool memo_current(const ContactMemo* memo) const {
+    return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0;
   }
 
   /// Whether `memo` holds this body's triangles near p in the current pose.
@@ -1546,12 +1574,12 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // nearest surface, as below.
   if (c.distance < 0.0) {
     Impl::Contact entry, there;
-    if (m.first_entry(start + m.surface_motion(c), position, entry)) {
+    if (m.first_entry(start + m.surface_motion(c), position, entry, memo)) {
       const Vector3d out = m.surface_point(entry) + m.thickness * entry.normal;
       // The entry triangle lies within thickness of `out`, so the closest
       // one does too: searching no farther finds the same one, sooner.
       const double within = m.thickness + 1e-9;
-      if (!(m.contact(out, within * within, true, there) && there.distance < 0.0)) {
+      if (!(m.contact_near(out, within * within, there, memo) && there.distance < 0.0)) {
         double largest = (out - position).norm();
         position = out;
         m.project(position, m.thickness * m.thickness, largest, memo);

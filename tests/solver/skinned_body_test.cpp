@@ -411,6 +411,43 @@ TEST(MeshBody, AMemoNeverChangesAnAnswer) {
   EXPECT_NEAR(p.y(), 1.02, 1e-12);
 }
 
+TEST(MeshBody, WhereAPointEnteredNextToAnotherPartTheMemoAnswersAsTheTree) {
+  // Two cubes 1 mm apart (as thighs touching): a point just inside the
+  // first whose way came from inside the second entered the first where
+  // the second lies within the thickness, so the entry is refused and the
+  // nearest surface answers; where the way came from outside both, the
+  // entry stands. The memo's triangles answer both queries (the way's
+  // entry and that check) for such shallow points: exactly as the tree.
+  const Mesh a = subdivided_cube(4);
+  Mesh two;
+  two.vertices.resize(2 * a.vertices.rows(), 3);
+  two.vertices << a.vertices, a.vertices.rowwise() + Eigen::RowVector3d(2.001, 0.0, 0.0);
+  two.triangles = a.triangles;
+  for (const Vector3i& t : a.triangles) two.triangles.push_back(t.array() + static_cast<int>(a.vertices.rows()));
+  MeshBody with(two.vertices, two.triangles, 0.002, 0.3), without(two.vertices, two.triangles, 0.002, 0.3);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> across(-0.8, 0.8);
+  int refused = 0, entered = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vector3d p(0.999, across(rng), across(rng));
+    // From inside the second cube (x 1.003), or from above the first's top.
+    const Vector3d start = k % 2 == 0 ? Vector3d(p + Vector3d(0.004, 0.003, 0.0)) : Vector3d(0.999, 1.003, p.z());
+    const Vector3d from = k % 2 == 0 ? p : Vector3d(0.9995, 0.999, p.z());
+    Vector3d x = from, y = from;
+    ContactMemo memo;
+    const double cx = with.resolve(start, x, false, &memo);
+    const double cy = without.resolve(start, y, false);
+    ASSERT_LT((x - y).norm(), 1e-12) << "point " << k;
+    ASSERT_NEAR(cx, cy, 1e-12) << "point " << k;
+    // Refused: pushed straight out of the first cube's side (y unchanged);
+    // entered: out where the way crossed, shifted along the side.
+    if (k % 2 == 0) refused += std::abs(x.y() - p.y()) < 1e-12;
+    else entered += x.y() > 1.0;
+  }
+  EXPECT_EQ(refused, 100) << "an entry next to the other cube is refused";
+  EXPECT_EQ(entered, 100) << "an entry from outside both stands";
+}
+
 TEST(MeshBody, AnOutsideSideCarriesOverOnlyWhereNoSurfaceCrossed) {
   // A memo says which side its point was on; after the body moves, a point
   // with nothing near is taken to be on that side only if no triangle swept
