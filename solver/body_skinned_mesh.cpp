@@ -1186,9 +1186,31 @@ struct MeshBody::Impl {
   /// Whether p is inside the closed mesh, every triangle counted (the
   /// ignored ones too): the parity of a ray's crossings, the ray in a
   /// direction no face or edge of a body is likely to be aligned with.
+  /// The parity of a closed surface's crossings (self-intersecting too) is
+  /// the same along every ray, so the ray leaves by the root box's nearest
+  /// face: out of a leg through its front or back, not up through the torso
+  /// (a third of the boxes to open on a walking body).
   bool inside_whole_mesh(const Vector3d& p) const {
     if (!inside_root(p)) return false;
-    const Vector3d d = Vector3d(0.3170, 0.7412, 0.5918).normalized() * (2.0 * (root_hi - root_lo).norm() + 1.0);
+    int axis = 0;
+    double sign = 1.0, reach = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (p(k) - root_lo(k) < reach) {
+        reach = p(k) - root_lo(k);
+        axis = k;
+        sign = -1.0;
+      }
+      if (root_hi(k) - p(k) < reach) {
+        reach = root_hi(k) - p(k);
+        axis = k;
+        sign = 1.0;
+      }
+    }
+    // Skewed off the axis (fixed, irrational-looking slopes); the axis part
+    // ends a millimetre beyond the face, outside the box.
+    Vector3d d(0.3170, 0.5918, 0.7412);
+    d(axis) = sign;
+    d *= reach + 1e-3;
     int crossings = 0;
     leaves_on_segment(p, d, false, [&](int first, int count) {
       for (int t = first; t < first + count; ++t) {

@@ -1198,5 +1198,47 @@ TEST_F(SkinnedBodyTest, TurnedTrianglesAreTheSkinFoldedBehindBentJoints) {
   EXPECT_GE(agree_with, points * 85 / 100);
 }
 
+// More than 1 cm from the seen skin, with folded triangles left out, a
+// point's side is the parity of the whole surface's crossings along a ray
+// (MeshBody takes the shortest way out of the body's box). On the walking
+// body, self-intersecting where the thighs meet, that parity is the winding
+// number's (an integer off the surface) modulo 2, whichever ray is taken:
+// the oracle, at points all over the body's box and inside the limbs.
+TEST_F(SkinnedBodyTest, FarFromTheSeenSkinTheSideIsTheWholeBodysParity) {
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  const Pose pose = frame_pose(walk, 150);
+  const Mesh mesh{skin(*body_, skeleton(), pose), body_->triangles};
+  const std::vector<char> turned = turned_triangles(*body_, skeleton(), pose, mesh.vertices);
+  ASSERT_GT(std::count(turned.begin(), turned.end(), 1), 0) << "nothing folded: the whole-mesh side is never asked";
+  MeshBody body(mesh.vertices, mesh.triangles, 0.004, 0.3);
+  body.update(mesh.vertices, turned);
+  std::vector<Vector3d> points;
+  Vector3d lo = mesh.vertices.colwise().minCoeff().transpose(), hi = mesh.vertices.colwise().maxCoeff().transpose();
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 300; ++k)
+    points.push_back(lo + Vector3d(unit(rng), unit(rng), unit(rng)).cwiseProduct(hi - lo));
+  // Inside the limbs and trunk: 2-6 cm in from every 41st vertex.
+  std::vector<Vector3d> normal(static_cast<std::size_t>(mesh.vertices.rows()), Vector3d::Zero());
+  for (const Vector3i& t : mesh.triangles) {
+    const Vector3d n = (mesh.vertex(t(1)) - mesh.vertex(t(0))).cross(mesh.vertex(t(2)) - mesh.vertex(t(0)));
+    for (int k = 0; k < 3; ++k) normal[static_cast<std::size_t>(t(k))] += n;
+  }
+  for (std::size_t v = 0; v < normal.size(); v += 41)
+    points.push_back(mesh.vertex(static_cast<int>(v)) - (0.02 + 0.04 * unit(rng)) * normal[v].normalized());
+  int inside = 0, outside = 0;
+  for (const Vector3d& p : points) {
+    const double d = body.query(p).distance;
+    if (!(std::abs(d) > 0.011)) continue;  // near the seen skin its pseudo-normals decide
+    const long winding = std::lround(winding_number(mesh, p));
+    const bool odd = winding % 2 != 0;
+    EXPECT_EQ(d < 0.0, odd) << "(" << p.transpose() << "): " << d << " m from the seen skin, winding number " << winding;
+    (d < 0.0 ? inside : outside) += 1;
+  }
+  EXPECT_GE(inside, 30);
+  EXPECT_GE(outside, 100);
+}
+
 }  // namespace
 }  // namespace mrcloth
