@@ -11,7 +11,7 @@
 // first and later collision rounds, rounds per step).
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
-//                        [--self-contact METRES] [--rounds N] [--sweeps N]
+//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--step-rate HZ]
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
@@ -37,6 +37,7 @@ struct BenchOptions {
   double self_contact = 0.0;    // cloth-cloth contact thickness, metres (0: off, the default)
   int rounds = SimulationOptions{}.collision_rounds;  // rounds of (strain limiting, collisions) per step, at most
   int sweeps = SimulationOptions{}.strain_limit_sweeps;  // limiter sweeps per round
+  double step_rate = CharacterSetup{}.step_rate;  // time steps per second (the plugin's stepRate)
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -57,6 +58,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   setup.makehuman = makehuman_files(data("bodies/makehuman"));
   setup.place = GarmentPlacement::makehuman;
   setup.preroll_seconds = b.preroll;
+  setup.step_rate = b.step_rate;
   Character character = make_character(clip, setup, garment);
   const PlacedGarment placed = place_garment(character, setup, garment);
   DynamicsOptions d;
@@ -110,7 +112,7 @@ int run_benchmark(int argc, char** argv) {
   BenchOptions b;
   const char* usage =
       "usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all] "
-      "[--self-contact METRES] [--rounds N] [--sweeps N]\n";
+      "[--self-contact METRES] [--rounds N] [--sweeps N] [--step-rate HZ]\n";
   for (int a = 1; a < argc; a += 2) {
     const std::string key = argv[a];
     if (key == "--help" || key == "-h") {
@@ -128,6 +130,7 @@ int run_benchmark(int argc, char** argv) {
     else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
     else if (key == "--rounds") b.rounds = std::atoi(argv[a + 1]);
     else if (key == "--sweeps") b.sweeps = std::atoi(argv[a + 1]);
+    else if (key == "--step-rate") b.step_rate = std::atof(argv[a + 1]);
     else {
       std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage);
       return 2;
@@ -145,9 +148,9 @@ int run_benchmark(int argc, char** argv) {
   const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
   QuadMesh high = copy_mesh(coarse);
   uniform_refine(high, 2);
-  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, 120 Hz steps, one core, set up as "
+  std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, one core, set up as "
               "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps\n\n",
-              b.frames, b.preroll, 1000.0 * b.self_contact, b.rounds, b.sweeps);
+              b.frames, b.preroll, b.step_rate, 1000.0 * b.self_contact, b.rounds, b.sweeps);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
               "dyn ms/f", "coll ms/f", "total", "stretch", "tear mm", "depth mm", "crossings");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),
