@@ -117,6 +117,7 @@ void check(const IntegratorOptions& o) {
   if (o.collision_rounds < 1) throw ArgumentError("collision rounds must be >= 1");
   if (!(o.round_tolerance >= 0.0)) throw ArgumentError("the round tolerance must be >= 0");
   if (!o.gravity.allFinite()) throw ArgumentError("gravity must be finite");
+  if (o.threads < 1) throw ArgumentError("threads must be >= 1");
 }
 
 }  // namespace
@@ -142,6 +143,9 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   M.setFromTriplets(diag.begin(), diag.end());
   Q += M;
   solver_.factorize(Q);
+  pool_ = options.threads > 1 ? std::make_shared<WorkerPool>(options.threads) : nullptr;
+  part_pushes_.assign(static_cast<std::size_t>(options.threads), {});
+  part_largest_.assign(static_cast<std::size_t>(options.threads), 0.0);
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
   self_contact_.precompute(model, options.self_contact);
@@ -394,22 +398,52 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
-  // Resolves free vertex f, keeping the plane of its push.
-  const auto resolve_free = [&](Eigen::Index f, bool with_friction) {
+  // Resolves free vertex f and returns its correction; a push goes to
+  // pushed(f, before, after), which keeps its contact plane.
+  const auto resolve_vertex = [&](Eigen::Index f, bool with_friction, auto&& pushed) {
     const Eigen::Vector3d before = q.row(f).transpose();
     Eigen::Vector3d x = before;
     const double correction =
         scene.resolve(q_previous.row(f).transpose(), x, with_friction, &memos_[static_cast<std::size_t>(f)]);
-    largest = std::max(largest, correction);
-    if (correction > 0.0) remember_plane(f, before, x);
+    if (correction > 0.0) pushed(f, before, x);
     q.row(f) = x.transpose();
+    return correction;
+  };
+  const auto keep_plane = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
+    remember_plane(f, before, after);
+  };
+  const auto resolve_free = [&](Eigen::Index f, bool with_friction) {
+    largest = std::max(largest, resolve_vertex(f, with_friction, keep_plane));
   };
   {
-    for (Eigen::Index f = 0; f < q.rows(); ++f) {
-      // A vertex the strain limiter left exactly where the last round put it
-      // is already resolved against this (unchanged) scene.
-      if (settled && q.row(f) == settled->row(f)) continue;
-      resolve_free(f, friction);
+    if (!pool_) {
+      for (Eigen::Index f = 0; f < q.rows(); ++f) {
+        // A vertex the strain limiter left exactly where the last round put
+        // it is already resolved against this (unchanged) scene.
+        if (settled && q.row(f) == settled->row(f)) continue;
+        resolve_free(f, friction);
+      }
+    } else {
+      // The same per vertex, in parts: a vertex's resolve reads and writes
+      // only its own row and memo, so any split gives the same bits. The
+      // planes are recorded afterwards (order does not matter: one per vertex).
+      pool_->run(static_cast<std::size_t>(q.rows()), [&](int part, std::size_t begin, std::size_t end) {
+        std::vector<Push>& pushes = part_pushes_[static_cast<std::size_t>(part)];
+        double& part_largest = part_largest_[static_cast<std::size_t>(part)];
+        pushes.clear();
+        part_largest = 0.0;
+        const auto defer = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
+          pushes.push_back({f, before, after});
+        };
+        for (auto f = static_cast<Eigen::Index>(begin); f < static_cast<Eigen::Index>(end); ++f) {
+          if (settled && q.row(f) == settled->row(f)) continue;
+          part_largest = std::max(part_largest, resolve_vertex(f, friction, defer));
+        }
+      });
+      for (std::size_t part = 0; part < part_pushes_.size(); ++part) {
+        largest = std::max(largest, part_largest_[part]);
+        for (const Push& push : part_pushes_[part]) remember_plane(push.free, push.before, push.after);
+      }
     }
     // A T-node can be inside while its parents are outside (the collider is
     // curved): push its free stencil by the correction, mass-weighted.

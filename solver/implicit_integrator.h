@@ -34,9 +34,11 @@
 #include "dynamics_model.h"
 #include "self_contact.h"
 #include "sparse_ldlt3.h"
+#include "worker_pool.h"
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace mrcloth {
@@ -51,6 +53,7 @@ struct IntegratorOptions {
   bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
   SelfContactOptions self_contact;              ///< cloth-cloth contact (self_contact.h), projected in every round before the body collisions; thickness 0: off
   bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
+  int threads = 1;                              ///< threads resolving the vertices' collisions, >= 1; the same bits for any count (each vertex's resolve is its own)
 };
 
 /// State in free coordinates (rows follow DynamicsModel::free_vertices).
@@ -127,6 +130,18 @@ class ImplicitIntegrator {
   mutable Positions full_, force_;     // scratch, #V x 3
   Positions settled_;                  // scratch: q after the last collision round of this step
   mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between rounds
+  /// Threads for the free vertices' resolves (null: options_.threads is 1);
+  /// shared so the integrator stays copyable (copies take turns, never
+  /// running two loops at once).
+  std::shared_ptr<WorkerPool> pool_;
+  /// A collision push found by a pool part, recorded as a contact plane
+  /// after the loop (remember_plane appends to planes_).
+  struct Push {
+    Eigen::Index free;
+    Eigen::Vector3d before, after;
+  };
+  mutable std::vector<std::vector<Push>> part_pushes_;  // per pool part
+  mutable std::vector<double> part_largest_;            // per pool part: its largest correction
   mutable std::vector<char> moved_, check_;  // per free vertex: moved by a T-node's push (reused, not reallocated per round)
   // Per free vertex, then per T-node: the contact plane of its last push
   // this step (point on it, unit outward normal); has_plane_ marks those

@@ -68,6 +68,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.collision_rounds = options.collision_rounds;
+  io.threads = options.threads;
   io.gravity = options.gravity;
   io.self_contact = options.self_contact;
   report.time_step = io.time_step;
