@@ -14,7 +14,8 @@
 // measured against it. Relative stretch alone is no gate: on edges shorter
 // than the body's 4 mm thickness a collision push of a few millimetres is
 // 100-400 % (the trousers' 2.3 mm edges).
-// The pipeline runs on one core, so its times are one-core times.
+// The pipeline runs on one core by default (--threads 1), so its times are
+// one-core times; a report run with more threads is refused.
 //
 // Usage: mrcloth -q -b bench/paper_targets.js -- OUT_DIR [OUT_DIR ...]
 //   (bench/paper_targets.sh runs the pipeline first when asked to)
@@ -39,6 +40,10 @@ function readReport(folder) {
   }
   for (const key of ["table3", "detail", "uniformEqual", "garment"])
     if (report[key] === undefined) throw new Error(path + ": no \"" + key + "\"; expected the pipeline's report.json");
+  const threads = report.testSettings && report.testSettings.threads !== undefined ? report.testSettings.threads : 1;
+  if (threads !== 1)
+    throw new Error(path + ": run with --threads " + threads + "; the targets are one core's times: re-run the " +
+                    "pipeline with --threads 1");
   for (const row of report.table3)
     if (typeof row.maxTearOpening !== "number")
       throw new Error(path + ": " + row.model + " on " + row.motion + " has no maxTearOpening; expected a report " +

@@ -7,6 +7,7 @@
 #include "plugin/core/script_values.h"
 #include "solver/colliders.h"
 #include "solver/material.h"
+#include "solver/worker_pool.h"
 
 #include <QDir>
 #include <QFileInfo>
@@ -189,7 +190,7 @@ QStringList simulationOptionKeys() {
                      QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
-                     QStringLiteral("updateObject"), QStringLiteral("selfContact")} +
+                     QStringLiteral("updateObject"), QStringLiteral("selfContact"), QStringLiteral("threads")} +
          characterOptionKeys();
 }
 
@@ -220,6 +221,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
   sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
+  sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
   if (fields.has(QStringLiteral("selfContact"))) {

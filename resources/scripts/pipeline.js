@@ -46,6 +46,8 @@ const USAGE = [
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
   "  --test-frames N        frames per test motion, >= 1 [60]",
   "  --preroll S            seconds from the rest pose to each motion's start, >= 0 [1]",
+  "  --threads N            threads resolving collisions, >= 0 (0: one per core); the same results,",
+  "                         but the reported times are then no longer one core's [1]",
   "Output:",
   "  --out DIR              output folder, created if missing [pipeline_out]",
   "  --resume               skip stages whose outputs are complete (same options only)",
@@ -70,7 +72,7 @@ const DEFAULTS = {
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
-  preroll: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
+  preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
                "-h": "help"};
@@ -79,6 +81,7 @@ const VALUED = {
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
+  "--threads": "threads",
   "--size": "size",
 };
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
@@ -129,6 +132,7 @@ function parseOptions(args) {
       case "modes": options.modes = integerOption(name, text, 1); break;
       case "instanceFrames": options.instanceFrames = integerOption(name, text, 2); break;
       case "testFrames": options.testFrames = integerOption(name, text, 1); break;
+      case "threads": options.threads = integerOption(name, text, 0); break;
       case "fps": options.fps = numberOption(name, text, 0, true); break;
       case "preroll": options.preroll = numberOption(name, text, 0, false); break;
       case "delta": {
@@ -283,7 +287,8 @@ function runPipeline(options) {
   const motion = (path) => ({path: path, units: options.motionUnits});
   // What a run on the character is given besides its motion and files.
   const characterSettings = (frames) => ({body: body, place: options.place, frames: frames, fps: options.fps,
-                                          preroll: options.preroll, material: options.material});
+                                          preroll: options.preroll, material: options.material,
+                                          threads: options.threads});
   const onCharacter = (frames, output, bodyOutput) => {
     const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;

@@ -79,7 +79,7 @@ for (const [key, value] of [["body", "capsules"], ["place", "makehuman"], ["wais
                             ["stepRate", 240], ["skipFirst", false]])
   expectThrows(sim({[key]: value}), "ArgumentError", "option '" + key + "' needs option 'motion'");
 expectThrows(sim({motions: walk}), "ArgumentError", "unknown option 'motions'",
-             "updateObject, selfContact, motion, body, place, waist, preroll, stepRate, skipFirst");
+             "updateObject, selfContact, threads, motion, body, place, waist, preroll, stepRate, skipFirst");
 
 // recordInstance: motion and output are required; the cache is not an OBJ.
 expectThrows(record({output: tmpDir + "/x.pc2"}), "ArgumentError", "multirescloth.recordInstance: ",

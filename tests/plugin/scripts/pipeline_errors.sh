@@ -28,6 +28,7 @@ refused "option --levels: expected an integer >= 1, got \"two\"" --levels two
 refused "option --levels: expected an integer >= 1, got \"0\"" --levels 0
 refused "option --delta: expected a number > 0, got \"-3\"" --delta 8,-3
 refused "option --fps: expected a number > 0, got \"fast\"" --fps fast
+refused "option --threads: expected an integer >= 0, got \"-2\"" --threads -2
 refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot
 refused "option --map-modes: expected one of index, highest, frequent, got \"nearest\"" --map-modes nearest
 refused "option --units: expected one of m, dm, cm, mm, inch, got \"feet\"" --units feet

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The pipeline end to end on a very small configuration: `mrcloth pipeline`
 # writes every file its report names; `mrcloth -b pipeline.js` with the same
-# options gives the same numbers; --resume runs nothing again and reports the
+# options, on two threads, gives the same numbers; --resume runs nothing again and reports the
 # same; Ctrl-C stops it with 130 and leaves only complete files, and a resume
 # then finishes the run; bench/distance_floor.js reproduces its distances.
 #
@@ -24,8 +24,8 @@ code=$?
 grep -q "^pipeline: 4 runs of 4 models" "$tmp/command.out" || fail "no summary line: $(cat "$tmp/command.out")"
 
 # 2. The script through the public API, same options (the default mode
-# mapping spelled out): same numbers.
-"$host" -q -b "$resources/scripts/pipeline.js" -- $small --map-modes index --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
+# mapping spelled out) on two threads: same numbers.
+"$host" -q -b "$resources/scripts/pipeline.js" -- $small --map-modes index --threads 2 --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
   { fail "pipeline.js exit code $?"; cat "$tmp/script.err"; }
 "$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/command" "$tmp/script" || fail "check command against script"
 

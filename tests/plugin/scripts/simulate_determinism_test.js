@@ -1,5 +1,5 @@
 // The same simulation twice gives the same bytes: no hidden state between
-// calls, no dependence on timing. On a mesh with T-nodes, with colliders and
+// calls, no dependence on timing or the thread count. On a mesh with T-nodes, with colliders and
 // pins; a different option gives a different cache. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
@@ -28,6 +28,16 @@ for (const path of paths.slice(0, 2)) {
 multirescloth.simulate(grid, {frames: 3, pins: "top"});
 options.output = paths[2];
 reports.push(multirescloth.simulate(refined, options));
+
+// Threads resolve the vertices' collisions in parts: the same bytes with
+// two, three, or one per core (0).
+for (const threads of [2, 3, 0]) {
+  options.output = tmpDir + "/run_threads" + threads + ".pc2";
+  options.threads = threads;
+  reports.push(multirescloth.simulate(refined, options));
+  if (!core.filesEqual(paths[0], options.output)) throw new Error(threads + " threads wrote a different cache");
+}
+delete options.threads;
 
 for (const report of reports) {
   if (report.nonFinite || report.frames !== 15) throw new Error("run failed: " + JSON.stringify(report));

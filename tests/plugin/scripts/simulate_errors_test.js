@@ -16,7 +16,7 @@ expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options mu
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
              "accepted: frames, fps, substeps, iterations, limiterSweeps, collisionRounds, material, alpha, alphaBend, " +
              "gravity, pins, colliders, " +
-             "output, objSequence, updateObject, selfContact");
+             "output, objSequence, updateObject, selfContact, threads");
 
 // Scalars: wrong types and ranges name the option.
 expectThrows(sim({frames: "10"}), "ArgumentError", "option 'frames' must be an integer, got the string \"10\"");
@@ -29,6 +29,8 @@ expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must b
 expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
 expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer >= 1");
 expectThrows(sim({collisionRounds: 1.5}), "ArgumentError", "option 'collisionRounds' must be an integer, got the number 1.5");
+expectThrows(sim({threads: -1}), "ArgumentError", "option 'threads' must be an integer >= 0, got -1");
+expectThrows(sim({threads: 2.5}), "ArgumentError", "option 'threads' must be an integer, got the number 2.5");
 expectThrows(sim({alpha: NaN}), "ArgumentError", "option 'alpha' must be a finite number");
 expectThrows(sim({alphaBend: "1"}), "ArgumentError", "option 'alphaBend' must be a finite number");
 expectThrows(sim({selfContact: 0.05}), "ArgumentError",
