@@ -92,6 +92,9 @@ class ImplicitIntegrator {
 
   const IntegratorOptions& options() const { return options_; }
   std::size_t factor_nonzeros() const { return solver_.factor_nonzeros(); }
+  /// The threads options().threads asked for (null for one): callers may
+  /// run their own per-vertex loops on it between steps.
+  WorkerPool* pool() const { return pool_.get(); }
 
  private:
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;

@@ -253,29 +253,37 @@ ContactSurface contact_surface(const DynamicsModel& model) {
   return s;
 }
 
-int count_self_crossings(const ContactSurface& s, const Positions& x) {
+int count_self_crossings(const ContactSurface& s, const Positions& x, WorkerPool* pool) {
   std::vector<Box> triangles;
   triangles.reserve(s.triangles.size());
   for (const auto& t : s.triangles) triangles.push_back(box_of(x, x, {t[0], t[1], t[2]}, 0.0));
   const double cell = std::max(mean_edge_length(s, x), 1e-6);
   const BoxGrid grid(triangles, cell);
+  std::vector<int> part_crossings(pool ? static_cast<std::size_t>(pool->workers()) : 1, 0);
+  const auto count_edges = [&](int part, std::size_t begin, std::size_t end) {
+    int& crossings = part_crossings[static_cast<std::size_t>(part)];
+    for (std::size_t edge = begin; edge < end; ++edge) {
+      const auto& e = s.edges[edge];
+      const std::vector<int> edge_support = merged({&s.support[e[0]], &s.support[e[1]]});
+      const Vec3 p = x.row(e[0]).transpose(), q = x.row(e[1]).transpose();
+      grid.candidates(box_of(x, x, {e[0], e[1]}, 0.0), [&](int ti) {
+        const auto& t = s.triangles[static_cast<std::size_t>(ti)];
+        for (int k = 0; k < 3; ++k)
+          if (share_support(edge_support, s.support[t[k]])) return;
+        const Vec3 a = x.row(t[0]).transpose(), b = x.row(t[1]).transpose(), c = x.row(t[2]).transpose();
+        const Vec3 n = (b - a).cross(c - a);
+        const double dp = (p - a).dot(n), dq = (q - a).dot(n);
+        if (!(dp * dq < 0.0)) return;
+        const Vec3 hit = p + (q - p) * (dp / (dp - dq));
+        const OverTriangle o = over_triangle(hit, a, b, c);
+        if (o.valid && o.u > 0.0 && o.v > 0.0 && o.w > 0.0) ++crossings;
+      });
+    }
+  };
+  if (pool) pool->run(s.edges.size(), count_edges);
+  else count_edges(0, 0, s.edges.size());
   int crossings = 0;
-  for (const auto& e : s.edges) {
-    const std::vector<int> edge_support = merged({&s.support[e[0]], &s.support[e[1]]});
-    const Vec3 p = x.row(e[0]).transpose(), q = x.row(e[1]).transpose();
-    grid.candidates(box_of(x, x, {e[0], e[1]}, 0.0), [&](int ti) {
-      const auto& t = s.triangles[static_cast<std::size_t>(ti)];
-      for (int k = 0; k < 3; ++k)
-        if (share_support(edge_support, s.support[t[k]])) return;
-      const Vec3 a = x.row(t[0]).transpose(), b = x.row(t[1]).transpose(), c = x.row(t[2]).transpose();
-      const Vec3 n = (b - a).cross(c - a);
-      const double dp = (p - a).dot(n), dq = (q - a).dot(n);
-      if (!(dp * dq < 0.0)) return;
-      const Vec3 hit = p + (q - p) * (dp / (dp - dq));
-      const OverTriangle o = over_triangle(hit, a, b, c);
-      if (o.valid && o.u > 0.0 && o.v > 0.0 && o.w > 0.0) ++crossings;
-    });
-  }
+  for (const int part : part_crossings) crossings += part;
   return crossings;
 }
 

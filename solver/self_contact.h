@@ -33,6 +33,7 @@
 // acts on the free coordinates, mass-weighted, through the stencils, so
 // T-nodes stay exact and pinned vertices do not move.
 #include "dynamics_model.h"
+#include "worker_pool.h"
 
 #include <Eigen/Core>
 
@@ -65,8 +66,9 @@ ContactSurface contact_surface(const DynamicsModel& model);
 /// Edge-triangle crossings of the surface with itself at full positions x
 /// (#V x 3): pairs of an edge and a triangle with no support in common
 /// where the edge passes through the triangle's interior. 0 for a cloth
-/// that does not pass through itself.
-int count_self_crossings(const ContactSurface& surface, const Positions& x);
+/// that does not pass through itself. `pool`, if given, counts the edges in
+/// parts (the same count).
+int count_self_crossings(const ContactSurface& surface, const Positions& x, WorkerPool* pool = nullptr);
 
 class SelfContact {
  public:

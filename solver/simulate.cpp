@@ -27,9 +27,12 @@ double deepest_penetration(const CollisionScene& scene, const Positions& x) {
 
 // Stretch, penetration (against surface + thickness) and depth (below the
 // surface) of one output frame, keeping where the worst of the run was.
+// `pool` (null: one thread) measures the vertices in parts; the worst is
+// the same as one thread finds (parts merged in order, the first vertex
+// wins a tie).
 void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const ContactSurface& surface,
-                   const Positions& x, int frame, SimulationReport& report) {
-  report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x));
+                   const Positions& x, int frame, SimulationReport& report, WorkerPool* pool) {
+  report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x, pool));
   const StretchPeak peak = most_stretched(model, x);
   report.max_tear_opening = std::max(report.max_tear_opening, peak.tear_opening);
   if (peak.strain > report.max_stretch) {
@@ -39,14 +42,31 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
     report.stretch_frame = frame;
   }
   if (scene.empty()) return;
-  for (Eigen::Index v = 0; v < x.rows(); ++v) {
-    const Eigen::Vector3d p = x.row(v).transpose();
-    const double penetration = scene.penetration(p);
-    if (penetration <= 0.0) continue;  // outside surface + thickness, so outside the surface
-    report.max_depth = std::max(report.max_depth, scene.depth(p));
-    if (penetration > report.max_penetration) {
-      report.max_penetration = penetration;
-      report.deepest_vertex = static_cast<int>(v);
+  struct Worst {
+    double depth = 0.0, penetration = 0.0;
+    int vertex = -1;
+  };
+  std::vector<Worst> parts(pool ? static_cast<std::size_t>(pool->workers()) : 1);
+  const auto measure = [&](int part, std::size_t begin, std::size_t end) {
+    Worst& worst = parts[static_cast<std::size_t>(part)];
+    for (auto v = static_cast<Eigen::Index>(begin); v < static_cast<Eigen::Index>(end); ++v) {
+      const Eigen::Vector3d p = x.row(v).transpose();
+      const double penetration = scene.penetration(p);
+      if (penetration <= 0.0) continue;  // outside surface + thickness, so outside the surface
+      worst.depth = std::max(worst.depth, scene.depth(p));
+      if (penetration > worst.penetration) {
+        worst.penetration = penetration;
+        worst.vertex = static_cast<int>(v);
+      }
+    }
+  };
+  if (pool) pool->run(static_cast<std::size_t>(x.rows()), measure);
+  else measure(0, 0, static_cast<std::size_t>(x.rows()));
+  for (const Worst& worst : parts) {
+    report.max_depth = std::max(report.max_depth, worst.depth);
+    if (worst.vertex >= 0 && worst.penetration > report.max_penetration) {
+      report.max_penetration = worst.penetration;
+      report.deepest_vertex = worst.vertex;
       report.deepest_frame = frame;
     }
   }
@@ -116,7 +136,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     }
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
-    measure_frame(scene, model, surface, x, report.frames, report);
+    measure_frame(scene, model, surface, x, report.frames, report, integrator.pool());
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);

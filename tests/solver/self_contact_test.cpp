@@ -116,6 +116,10 @@ TEST(CountSelfCrossings, AgreesWithTheBruteForceOracle) {
     Positions x = m.rest;
     for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += noise(rng);
     EXPECT_EQ(count_self_crossings(s, x), brute_force_crossings(s, x)) << "trial " << trial;
+    for (const int workers : {2, 3}) {
+      WorkerPool pool(workers);  // edges counted in parts: the same count
+      EXPECT_EQ(count_self_crossings(s, x, &pool), brute_force_crossings(s, x)) << "trial " << trial << ", " << workers;
+    }
   }
   // Apart, nothing crosses.
   Positions apart = m.rest;

@@ -41,8 +41,9 @@ delete options.threads;
 
 for (const report of reports) {
   if (report.nonFinite || report.frames !== 15) throw new Error("run failed: " + JSON.stringify(report));
-  if (report.maxPenetration !== reports[0].maxPenetration || report.maxStretch !== reports[0].maxStretch)
-    throw new Error("reports differ: " + JSON.stringify([report.maxPenetration, report.maxStretch]));
+  const measures = (r) => JSON.stringify([r.maxPenetration, r.maxDepth, r.deepest, r.maxStretch, r.maxSelfCrossings]);
+  if (measures(report) !== measures(reports[0]))
+    throw new Error("reports differ: " + measures(report) + " against " + measures(reports[0]));
 }
 if (!core.filesEqual(paths[0], paths[1])) throw new Error("two identical runs wrote different caches");
 if (!core.filesEqual(paths[0], paths[2])) throw new Error("a run after another simulation wrote a different cache");
