@@ -130,10 +130,15 @@ TEST(ImplicitIntegrator, SheetPinnedAtTwoCornersSettlesWithinTheStretchBound) {
 // simulate's collision_rounds reaches the integrator: one round a step when
 // asked, and at least two by default (the first round's friction leaves
 // stretch the second limits).
-TEST(ImplicitIntegrator, SimulateTakesItsRoundsFromTheOptions) {
+// The plain 0.5 m sheet of 11 x 11 vertices pinned at the given vertices.
+DynamicsModel sheet_pinned_at(std::vector<int> pinned) {
   DynamicsOptions d;
-  d.pinned = {0, 10};
-  const DynamicsModel m = build_dynamics(test::make_sheet(11, 0.5), d);
+  d.pinned = std::move(pinned);
+  return build_dynamics(test::make_sheet(11, 0.5), d);
+}
+
+TEST(ImplicitIntegrator, SimulateTakesItsRoundsFromTheOptions) {
+  const DynamicsModel m = sheet_pinned_at({0, 10});
   SimulationOptions s;
   s.frames = 3;
   ClothState state = rest_state(m);
@@ -150,9 +155,7 @@ TEST(ImplicitIntegrator, SimulateMeasuresTheSameWorstOnAnyThreadCount) {
   // Two opposite pinned corners sit 3 cm deep in equal spheres (pins are
   // not resolved): the deepest vertex is a tie at every frame, between
   // vertices in different threads' parts, which the first vertex wins.
-  DynamicsOptions d;
-  d.pinned = {0, 120};
-  const DynamicsModel m = build_dynamics(test::make_sheet(11, 0.5), d);
+  const DynamicsModel m = sheet_pinned_at({0, 120});
   SimulationOptions s;
   s.frames = 4;
   s.colliders.resize(2);
