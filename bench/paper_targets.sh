@@ -5,7 +5,8 @@
 #                                               into bench_out/pipeline (--resume), then judge it
 #        bench/paper_targets.sh OUT_DIR ...     judge finished runs, e.g. the folders
 #                                               scripts/run-paper-experiments.sh writes
-# Times are one core's (the pipeline is single-threaded); quote ratios from one run.
+# Times are one core's (the pipeline's default --threads 1; paper_targets.js refuses
+# reports run on more); quote ratios from one run.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${MRCLOTH_BUILD_DIR:-$root/build}"
