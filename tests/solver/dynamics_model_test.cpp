@@ -5,6 +5,7 @@
 #include "mesh_ops/lumped_mass.h"
 #include "mesh_ops/mode_layer.h"
 #include "solver/dynamics_model.h"
+#include "solver/material.h"
 
 #include <gtest/gtest.h>
 
@@ -24,6 +25,21 @@ QuadMesh refined_grid() {
   set_modes(mesh, {0, 1, 5, 6}, 4);
   adaptive_refine(mesh, {8.0, 3, true});
   return mesh;
+}
+
+// A run given no material and one given "cotton" must simulate the same
+// cloth: the default Material is the cotton preset, field for field.
+TEST(Material, TheDefaultIsTheCottonPreset) {
+  const Material fallback, cotton = material_preset("cotton");
+  EXPECT_EQ(fallback.name, cotton.name);
+  EXPECT_EQ(fallback.areal_density, cotton.areal_density);
+  EXPECT_EQ(fallback.stretch_stiffness, cotton.stretch_stiffness);
+  EXPECT_EQ(fallback.shear_stiffness, cotton.shear_stiffness);
+  EXPECT_EQ(fallback.bend_stiffness, cotton.bend_stiffness);
+  EXPECT_EQ(fallback.damping, cotton.damping);
+  EXPECT_EQ(fallback.stretch_limit, cotton.stretch_limit);
+  EXPECT_LT(material_preset("silk").stretch_stiffness, cotton.stretch_stiffness);
+  EXPECT_GT(material_preset("denim").stretch_stiffness, cotton.stretch_stiffness);
 }
 
 TEST(DynamicsModel, SpringCountsOnARegularGrid) {
