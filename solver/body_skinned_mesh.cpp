@@ -1279,21 +1279,6 @@ struct MeshBody::Impl {
     return true;
   }
 
-  /// contact(p, search2, true, out) for a point p whose answer lies within
-  /// sqrt(search2): from `memo`'s triangles when they certainly include
-  /// every triangle that near p (p within radius - sqrt(search2) of the
-  /// memo's centre) and one of them is; else from the tree.
-  bool contact_near(const Vector3d& p, double search2, Contact& out, const ContactMemo* memo) const {
-    if (memo_current(memo) && (p - memo->centre).norm() + std::sqrt(search2) <= memo->radius) {
-      const Closest c = closest_among(p, memo->items);
-      if (c.triangle >= 0 && c.d2 < search2) {
-        out = signed_contact(p, c);
-        return true;
-      }
-    }
-    return contact(p, search2, true, out);
-  }
-
   /// The point of a contact's triangle at its barycentrics.
   Vector3d surface_point(const Contact& c) const {
     return c.b0 * corner(c.triangle, 0) + c.b1 * corner(c.triangle, 1) + c.b2 * corner(c.triangle, 2);
@@ -1318,10 +1303,11 @@ struct MeshBody::Impl {
            (p - memo->centre).norm() < 0.5 * memo->radius;
   }
 
-  /// contact(p, search2, deep, out) answered from the memo when it can be
-  /// certified: every triangle within memo.radius of its centre is in it,
-  /// so one closer to p than (radius - |p - centre|) is the closest of all,
-  /// and with none that close p lies on its centre's side (a surface between
+  /// contact(p, search2, deep, out) answered from a memo made in this pose
+  /// when it can be certified: every triangle within memo.radius of its
+  /// centre is in it, so one closer to p than (radius - |p - centre|) is the
+  /// closest of all, and with none that close, while p is no farther from
+  /// the centre than that, p lies on its centre's side (a surface between
   /// them would be closer). Else the tree answers. A caller that only acts
   /// on contacts closer than sqrt(need2) (resolve: thickness) may be told
   /// "none" for an outside point with nothing that close, though a triangle
@@ -1330,8 +1316,9 @@ struct MeshBody::Impl {
   bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo,
                     double need2 = -1.0, const Closest* known = nullptr) const {
     if (need2 < 0.0) need2 = search2;
-    if (!memo_applies(memo, p)) return contact(p, search2, deep, out);
+    if (!memo_current(memo)) return contact(p, search2, deep, out);
     const double moved = (p - memo->centre).norm();
+    if (!(moved < memo->radius)) return contact(p, search2, deep, out);
     // Clear of every triangle by more than the caller acts on, on the
     // centre's (outside) side: what the loop below would conclude.
     if (memo->sided && memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
@@ -1348,7 +1335,7 @@ struct MeshBody::Impl {
     }
     // Nothing within slack of p: no contact within search2 if that is
     // inside the slack, and p is on the centre's side.
-    if (std::min(search2, need2) <= slack * slack && memo->outside && memo->sided) return false;
+    if (std::min(search2, need2) <= slack * slack && moved <= slack && memo->outside && memo->sided) return false;
     return contact(p, search2, deep, out);
   }
 
@@ -1601,7 +1588,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
       // The entry triangle lies within thickness of `out`, so the closest
       // one does too: searching no farther finds the same one, sooner.
       const double within = m.thickness + 1e-9;
-      if (!(m.contact_near(out, within * within, there, memo) && there.distance < 0.0)) {
+      if (!(m.contact_with(out, within * within, true, there, memo) && there.distance < 0.0)) {
         double largest = (out - position).norm();
         position = out;
         m.project(position, m.thickness * m.thickness, largest, memo);

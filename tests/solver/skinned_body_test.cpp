@@ -431,7 +431,11 @@ TEST(MeshBody, WhereAPointEnteredNextToAnotherPartTheMemoAnswersAsTheTree) {
   for (int k = 0; k < 200; ++k) {
     const Vector3d p(0.999, across(rng), across(rng));
     // From inside the second cube (x 1.003), or from above the first's top.
-    const Vector3d start = k % 2 == 0 ? Vector3d(p + Vector3d(0.004, 0.003, 0.0)) : Vector3d(0.999, 1.003, p.z());
+    // The way from inside rises 3 or 12 mm: the entry point it gives lies 3
+    // or 4.2 mm from where the memo was made, inside and beyond half the
+    // memo's 8 mm radius.
+    const double rise = k % 4 == 0 ? 0.003 : 0.012;
+    const Vector3d start = k % 2 == 0 ? Vector3d(p + Vector3d(0.004, rise, 0.0)) : Vector3d(0.999, 1.003, p.z());
     const Vector3d from = k % 2 == 0 ? p : Vector3d(0.9995, 0.999, p.z());
     Vector3d x = from, y = from;
     ContactMemo memo;
