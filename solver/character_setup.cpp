@@ -19,6 +19,14 @@ Eigen::MatrixX3d placed_points(const QuadMesh& garment, const Eigen::Isometry3d&
   return placed;
 }
 
+/// Where the run starts: the garment's pose and the recording's start.
+CharacterRunOptions start_of_run(const Character& character, const CharacterSetup& setup) {
+  CharacterRunOptions start;
+  start.garment_pose = character.garment_pose;
+  start.motion_start = setup.motion_start;
+  return start;
+}
+
 void check(const Motion& full, const CharacterSetup& setup) {
   const CharacterRunOptions defaults;
   if (full.skeleton.joints.empty() || full.frames.rows() < 1)
@@ -86,10 +94,11 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
     character.placement = Eigen::Translation3d(skinned->obj_offset);
     character.garment_pose = mesh_pose(*skinned, skeleton);
   }
+  const Eigen::MatrixX3d placed = placed_points(garment, character.placement);
   character.leg_bridges = setup.leg_bridges >= 0.0
                               ? setup.leg_bridges
-                              : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()),
-                                                      placed_points(garment, character.placement), skeleton);
+                              : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()), placed,
+                                                      skeleton);
   if (setup.arm_clearance >= 0.0) {
     ArmClearanceOptions arms;
     arms.clearance = setup.arm_clearance;
@@ -126,11 +135,8 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
   // inside (fitted capsules stand out of a body wherever it is narrower
   // than a linear taper).
   const std::vector<Eigen::Vector3d> joints = skinned ? skinned->joint_rest : std::vector<Eigen::Vector3d>{};
-  CharacterRunOptions start;
-  start.garment_pose = character.garment_pose;
-  start.motion_start = setup.motion_start;
-  character.capsules_shrunk = clear_capsules_for_garment(rig, *character.motion, start, joints,
-                                                         placed_points(garment, character.placement));
+  character.capsules_shrunk =
+      clear_capsules_for_garment(rig, *character.motion, start_of_run(character, setup), joints, placed);
   character.body_capsules = static_cast<int>(rig.bones.size());
   if (character.leg_bridges > 0.0) add_leg_bridges(rig, skeleton, character.leg_bridges);
   character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton, joints);
@@ -140,13 +146,7 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
 PlacedGarment place_garment(Character& character, const CharacterSetup& setup, const QuadMesh& garment) {
   PlacedGarment placed{copy_mesh(garment), {}};
   QuadMesh& mesh = placed.mesh;
-  if (!character.placement.isApprox(Eigen::Isometry3d::Identity())) {
-    for (const auto vertex : mesh.all_vertices()) {
-      const auto& p = mesh.point(vertex);
-      const Eigen::Vector3d moved = character.placement * Eigen::Vector3d(p[0], p[1], p[2]);
-      mesh.set_point(vertex, OpenMesh::Vec3d(moved.x(), moved.y(), moved.z()));
-    }
-  }
+  Eigen::MatrixX3d points = placed_points(garment, character.placement);
   // On the skinned body every garment starts outside it, out to its
   // thickness: a refined garment's new points lie on its flat coarse faces,
   // chords that cut into the curved body, and garments as modelled touch it
@@ -155,23 +155,17 @@ PlacedGarment place_garment(Character& character, const CharacterSetup& setup, c
   // limiter kept pushed points in front of their contact planes, moving the
   // trousers' few touching points made them stretch 802 % instead of 116 %;
   // now 57 %.) Capsules are shrunk to the garment instead (make_character).
-  if (setup.body != CharacterBodyKind::mesh) return placed;
-  Eigen::MatrixX3d points(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (const auto vertex : mesh.vertices()) {
-    const auto& p = mesh.point(vertex);
-    points.row(vertex.idx()) << p[0], p[1], p[2];
+  if (setup.body == CharacterBodyKind::mesh) {
+    std::vector<std::array<int, 3>> hanging;
+    const Layers layers = get_layers(mesh);
+    for (const auto vertex : mesh.vertices())
+      if (mesh.property(layers.hanging, vertex)) {
+        const OpenMesh::Vec2i ends = mesh.property(layers.parents, vertex);
+        hanging.push_back({vertex.idx(), ends[0], ends[1]});
+      }
+    placed.clearance =
+        clear_garment_of_body(*character.body, *character.motion, start_of_run(character, setup), points, hanging);
   }
-  std::vector<std::array<int, 3>> hanging;
-  const Layers layers = get_layers(mesh);
-  for (const auto vertex : mesh.vertices())
-    if (mesh.property(layers.hanging, vertex)) {
-      const OpenMesh::Vec2i ends = mesh.property(layers.parents, vertex);
-      hanging.push_back({vertex.idx(), ends[0], ends[1]});
-    }
-  CharacterRunOptions start;
-  start.garment_pose = character.garment_pose;
-  start.motion_start = setup.motion_start;
-  placed.clearance = clear_garment_of_body(*character.body, *character.motion, start, points, hanging);
   for (const auto vertex : mesh.vertices())
     mesh.set_point(vertex, OpenMesh::Vec3d(points(vertex.idx(), 0), points(vertex.idx(), 1), points(vertex.idx(), 2)));
   return placed;
@@ -179,13 +173,11 @@ PlacedGarment place_garment(Character& character, const CharacterSetup& setup, c
 
 CharacterRunOptions character_run_options(const Character& character, const CharacterSetup& setup,
                                           const DynamicsModel& model, const SimulationOptions& simulation) {
-  CharacterRunOptions run;
-  run.garment_pose = character.garment_pose;
+  CharacterRunOptions run = start_of_run(character, setup);
   run.frames = simulation.frames;
   run.fps = simulation.fps;
   run.step_rate = setup.step_rate;
   run.preroll_seconds = setup.preroll_seconds;
-  run.motion_start = setup.motion_start;
   run.simulation = simulation;
   run.arm_clearance = character.arm_clearance;
   if (character.waist_skin) waist_follows_skin(run, *character.waist_skin, *character.motion, model);
