@@ -1286,9 +1286,12 @@ struct MeshBody::Impl {
 
   /// Whether memo says its centre was outside in this pose or the one
   /// before: then that side still holds at a point the way to which no
-  /// surface crossed (segment_clear).
+  /// surface crossed (segment_clear). Not from a memo near ignored
+  /// triangles: its side came from an open surface and may be wrong (a
+  /// point 14 mm inside the skinned leg was handed "outside" from one such
+  /// memo to the next for 25 steps).
   bool recently_outside(const ContactMemo* memo) const {
-    return memo && memo->owner == this && memo->radius > 0.0 && memo->outside &&
+    return memo && memo->owner == this && memo->radius > 0.0 && memo->outside && memo->sided &&
            (memo->serial == serial || memo->serial + 1 == serial);
   }
 

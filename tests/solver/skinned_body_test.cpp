@@ -565,6 +565,50 @@ TEST(MeshBody, AMemoNearIgnoredTrianglesNeverChangesAnAnswer) {
   EXPECT_GT(differing_sides, 100) << "most walks should reach what the tree calls inside";
 }
 
+TEST(MeshBody, AMemoNearIgnoredTrianglesHandsOnNoSide) {
+  // Near ignored triangles the nearest seen one can give the wrong side
+  // (the seen surface is open there), so such a memo must not hand its side
+  // on to the next pose. A cube's top patch is ignored; a small box inside
+  // just under it is a second part. A point 3 mm under the patch, beside
+  // that box's top edge, is called outside by the box (as it is, with or
+  // without a memo). The body then moves a little and the point moves 7 cm
+  // deeper in, 2 cm from everything, crossing nothing: it is inside (the
+  // whole mesh's parity) and must be pushed out, memo or not.
+  Mesh body = subdivided_cube(10);  // [-1, 1]^3
+  Mesh part = subdivided_cube(2);
+  const Eigen::RowVector3d half(0.05, 0.0225, 0.05), centre(0.0, 0.9725, 0.0);
+  const auto first = static_cast<int>(body.vertices.rows());
+  body.vertices.conservativeResize(first + part.vertices.rows(), 3);
+  for (Eigen::Index i = 0; i < part.vertices.rows(); ++i)
+    body.vertices.row(first + i) = part.vertices.row(i).cwiseProduct(half) + centre;
+  for (const Vector3i& t : part.triangles) body.triangles.push_back(t + Vector3i::Constant(first));
+  std::vector<char> ignored(body.triangles.size(), 0);
+  for (std::size_t t = 0; t < body.triangles.size(); ++t) {
+    const Vector3d c = (body.vertex(body.triangles[t](0)) + body.vertex(body.triangles[t](1)) + body.vertex(body.triangles[t](2))) / 3.0;
+    if (c.y() > 0.999 && std::abs(c.x()) < 0.2 && std::abs(c.z()) < 0.2) ignored[t] = 1;
+  }
+  ASSERT_EQ(std::count(ignored.begin(), ignored.end(), 1), 2 * 2 * 2);
+  const double thickness = 0.001;
+  MeshBody with(body.vertices, body.triangles, thickness, 0.0), without(body.vertices, body.triangles, thickness, 0.0);
+  with.update(body.vertices, ignored);
+  without.update(body.vertices, ignored);
+  ContactMemo memo;
+  Vector3d a(0.052, 0.997, 0.0), b = a;
+  EXPECT_EQ(with.resolve(a, a, false, &memo), 0.0);
+  EXPECT_EQ(without.resolve(b, b, false), 0.0);
+  ASSERT_GT(memo.radius, 0.0) << "the memo was made";
+  ASSERT_FALSE(memo.sided) << "next to ignored triangles";
+  body.vertices.col(0).array() += 1e-4;
+  with.update(body.vertices, ignored);
+  without.update(body.vertices, ignored);
+  a = b = Vector3d(0.07, 0.98, 0.0);
+  const double ca = with.resolve(a, a, false, &memo);
+  const double cb = without.resolve(b, b, false);
+  EXPECT_GT(cb, 0.015) << "2 cm inside: pushed out";
+  EXPECT_NEAR(ca, cb, 1e-12) << "the memo must not change the answer";
+  EXPECT_LT((a - b).norm(), 1e-12);
+}
+
 TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
   // A point that ends within the thickness of the cube's top face, outside
   // it (interior of a face: the surface is the plane y = 1 there), must
