@@ -11,7 +11,8 @@
 // first and later collision rounds, rounds per step).
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
-//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--step-rate HZ] [--threads N]
+//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--settle METRES] [--step-rate HZ]
+//                        [--threads N]
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
@@ -37,6 +38,7 @@ struct BenchOptions {
   double self_contact = 0.0;    // cloth-cloth contact thickness, metres (0: off, the default)
   int rounds = SimulationOptions{}.collision_rounds;  // rounds of (strain limiting, collisions) per step, at most
   int sweeps = SimulationOptions{}.strain_limit_sweeps;  // limiter sweeps per round
+  double settle = SimulationOptions{}.settle_tolerance;  // metres a point may move between rounds before it is resolved again (0: any move)
   double step_rate = CharacterSetup{}.step_rate;  // time steps per second (the plugin's stepRate)
   int threads = 1;  // threads resolving collisions (the target is one core's; any count gives the same bits)
 };
@@ -71,6 +73,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   simulation.self_contact.thickness = b.self_contact;
   simulation.collision_rounds = b.rounds;
   simulation.strain_limit_sweeps = b.sweeps;
+  simulation.settle_tolerance = b.settle;
   simulation.threads = b.threads;
   const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
   Row row;
@@ -114,7 +117,7 @@ int run_benchmark(int argc, char** argv) {
   BenchOptions b;
   const char* usage =
       "usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all] "
-      "[--self-contact METRES] [--rounds N] [--sweeps N] [--step-rate HZ] [--threads N]\n";
+      "[--self-contact METRES] [--rounds N] [--sweeps N] [--settle METRES] [--step-rate HZ] [--threads N]\n";
   for (int a = 1; a < argc; a += 2) {
     const std::string key = argv[a];
     if (key == "--help" || key == "-h") {
@@ -132,6 +135,7 @@ int run_benchmark(int argc, char** argv) {
     else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
     else if (key == "--rounds") b.rounds = std::atoi(argv[a + 1]);
     else if (key == "--sweeps") b.sweeps = std::atoi(argv[a + 1]);
+    else if (key == "--settle") b.settle = std::atof(argv[a + 1]);
     else if (key == "--step-rate") b.step_rate = std::atof(argv[a + 1]);
     else if (key == "--threads") b.threads = std::atoi(argv[a + 1]);
     else {
@@ -152,8 +156,9 @@ int run_benchmark(int argc, char** argv) {
   QuadMesh high = copy_mesh(coarse);
   uniform_refine(high, 2);
   std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, %d thread(s), set up as "
-              "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps\n\n",
-              b.frames, b.preroll, b.step_rate, b.threads, 1000.0 * b.self_contact, b.rounds, b.sweeps);
+              "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps, "
+              "settle tolerance %.2f mm\n\n",
+              b.frames, b.preroll, b.step_rate, b.threads, 1000.0 * b.self_contact, b.rounds, b.sweeps, 1000.0 * b.settle);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
               "dyn ms/f", "coll ms/f", "total", "stretch", "tear mm", "depth mm", "crossings");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),

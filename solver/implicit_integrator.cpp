@@ -116,6 +116,7 @@ void check(const IntegratorOptions& o) {
   if (o.strain_limit_sweeps < 0) throw ArgumentError("strain limit sweeps must be >= 0");
   if (o.collision_rounds < 1) throw ArgumentError("collision rounds must be >= 1");
   if (!(o.round_tolerance >= 0.0)) throw ArgumentError("the round tolerance must be >= 0");
+  if (!(o.settle_tolerance >= 0.0)) throw ArgumentError("the settle tolerance must be >= 0 metres");
   if (!o.gravity.allFinite()) throw ArgumentError("gravity must be finite");
   if (o.threads < 1) throw ArgumentError("threads must be >= 1");
 }
@@ -393,11 +394,27 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
 
 double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Positions& q,
                                               const CollisionScene& scene, bool friction,
-                                              const Positions* settled) const {
+                                              const Positions* settled, double tolerance) const {
   if (scene.empty()) return 0.0;
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
+  if (!settled) {
+    resolved_.resize(q.rows(), 3);
+    pending_.assign(static_cast<std::size_t>(q.rows()), 0);
+  }
+  const double tolerance2 = tolerance * tolerance;
+  // Whether free vertex f needs no resolve this round: unmoved since the
+  // last round (and not left pending), or, with a tolerance, moved less than
+  // it since its own last resolve: then it is left pending, and the step's
+  // last round (tolerance 0) resolves it.
+  const auto settled_at = [&](Eigen::Index f) {
+    if (!settled) return false;
+    char& pending = pending_[static_cast<std::size_t>(f)];
+    if (q.row(f) == settled->row(f)) return tolerance2 > 0.0 || !pending;
+    if (tolerance2 > 0.0 && (q.row(f) - resolved_.row(f)).squaredNorm() < tolerance2) return (pending = 1) != 0;
+    return false;
+  };
   // Resolves free vertex f and returns its correction; a push goes to
   // pushed(f, before, after), which keeps its contact plane.
   const auto resolve_vertex = [&](Eigen::Index f, bool with_friction, auto&& pushed) {
@@ -407,6 +424,8 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
         scene.resolve(q_previous.row(f).transpose(), x, with_friction, &memos_[static_cast<std::size_t>(f)]);
     if (correction > 0.0) pushed(f, before, x);
     q.row(f) = x.transpose();
+    resolved_.row(f) = q.row(f);
+    pending_[static_cast<std::size_t>(f)] = 0;
     return correction;
   };
   const auto keep_plane = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
@@ -420,7 +439,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
       for (Eigen::Index f = 0; f < q.rows(); ++f) {
         // A vertex the strain limiter left exactly where the last round put
         // it is already resolved against this (unchanged) scene.
-        if (settled && q.row(f) == settled->row(f)) continue;
+        if (settled_at(f)) continue;
         resolve_free(f, friction);
       }
     } else {
@@ -436,7 +455,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
           pushes.push_back({f, before, after});
         };
         for (auto f = static_cast<Eigen::Index>(begin); f < static_cast<Eigen::Index>(end); ++f) {
-          if (settled && q.row(f) == settled->row(f)) continue;
+          if (settled_at(f)) continue;
           part_largest = std::max(part_largest, resolve_vertex(f, friction, defer));
         }
       });
@@ -550,9 +569,16 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   // stops shrinking was tried: the excess each round starts from is what
   // the collisions re-stretch, nearly constant, while the tube still
   // follows, so it stopped the trousers at 460 %.)
+  // Within a step a point the limiter moved less than settle_tolerance
+  // since its last resolve is left for the last round: the body has not
+  // moved, so it is at most that far into the thickness layer, and the
+  // rounds between only feed the limiter. The last round resolves every
+  // point moved since its last resolve, so the collisions still have the
+  // last word everywhere.
   for (int round = 0; round < options_.collision_rounds; ++round) {
     const auto limit_start = Clock::now();
     const double excess = limit_strain(q);
+    const bool last = round + 1 == options_.collision_rounds || (round > 0 && excess <= options_.round_tolerance);
     const double limit_ms = ms_since(limit_start);
     report.dynamics_ms += limit_ms;
     report.limiter_ms += limit_ms;
@@ -560,12 +586,13 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     if (self_contact_.enabled()) self_contact_.project(q, pinned_part_);
     report.max_correction = std::max(report.max_correction,
                                      resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
-                                                        round == 0 ? nullptr : &settled_));
+                                                        round == 0 ? nullptr : &settled_,
+                                                        last ? 0.0 : options_.settle_tolerance));
     const double collide_ms = ms_since(collide_start);
     report.collision_ms += collide_ms;
     if (round == 0) report.first_round_ms = collide_ms;
     ++report.rounds;
-    if (round > 0 && excess <= options_.round_tolerance) break;
+    if (last) break;
     settled_ = q;
   }
 

@@ -50,6 +50,7 @@ struct IntegratorOptions {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
   double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
+  double settle_tolerance = 0.001;              ///< metres, >= 0: in the rounds between a step's first and last, a point the limiter moved less than this since its own last resolve waits for the last round (which resolves every moved point); 0: every moved point in every round
   bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
   SelfContactOptions self_contact;              ///< cloth-cloth contact (self_contact.h), projected in every round before the body collisions; thickness 0: off
   bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
@@ -101,9 +102,11 @@ class ImplicitIntegrator {
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
   /// Resolves every free vertex and T-node of q; with `settled` (the last
-  /// round's result), only those that have moved since.
+  /// round's result), only those that have moved since, and of those, with
+  /// `tolerance` (metres, > 0 in all but a step's last round), only those
+  /// moved at least that far since their own last resolve.
   double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction,
-                            const Positions* settled = nullptr) const;
+                            const Positions* settled = nullptr, double tolerance = 0.0) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
   /// Records the contact plane of a push of free vertex `f` (or T-node
   /// `f - #free`) from `before` to `after` (no plane when they are equal).
@@ -132,6 +135,8 @@ class ImplicitIntegrator {
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
   Positions settled_;                  // scratch: q after the last collision round of this step
+  mutable Positions resolved_;         // scratch: each free vertex where its last resolve of this step left it
+  mutable std::vector<char> pending_;  // per free vertex: moved within settle_tolerance since its last resolve, which the last round owes it
   mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between rounds
   /// Threads for the free vertices' resolves (null: options_.threads is 1);
   /// shared so the integrator stays copyable (copies take turns, never

@@ -382,5 +382,73 @@ TEST(ImplicitIntegrator, AnyThreadCountGivesTheSameBits) {
   EXPECT_THROW(refused.precompute(m, none), ArgumentError);
 }
 
+/// Counts the resolves asked of a scene.
+class CountingScene : public CollisionScene {
+ public:
+  explicit CountingScene(const CollisionScene& inner) : inner_(inner) {}
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
+                 ContactMemo* memo = nullptr) const override {
+    ++resolves;
+    return inner_.resolve(start, position, friction, memo);
+  }
+  double penetration(const Eigen::Vector3d& p) const override { return inner_.penetration(p); }
+  double depth(const Eigen::Vector3d& p) const override { return inner_.depth(p); }
+  bool empty() const override { return inner_.empty(); }
+  mutable long resolves = 0;
+
+ private:
+  const CollisionScene& inner_;
+};
+
+TEST(ImplicitIntegrator, TheSettleToleranceSavesResolvesButTheLastRoundHasTheLastWord) {
+  // A free sheet lifted by a box body rising as fast as a swinging limb
+  // (2.4 m/s), many rounds per step: the rounds between a step's first and last leave
+  // points the limiter moved less than the tolerance (here 5 mm, more than
+  // the body's 4 mm thickness) for the last round, which resolves every
+  // moved point: no point may end a step within the thickness, and fewer
+  // resolves must be asked for than with no tolerance.
+  const DynamicsModel m = build_dynamics(test::make_sheet(17, 0.5), {});
+  Eigen::MatrixX3d box(8, 3);
+  for (int v = 0; v < 8; ++v)
+    box.row(v) << 0.25 + ((v & 1) ^ ((v >> 1) & 1) ? 0.12 : -0.12), -0.25 + (v & 2 ? 0.12 : -0.12), v & 4 ? 0.37 : 0.13;
+  const std::vector<Eigen::Vector3i> faces = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                             {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  struct Run {
+    long resolves = 0;
+    double deepest = 0.0;  // into the thickness layer, at the end of any step
+    double pushed = 0.0;
+  };
+  const auto run = [&](double tolerance) {
+    MeshBody body(box, faces, 0.004, 0.3);
+    const CountingScene scene(body);
+    IntegratorOptions o = options(1.0 / 120);
+    o.collision_rounds = 8;
+    o.settle_tolerance = tolerance;
+    ImplicitIntegrator integrator;
+    integrator.precompute(m, o);
+    ClothState s = rest_state(m);
+    Run r;
+    for (int k = 0; k < 40; ++k) {
+      body.update(box.rowwise() + Eigen::RowVector3d(0.0, 0.02 * k, 0.0));
+      r.pushed = std::max(r.pushed, integrator.step(s, s.pinned, scene).max_correction);
+      for (Eigen::Index f = 0; f < s.positions.rows(); ++f)
+        r.deepest = std::max(r.deepest, body.penetration(s.positions.row(f).transpose()));
+    }
+    r.resolves = scene.resolves;
+    return r;
+  };
+  const Run exact = run(0.0), tolerant = run(0.005);
+  std::printf("settle tolerance 0: %ld resolves, deepest %.3g m; 5 mm: %ld resolves, deepest %.3g m\n", exact.resolves,
+              exact.deepest, tolerant.resolves, tolerant.deepest);
+  ASSERT_GT(exact.pushed, 0.01) << "the box never lifted the sheet; the test proves nothing";
+  EXPECT_LE(exact.deepest, 1e-9);
+  EXPECT_LE(tolerant.deepest, 1e-9) << "the last round must resolve every point moved since its last resolve";
+  EXPECT_LT(tolerant.resolves, 0.9 * exact.resolves);
+  IntegratorOptions negative = options(1.0 / 120);
+  negative.settle_tolerance = -1e-3;
+  ImplicitIntegrator refused;
+  EXPECT_THROW(refused.precompute(m, negative), ArgumentError);
+}
+
 }  // namespace
 }  // namespace mrcloth
