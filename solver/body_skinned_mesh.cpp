@@ -1342,6 +1342,28 @@ struct MeshBody::Impl {
     return contact(p, search2, deep, out);
   }
 
+  /// Whether p, outside by its closest triangle `nearest`, is behind
+  /// another of `items` within sqrt(radius2) (inside by that one's closest
+  /// feature): where skinning drives one part of the body into another
+  /// (the thighs, a hand into the hip) the closest triangle's side then
+  /// changes within the memo's ball without a surface between, so "nothing
+  /// near, so on the centre's side" would disagree with the tree (points
+  /// left 7-8 mm inside on the walk table).
+  bool behind_another(const Vector3d& p, int nearest, double radius2, const std::vector<int>& items) const {
+    for (int t : items) {
+      if (t == nearest || (any_ignored && ignored[static_cast<std::size_t>(t)])) continue;
+      if (!(triangle_box_distance2(p, t) < radius2)) continue;
+      // Only a triangle whose plane p is behind can be one p is inside of
+      // (a shared edge or corner aside, whose other triangle is an item too).
+      const Vector3d a = corner(t, 0);
+      if ((p - a).dot((corner(t, 1) - a).cross(corner(t, 2) - a)) >= 0.0) continue;
+      const TrianglePoint at = closest_on_triangle(p, a, corner(t, 1), corner(t, 2));
+      if (!((p - at.point).squaredNorm() < radius2)) continue;
+      if ((p - at.point).dot(pseudo_normal(t, at.feature)) < 0.0) return true;
+    }
+    return false;
+  }
+
   /// Remembers the triangles near p (where the point ended a resolve) for
   /// the later rounds of this pose, and returns the closest of them
   /// (triangle -1: none). `outside_known()`: whether p is known to be
@@ -1370,7 +1392,7 @@ struct MeshBody::Impl {
     if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
     else if (!near_fold && outside_known()) memo->outside = true;
     else return c;  // side unknown: nothing remembered
-    memo->sided = !near_fold;
+    memo->sided = !near_fold && !(memo->outside && behind_another(p, c.triangle, radius * radius, memo->items));
     memo->centre = p;
     memo->radius = radius;
     memo->clear = c.triangle >= 0 && c.d2 < radius * radius ? std::sqrt(c.d2) : radius;

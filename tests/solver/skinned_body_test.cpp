@@ -609,6 +609,43 @@ TEST(MeshBody, AMemoNearIgnoredTrianglesHandsOnNoSide) {
   EXPECT_LT((a - b).norm(), 1e-12);
 }
 
+TEST(MeshBody, AMemoWhereTwoPartsOverlapVouchesForNoSide) {
+  // Skinning drives one part of the body into another (the thighs, a hand
+  // into the hip). A point inside part A, 7 mm under its top, is 2 mm in
+  // front of part B's side, which lies inside A: its closest triangle says
+  // outside. Moved 4.2 mm away from B, it is nearest to A's top, 5.9 mm
+  // behind it: the tree calls it inside. With nothing of the memo's within
+  // its slack, "on the centre's side" would say outside; the memo must
+  // answer as the tree does.
+  const auto box = [](const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi) {
+    Mesh b = subdivided_cube(4);  // [-1, 1]^3
+    for (Eigen::Index i = 0; i < b.vertices.rows(); ++i)
+      b.vertices.row(i) = lo + (b.vertices.row(i).array() + 1.0).matrix().cwiseProduct(hi - lo) / 2.0;
+    return b;
+  };
+  Mesh body = box({-0.3, -0.3, -0.3}, {0.3, 0.0, 0.3});
+  const Mesh part = box({-0.5, -0.2, -0.2}, {-0.002, 0.1, 0.2});
+  const auto first = static_cast<int>(body.vertices.rows());
+  body.vertices.conservativeResize(first + part.vertices.rows(), 3);
+  body.vertices.bottomRows(part.vertices.rows()) = part.vertices;
+  for (const Vector3i& t : part.triangles) body.triangles.push_back(t + Vector3i::Constant(first));
+  const double thickness = 0.004;
+  const MeshBody with(body.vertices, body.triangles, thickness, 0.0), without(body.vertices, body.triangles, thickness, 0.0);
+  ContactMemo memo;
+  const Vector3d p(0.0, -0.007, 0.0), q(0.0041, -0.0059, 0.0);
+  Vector3d a = p, b = p;
+  const double pa = with.resolve(a, a, false, &memo), pb = without.resolve(b, b, false);
+  EXPECT_NEAR(pa, 0.002, 1e-12) << "pushed out of B's side to the thickness";
+  EXPECT_NEAR(pa, pb, 1e-12);
+  ASSERT_GT(memo.radius, 0.0) << "the memo was made";
+  ASSERT_LT((q - memo.centre).norm(), 0.5 * memo.radius) << "q is where the memo answers";
+  a = b = q;
+  const double qa = with.resolve(a, a, false, &memo), qb = without.resolve(b, b, false);
+  EXPECT_NEAR(qb, 0.0059 + thickness, 1e-9) << "the tree: 5.9 mm inside A, pushed out of its top";
+  EXPECT_NEAR(qa, qb, 1e-12) << "the memo must not change the answer";
+  EXPECT_LT((a - b).norm(), 1e-12);
+}
+
 TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
   // A point that ends within the thickness of the cube's top face, outside
   // it (interior of a face: the surface is the plane y = 1 there), must
