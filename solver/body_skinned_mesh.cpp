@@ -1347,8 +1347,8 @@ struct MeshBody::Impl {
   /// feature): where skinning drives one part of the body into another
   /// (the thighs, a hand into the hip) the closest triangle's side then
   /// changes within the memo's ball without a surface between, so "nothing
-  /// near, so on the centre's side" would disagree with the tree (points
-  /// left 7-8 mm inside on the walk table).
+  /// near, so on the centre's side" would disagree with the tree (a
+  /// knee-length skirt's point was left 7.9 mm inside the body).
   bool behind_another(const Vector3d& p, int nearest, double radius2, const std::vector<int>& items) const {
     for (int t : items) {
       if (t == nearest || (any_ignored && ignored[static_cast<std::size_t>(t)])) continue;

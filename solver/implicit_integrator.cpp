@@ -412,8 +412,9 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
     if (!settled) return false;
     char& pending = pending_[static_cast<std::size_t>(f)];
     if (q.row(f) == settled->row(f)) return tolerance2 > 0.0 || !pending;
-    if (tolerance2 > 0.0 && (q.row(f) - resolved_.row(f)).squaredNorm() < tolerance2) return (pending = 1) != 0;
-    return false;
+    if (!(tolerance2 > 0.0 && (q.row(f) - resolved_.row(f)).squaredNorm() < tolerance2)) return false;
+    pending = 1;
+    return true;
   };
   // Resolves free vertex f and returns its correction; a push goes to
   // pushed(f, before, after), which keeps its contact plane.
