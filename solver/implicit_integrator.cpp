@@ -399,7 +399,10 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   const DynamicsModel& m = *model_;
   double largest = 0.0;
   memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
-  if (!settled) {
+  // Where each vertex's last resolve left it, kept only when a step's
+  // rounds use a tolerance (with none, nothing reads it).
+  const bool track = options_.settle_tolerance > 0.0;
+  if (!settled && track) {
     resolved_.resize(q.rows(), 3);
     pending_.assign(static_cast<std::size_t>(q.rows()), 0);
   }
@@ -410,6 +413,7 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   // last round (tolerance 0) resolves it.
   const auto settled_at = [&](Eigen::Index f) {
     if (!settled) return false;
+    if (!track) return q.row(f) == settled->row(f);
     char& pending = pending_[static_cast<std::size_t>(f)];
     if (q.row(f) == settled->row(f)) return tolerance2 > 0.0 || !pending;
     if (!(tolerance2 > 0.0 && (q.row(f) - resolved_.row(f)).squaredNorm() < tolerance2)) return false;
@@ -425,8 +429,10 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
         scene.resolve(q_previous.row(f).transpose(), x, with_friction, &memos_[static_cast<std::size_t>(f)]);
     if (correction > 0.0) pushed(f, before, x);
     q.row(f) = x.transpose();
-    resolved_.row(f) = q.row(f);
-    pending_[static_cast<std::size_t>(f)] = 0;
+    if (track) {
+      resolved_.row(f) = q.row(f);
+      pending_[static_cast<std::size_t>(f)] = 0;
+    }
     return correction;
   };
   const auto keep_plane = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
@@ -438,8 +444,8 @@ double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Posit
   {
     if (!pool_) {
       for (Eigen::Index f = 0; f < q.rows(); ++f) {
-        // A vertex the strain limiter left exactly where the last round put
-        // it is already resolved against this (unchanged) scene.
+        // A vertex the strain limiter left where the last round put it is
+        // already resolved against this (unchanged) scene (see settled_at).
         if (settled_at(f)) continue;
         resolve_free(f, friction);
       }
