@@ -11,7 +11,7 @@
 // first and later collision rounds, rounds per step).
 //
 // Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
-//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--settle METRES] [--step-rate HZ]
+//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--slack METRES] [--round-tolerance STRAIN] [--step-rate HZ]
 //                        [--threads N]
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
@@ -38,7 +38,9 @@ struct BenchOptions {
   double self_contact = 0.0;    // cloth-cloth contact thickness, metres (0: off, the default)
   int rounds = SimulationOptions{}.collision_rounds;  // rounds of (strain limiting, collisions) per step, at most
   int sweeps = SimulationOptions{}.strain_limit_sweeps;  // limiter sweeps per round
-  double settle = SimulationOptions{}.settle_tolerance;  // metres a point may move between rounds before it is resolved again (0: any move)
+  double slack = SimulationOptions{}.contact_slack;  // metres a point may move along its contact plane before it is checked again
+  bool tethers = SimulationOptions{}.tethers;  // the limiter's tethers to the pinned waist
+  double round_tolerance = SimulationOptions{}.round_tolerance;  // another round while a spring is this much strain beyond the limit
   double step_rate = CharacterSetup{}.step_rate;  // time steps per second (the plugin's stepRate)
   int threads = 1;  // threads resolving collisions (the target is one core's; any count gives the same bits)
 };
@@ -73,7 +75,9 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   simulation.self_contact.thickness = b.self_contact;
   simulation.collision_rounds = b.rounds;
   simulation.strain_limit_sweeps = b.sweeps;
-  simulation.settle_tolerance = b.settle;
+  simulation.contact_slack = b.slack;
+  simulation.tethers = b.tethers;
+  simulation.round_tolerance = b.round_tolerance;
   simulation.threads = b.threads;
   const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
   Row row;
@@ -117,7 +121,7 @@ int run_benchmark(int argc, char** argv) {
   BenchOptions b;
   const char* usage =
       "usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all] "
-      "[--self-contact METRES] [--rounds N] [--sweeps N] [--settle METRES] [--step-rate HZ] [--threads N]\n";
+      "[--self-contact METRES] [--rounds N] [--sweeps N] [--slack METRES] [--round-tolerance STRAIN] [--step-rate HZ] [--threads N]\n";
   for (int a = 1; a < argc; a += 2) {
     const std::string key = argv[a];
     if (key == "--help" || key == "-h") {
@@ -135,7 +139,9 @@ int run_benchmark(int argc, char** argv) {
     else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
     else if (key == "--rounds") b.rounds = std::atoi(argv[a + 1]);
     else if (key == "--sweeps") b.sweeps = std::atoi(argv[a + 1]);
-    else if (key == "--settle") b.settle = std::atof(argv[a + 1]);
+    else if (key == "--slack") b.slack = std::atof(argv[a + 1]);
+    else if (key == "--tethers") b.tethers = std::atoi(argv[a + 1]) != 0;
+    else if (key == "--round-tolerance") b.round_tolerance = std::atof(argv[a + 1]);
     else if (key == "--step-rate") b.step_rate = std::atof(argv[a + 1]);
     else if (key == "--threads") b.threads = std::atoi(argv[a + 1]);
     else {
@@ -157,8 +163,8 @@ int run_benchmark(int argc, char** argv) {
   uniform_refine(high, 2);
   std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, %d thread(s), set up as "
               "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps, "
-              "settle tolerance %.2f mm\n\n",
-              b.frames, b.preroll, b.step_rate, b.threads, 1000.0 * b.self_contact, b.rounds, b.sweeps, 1000.0 * b.settle);
+              "contact slack %.2f mm, round tolerance %.3f\n\n",
+              b.frames, b.preroll, b.step_rate, b.threads, 1000.0 * b.self_contact, b.rounds, b.sweeps, 1000.0 * b.slack, b.round_tolerance);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
               "dyn ms/f", "coll ms/f", "total", "stretch", "tear mm", "depth mm", "crossings");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),

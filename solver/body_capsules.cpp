@@ -556,7 +556,14 @@ void CapsuleBody::pose(const Pose& pose) {
 }
 
 double CapsuleBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
-                            ContactMemo* memo) const {
+                            ContactMemo* memo, SurfaceNearby* nearby) const {
+  const double largest = resolve_with_memo(start, position, friction, memo);
+  if (nearby) *nearby = nearest_surface(colliders_, position, kNearbyReach);
+  return largest;
+}
+
+double CapsuleBody::resolve_with_memo(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
+                                      ContactMemo* memo) const {
   // A memo lists every capsule whose thickened surface may come within
   // kMemoReach of its centre; within half that of the centre the others are
   // clear, so a point that ends there was resolved against all of them.

@@ -105,7 +105,7 @@ class CapsuleBody : public CollisionScene {
   /// capsules that were near the point when the memo was made: the same
   /// answers while the point stays near there.
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
-                 ContactMemo* memo = nullptr) const override;
+                 ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   double depth(const Eigen::Vector3d& p) const override;
   bool empty() const override { return colliders_.empty(); }
@@ -113,6 +113,8 @@ class CapsuleBody : public CollisionScene {
   const CapsuleRig& rig() const { return rig_; }
 
  private:
+  double resolve_with_memo(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
+                           ContactMemo* memo) const;
   CapsuleRig rig_;
   std::vector<Collider> colliders_;
   std::vector<Collider> previous_;  ///< the capsules before the last pose()

@@ -693,6 +693,9 @@ struct MeshBody::Impl {
   /// left out, the side comes from the whole mesh (inside_whole_mesh),
   /// metres: well outside the thickness layer, where pushes are decided.
   static constexpr double kWholeMeshSideBeyond = 0.01;
+  /// How far (metres) flip_distance looks: a point's side is vouched for
+  /// at most this far (SurfaceNearby::flip).
+  static constexpr double kFlipReach = 0.0025;
 
   /// An internal node holding both children's boxes (one 64-byte line
   /// decides both), stored as floats rounded outwards: a box can only grow,
@@ -731,6 +734,7 @@ struct MeshBody::Impl {
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
   std::vector<int> leaf_of_input;              ///< per triangle in construction order, its leaf-order index
   std::vector<char> ignored;                   ///< per triangle (leaf order): unseen in this pose (turned over)
+  std::vector<int> ignored_list;               ///< the ignored triangles (leaf order): a few dozen on a walking body
   bool any_ignored = false;
   std::vector<std::array<int, 3>> neighbours;  ///< triangle across edge k
   std::vector<int> ring_start;                 ///< per vertex, its first entry in ring (one past the end: the next vertex's)
@@ -957,13 +961,15 @@ struct MeshBody::Impl {
     return (p.array() >= root_lo.array()).all() && (p.array() <= root_hi.array()).all();
   }
 
-  /// Tests the triangles of a leaf against the best so far.
-  void search_leaf(const Vector3d& p, int first, int count, double& best, Closest& out) const {
+  /// Tests the triangles of a leaf that `skip(t)` does not rule out against
+  /// the best so far.
+  template <typename Skip>
+  void search_leaf(const Vector3d& p, int first, int count, double& best, Closest& out, Skip skip) const {
     for (int t = first; t < first + count; ++t) {
       if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
       // The triangle's own box first: it rejects most of a leaf.
       const double box2 = triangle_box_distance2(p, t);
-      if (!(box2 < best)) continue;
+      if (!(box2 < best) || skip(t)) continue;
       const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
       const double d2 = (p - at.point).squaredNorm();
       if (d2 < best) {
@@ -975,9 +981,11 @@ struct MeshBody::Impl {
     }
   }
 
-  /// Closest triangle to p closer than sqrt(max_d2); false when none is.
-  /// Nearer child first, pruned by box distance; no allocation.
-  bool closest(const Vector3d& p, double max_d2, Closest& out) const {
+  /// Closest triangle to p closer than sqrt(max_d2), of those `skip(t)`
+  /// does not rule out; false when none is. Nearer child first, pruned by
+  /// box distance; no allocation.
+  template <typename Skip>
+  bool closest(const Vector3d& p, double max_d2, Closest& out, Skip skip) const {
     struct Item {
       int node;
       double d2;
@@ -997,12 +1005,90 @@ struct MeshBody::Impl {
       const double d_near = near == 0 ? d0 : d1, d_far = near == 0 ? d1 : d0;
       // Leaves at once (nearer first, shrinking best); inner nodes onto the
       // stack, the nearer on top.
-      if (d_near < best && node.count[near] > 0) search_leaf(p, node.index[near], node.count[near], best, out);
-      if (d_far < best && node.count[far] > 0) search_leaf(p, node.index[far], node.count[far], best, out);
+      if (d_near < best && node.count[near] > 0) search_leaf(p, node.index[near], node.count[near], best, out, skip);
+      if (d_far < best && node.count[far] > 0) search_leaf(p, node.index[far], node.count[far], best, out, skip);
       if (d_far < best && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
       if (d_near < best && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
     }
     return out.triangle >= 0;
+  }
+  bool closest(const Vector3d& p, double max_d2, Closest& out) const {
+    return closest(p, max_d2, out, [](int) { return false; });
+  }
+
+  /// closest(p, max_d2, out), and also the distance to the nearest other
+  /// triangle whose plane p is behind, where that is within `margin` of
+  /// the nearest's distance (`behind`: that distance, or the nearest's plus
+  /// margin when none is; unchanged when there is no nearest). A point
+  /// inside by a triangle's closest feature is behind the plane of a
+  /// triangle through that feature, no farther away; where skinning drives
+  /// one part of the body into another (the thighs, a hand into the hip) p
+  /// can be in front of its nearest triangle and inside the other part,
+  /// and moving a little then makes the other part's surface the nearest:
+  /// its side flips. `out` may hold a first candidate (its d2 the bound).
+  bool closest_and_behind(const Vector3d& p, double max_d2, double margin, Closest& out, double& behind) const {
+    struct Item {
+      int node;
+      double d2;
+    };
+    struct Behind {
+      double d2 = std::numeric_limits<double>::infinity();
+      int triangle = -1;
+    } first, second;  // the two nearest triangles p is behind (one may be the nearest itself)
+    double best = out.triangle >= 0 ? out.d2 : max_d2;
+    const auto limit_of = [&](double b) {
+      const double r = std::sqrt(b) + margin;
+      return r * r;
+    };
+    double limit2 = limit_of(best);
+    const auto visit = [&](int t) {
+      if (any_ignored && ignored[static_cast<std::size_t>(t)]) return;
+      const double box2 = triangle_box_distance2(p, t);
+      if (!(box2 < limit2)) return;
+      const Vector3d a = corner(t, 0);
+      const bool is_behind = (p - a).dot((corner(t, 1) - a).cross(corner(t, 2) - a)) < 0.0;
+      if (!(box2 < best) && !is_behind) return;
+      const TrianglePoint at = closest_on_triangle(p, a, corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (is_behind && d2 < second.d2 && t != first.triangle) {
+        if (d2 < first.d2) {
+          second = first;
+          first = {d2, t};
+        } else {
+          second = {d2, t};
+        }
+      }
+      if (d2 < best) {
+        best = d2;
+        limit2 = limit_of(best);
+        out.d2 = d2;
+        out.triangle = t;
+        out.at = at;
+      }
+    };
+    Item stack[kStackSize];
+    int top = 0;
+    const double root_d2 = root_distance2(p);
+    if (root_d2 < limit2) stack[top++] = {0, root_d2};
+    while (top > 0) {
+      const Item item = stack[--top];
+      if (!(item.d2 < limit2)) continue;
+      const Node& node = nodes[static_cast<std::size_t>(item.node)];
+      const double d0 = box_distance2(node, 0, p), d1 = box_distance2(node, 1, p);
+      const int near = d0 <= d1 ? 0 : 1, far = 1 - near;
+      const double d_near = near == 0 ? d0 : d1, d_far = near == 0 ? d1 : d0;
+      for (const int k : {near, far}) {
+        const double dk = k == near ? d_near : d_far;
+        if (!(dk < limit2) || node.count[k] == 0) continue;
+        for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) visit(t);
+      }
+      if (d_far < limit2 && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
+      if (d_near < limit2 && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
+    }
+    if (out.triangle < 0) return false;
+    const Behind& other = first.triangle != out.triangle ? first : second;
+    behind = std::min(std::sqrt(other.d2), std::sqrt(best) + margin);
+    return true;
   }
 
   /// The angle-weighted pseudo-normal (Baerentzen and Aanaes 2005) of the
@@ -1075,32 +1161,6 @@ struct MeshBody::Impl {
     return out.distance < 0.0;
   }
 
-  /// Every triangle whose own box lies within sqrt(radius2) of p (a
-  /// superset of those within that distance), appended to `out` in tree
-  /// order. (A leaf's box lets in all its triangles; each triangle's own
-  /// box then keeps only those within reach.)
-  void gather(const Vector3d& p, double radius2, std::vector<int>& out) const {
-    int stack[kStackSize];
-    int top = 0;
-    if (!(root_distance2(p) <= radius2)) return;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes[static_cast<std::size_t>(stack[--top])];
-      for (int k = 0; k < 2; ++k) {
-        if (!(box_distance2(node, k, p) <= radius2)) continue;
-        if (node.count[k] > 0) {
-          for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t)
-            if (triangle_box_distance2(p, t) <= radius2) out.push_back(t);
-        } else if (node.index[k] >= 0) {
-          stack[top++] = node.index[k];
-        }
-      }
-    }
-  }
-
-  /// Beyond thickness, how far around a point a memo remembers triangles.
-  static constexpr double kMemoMargin = 0.006;
-
   /// Squared distance from p to the bounding box of triangle t (0 inside):
   /// branch-free, and a fraction of the exact test's cost.
   double triangle_box_distance2(const Vector3d& p, int t) const {
@@ -1113,24 +1173,6 @@ struct MeshBody::Impl {
       box2 += e * e;
     }
     return box2;
-  }
-
-  /// The closest of the given triangles to p (triangle -1 if none); the
-  /// nearer the first one, the more of the rest their boxes reject.
-  Closest closest_among(const Vector3d& p, const std::vector<int>& items) const {
-    Closest c;
-    for (int t : items) {
-      if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
-      if (!(triangle_box_distance2(p, t) < c.d2)) continue;
-      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
-      const double d2 = (p - at.point).squaredNorm();
-      if (d2 < c.d2) {
-        c.d2 = d2;
-        c.triangle = t;
-        c.at = at;
-      }
-    }
-    return c;
   }
 
   /// Whether segment a-b meets the box [lo, hi] (slab test).
@@ -1247,33 +1289,25 @@ struct MeshBody::Impl {
   /// outward normal. `out`: that triangle, the crossing's barycentrics and
   /// the triangle's unit normal (distance 0). False when the segment
   /// enters nowhere.
-  /// With `memo` (made in this pose), its triangles answer when they
-  /// certainly include every triangle the segment meets: both ends within
-  /// its radius of its centre (the segment then lies within that ball).
-  bool first_entry(const Vector3d& a, const Vector3d& b, Contact& out, const ContactMemo* memo = nullptr) const {
+  bool first_entry(const Vector3d& a, const Vector3d& b, Contact& out) const {
     const Vector3d d = b - a;
     double best = std::numeric_limits<double>::infinity();
     // One-sided: only crossings into the body.
-    const auto consider = [&](int t) {
-      if (any_ignored && ignored[static_cast<std::size_t>(t)]) return;
-      const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
-      SegmentHit hit;
-      if (!(d.dot(n) < 0.0) || !segment_meets_triangle(a, d, t, hit) || hit.s >= best) return;
-      best = hit.s;
-      out.triangle = t;
-      out.b0 = 1.0 - hit.u - hit.v;
-      out.b1 = hit.u;
-      out.b2 = hit.v;
-      out.normal = n.normalized();
-    };
-    if (memo_current(memo) && (a - memo->centre).norm() <= memo->radius && (b - memo->centre).norm() <= memo->radius) {
-      for (int t : memo->items) consider(t);
-    } else {
-      leaves_on_segment(a, d, false, [&](int first, int count) {
-        for (int t = first; t < first + count; ++t) consider(t);
-        return true;
-      });
-    }
+    leaves_on_segment(a, d, false, [&](int first, int count) {
+      for (int t = first; t < first + count; ++t) {
+        if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
+        const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
+        SegmentHit hit;
+        if (!(d.dot(n) < 0.0) || !segment_meets_triangle(a, d, t, hit) || hit.s >= best) continue;
+        best = hit.s;
+        out.triangle = t;
+        out.b0 = 1.0 - hit.u - hit.v;
+        out.b1 = hit.u;
+        out.b2 = hit.v;
+        out.normal = n.normalized();
+      }
+      return true;
+    });
     if (!(best <= 1.0)) return false;
     out.distance = 0.0;
     return true;
@@ -1284,121 +1318,80 @@ struct MeshBody::Impl {
     return c.b0 * corner(c.triangle, 0) + c.b1 * corner(c.triangle, 1) + c.b2 * corner(c.triangle, 2);
   }
 
-  /// Whether memo says its centre was outside in this pose or the one
-  /// before: then that side still holds at a point the way to which no
-  /// surface crossed (segment_clear). Not from a memo near ignored
-  /// triangles: its side came from an open surface and may be wrong (a
-  /// point 14 mm inside the skinned leg was handed "outside" from one such
-  /// memo to the next for 25 steps).
+  /// Whether an ignored (turned) triangle lies within sqrt(radius2) of p:
+  /// there the seen surface is open, and a side read off it may be wrong.
+  bool near_fold(const Vector3d& p, double radius2) const {
+    for (int t : ignored_list)
+      if (triangle_box_distance2(p, t) < radius2) return true;
+    return false;
+  }
+
+  /// Whether memo says its point was left outside in this pose or the one
+  /// before, with a side that may be carried: then that side still holds at
+  /// a point the way to which no surface crossed (segment_clear).
   bool recently_outside(const ContactMemo* memo) const {
     return memo && memo->owner == this && memo->radius > 0.0 && memo->outside && memo->sided &&
            (memo->serial == serial || memo->serial + 1 == serial);
   }
 
-  /// Whether `memo` holds this body's triangles gathered in the current pose.
-  bool memo_current(const ContactMemo* memo) const {
-    return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0;
-  }
-
-  /// Whether `memo` holds this body's triangles near p in the current pose.
-  bool memo_applies(const ContactMemo* memo, const Vector3d& p) const {
-    return memo && memo->owner == this && memo->serial == serial && memo->radius > 0.0 &&
-           (p - memo->centre).norm() < 0.5 * memo->radius;
-  }
-
-  /// contact(p, search2, deep, out) answered from a memo made in this pose
-  /// when it can be certified: every triangle within memo.radius of its
-  /// centre is in it, so one closer to p than (radius - |p - centre|) is the
-  /// closest of all, and with none that close, while p is no farther from
-  /// the centre than that, p lies on its centre's side (a surface between
-  /// them would be closer). Else the tree answers. A caller that only acts
-  /// on contacts closer than sqrt(need2) (resolve: thickness) may be told
-  /// "none" for an outside point with nothing that close, though a triangle
-  /// lies within sqrt(search2).
-  /// `known`, if given, is closest_among(p, memo->items), already found.
-  bool contact_with(const Vector3d& p, double search2, bool deep, Contact& out, const ContactMemo* memo,
-                    double need2 = -1.0, const Closest* known = nullptr) const {
-    if (need2 < 0.0) need2 = search2;
-    if (!memo_current(memo)) return contact(p, search2, deep, out);
-    const double moved = (p - memo->centre).norm();
-    if (!(moved < memo->radius)) return contact(p, search2, deep, out);
-    // Clear of every triangle by more than the caller acts on, on the
-    // centre's (outside) side: what the loop below would conclude.
-    if (memo->sided && memo->outside && memo->clear - moved >= std::sqrt(std::min(search2, need2))) return false;
-    const double slack = memo->radius - moved;
-    const Closest c = known ? *known : closest_among(p, memo->items);
-    if (c.triangle >= 0 && c.d2 < slack * slack) {
-      if (c.d2 < search2) {
-        out = signed_contact(p, c);
-        return true;
+  /// The contact of p with the seen triangle nearest to it within `reach`
+  /// beyond the thickness, or, with nothing that near, the contact of p
+  /// deep inside; false when p is outside and nothing is that near. The
+  /// same answer as contact(p, (thickness + reach)^2, true, out); the memo
+  /// only makes it cheaper: its nearest triangle starts the search with a
+  /// bound, and with nothing within reach its carried side (a way no
+  /// surface crossed) stands for the unbounded search. `behind`, if
+  /// given, receives closest_and_behind's distance for a contact found
+  /// within reach (the depth for one deep inside).
+  bool nearest_contact(const Vector3d& p, double reach, const ContactMemo* memo, Contact& out,
+                       double* behind = nullptr) const {
+    const double near2 = (thickness + reach) * (thickness + reach);
+    Closest c;
+    if (memo && memo->owner == this && memo->nearest >= 0 &&
+        static_cast<std::size_t>(memo->nearest) < triangles.size() &&
+        !(any_ignored && ignored[static_cast<std::size_t>(memo->nearest)])) {
+      const int t = memo->nearest;
+      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (d2 < near2) {
+        c.d2 = d2;
+        c.triangle = t;
+        c.at = at;
       }
-      if (!deep) return false;
+    }
+    // The search finds any triangle nearer than the memo's, which stays
+    // the answer when none is.
+    double behind_distance = 0.0;
+    const bool found = behind ? closest_and_behind(p, near2, 2.0 * kFlipReach, c, behind_distance)
+                              : (closest(p, c.triangle >= 0 ? c.d2 : near2, c) || c.triangle >= 0);
+    if (found) {
       out = signed_contact(p, c);
-      return out.distance < 0.0;
+      if (behind) *behind = behind_distance;
+      return true;
     }
-    // Nothing within slack of p: no contact within search2 if that is
-    // inside the slack, and p is on the centre's side.
-    if (std::min(search2, need2) <= slack * slack && moved <= slack && memo->outside && memo->sided) return false;
-    return contact(p, search2, deep, out);
+    if (recently_outside(memo) && segment_clear(memo->centre, p)) return false;
+    if (!inside_root(p) || !closest(p, std::numeric_limits<double>::infinity(), c)) return false;
+    out = signed_contact(p, c);
+    if (behind) *behind = -out.distance;  // inside: no side to vouch for
+    return out.distance < 0.0;
   }
 
-  /// Whether p, outside by its closest triangle `nearest`, is behind
-  /// another of `items` within sqrt(radius2) (inside by that one's closest
-  /// feature): where skinning drives one part of the body into another
-  /// (the thighs, a hand into the hip) the closest triangle's side then
-  /// changes within the memo's ball without a surface between, so "nothing
-  /// near, so on the centre's side" would disagree with the tree (a
-  /// knee-length skirt's point was left 7.9 mm inside the body).
-  bool behind_another(const Vector3d& p, int nearest, double radius2, const std::vector<int>& items) const {
-    for (int t : items) {
-      if (t == nearest || (any_ignored && ignored[static_cast<std::size_t>(t)])) continue;
-      if (!(triangle_box_distance2(p, t) < radius2)) continue;
-      // Only a triangle whose plane p is behind can be one p is inside of
-      // (a shared edge or corner aside, whose other triangle is an item too).
-      const Vector3d a = corner(t, 0);
-      if ((p - a).dot((corner(t, 1) - a).cross(corner(t, 2) - a)) >= 0.0) continue;
-      const TrianglePoint at = closest_on_triangle(p, a, corner(t, 1), corner(t, 2));
-      if (!((p - at.point).squaredNorm() < radius2)) continue;
-      if ((p - at.point).dot(pseudo_normal(t, at.feature)) < 0.0) return true;
-    }
-    return false;
-  }
-
-  /// Remembers the triangles near p (where the point ended a resolve) for
-  /// the later rounds of this pose, and returns the closest of them
-  /// (triangle -1: none). `outside_known()`: whether p is known to be
-  /// outside (the resolve found it clear without a push; or its way from
-  /// where it was outside crossed no surface); asked only when the
-  /// triangles near p cannot tell, as it may cost a query.
-  template <typename OutsideKnown>
-  Closest remember(const Vector3d& p, OutsideKnown outside_known, ContactMemo* memo) const {
-    if (!memo) return Closest{};
+  /// What the memo keeps of a point left at p with nearest seen triangle
+  /// `nearest` (-1: none within reach), outside or not.
+  void remember(const Vector3d& p, int nearest, bool outside, double reach, ContactMemo* memo) const {
+    if (!memo) return;
     memo->items.clear();
-    memo->radius = -1.0;
-    const double radius = thickness + kMemoMargin;
-    gather(p, radius * radius, memo->items);
-    // Near an ignored (turned) triangle the seen surface is not closed, so
-    // "nothing seen near, so on the centre's side" proves nothing: a point
-    // passing through the fold would keep an outside it no longer has (the
-    // tree calls it inside, 15-30 mm deep) and hand it on to every later
-    // memo. Such a memo still finds closest triangles, never sides.
-    const bool near_fold = any_ignored && std::any_of(memo->items.begin(), memo->items.end(), [&](int t) {
-                             return ignored[static_cast<std::size_t>(t)] != 0;
-                           });
-    const Closest c = closest_among(p, memo->items);
-    // The later queries are near p: with its closest triangle first, the
-    // boxes of most others are rejected at once.
-    if (c.triangle >= 0) std::iter_swap(memo->items.begin(), std::find(memo->items.begin(), memo->items.end(), c.triangle));
-    if (c.triangle >= 0 && c.d2 < radius * radius) memo->outside = signed_contact(p, c).distance >= 0.0;
-    else if (!near_fold && outside_known()) memo->outside = true;
-    else return c;  // side unknown: nothing remembered
-    memo->sided = !near_fold && !(memo->outside && behind_another(p, c.triangle, radius * radius, memo->items));
+    memo->nearest = nearest;
     memo->centre = p;
-    memo->radius = radius;
-    memo->clear = c.triangle >= 0 && c.d2 < radius * radius ? std::sqrt(c.d2) : radius;
+    memo->radius = thickness + reach;
+    memo->outside = outside;
+    // A side is carried only from where nothing seen was near (so it came
+    // from the tree's whole search or a carried side, not from one nearby
+    // triangle, which where skinning drives one part into another can be
+    // the wrong part's) and no fold is near (the seen surface is open there).
+    memo->sided = nearest < 0 && !(any_ignored && near_fold(p, memo->radius * memo->radius));
     memo->owner = this;
     memo->serial = serial;
-    return c;
   }
 
   /// Pushes p out to thickness along the distance's gradient, searching
@@ -1408,25 +1401,30 @@ struct MeshBody::Impl {
   /// thickness outside its closest point, so later sweeps only search that
   /// far. In a gap narrower than twice the thickness (between toes or
   /// fingers) no place is clear of both sides and the pushes alternate: then
-  /// the place seen farthest out is kept. `largest` takes the largest push.
-  void project(Vector3d& p, double search2, double& largest, const ContactMemo* memo = nullptr) const {
+  /// the place seen farthest out is kept. `largest` takes the largest push;
+  /// `last` (if given) the contact of the last push kept.
+  void project(Vector3d& p, double search2, double& largest, Contact* last = nullptr) const {
     Vector3d best_p = p;
     double best_distance = -std::numeric_limits<double>::infinity();
+    Contact best_contact;
     const double near2 = thickness * thickness;
     for (int sweep = 0; sweep <= kMaxSweeps; ++sweep) {
       Contact c;
-      if (!contact_with(p, sweep == 0 ? search2 : near2, false, c, memo)) return;
+      if (!contact(p, sweep == 0 ? search2 : near2, false, c)) return;
       const double gap = c.distance - thickness;
       if (!(gap < -1e-12)) return;  // round-off short of thickness is clear: no endless re-pushes
       if (c.distance > best_distance) {
         best_distance = c.distance;
         best_p = p;
+        best_contact = c;
       }
       if (sweep == kMaxSweeps) break;
       p += -gap * c.normal;
       largest = std::max(largest, -gap);
+      if (last) *last = c;
     }
     p = best_p;
+    if (last) *last = best_contact;
   }
 
   Vector3d surface_motion(const Contact& c) const {
@@ -1553,9 +1551,11 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices, const std::vector<char>&
                         std::to_string(m.triangles.size()) + ")");
   m.any_ignored = false;
   std::fill(m.ignored.begin(), m.ignored.end(), 0);
+  m.ignored_list.clear();
   for (std::size_t t = 0; t < ignored.size(); ++t)
     if (ignored[t]) {
       m.ignored[static_cast<std::size_t>(m.leaf_of_input[t])] = 1;
+      m.ignored_list.push_back(m.leaf_of_input[t]);
       m.any_ignored = true;
     }
   Impl::require_finite(vertices);
@@ -1566,36 +1566,40 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices, const std::vector<char>&
 }
 
 double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
-                         ContactMemo* memo) const {
+                         ContactMemo* memo, SurfaceNearby* nearby) const {
   const Impl& m = *impl_;
-  // A memo made in this pose answers for itself. Otherwise the triangles
-  // around the point are gathered first, so a point in contact is resolved
-  // from them (one traversal instead of a query, a crease check and a
-  // gather); where that cannot say which side the point is on (nothing
-  // within reach of the gather), the tree answers and the memo is filled
-  // where the point ends.
-  const auto yes = [] { return true; };
-  const auto no = [] { return false; };
-  bool reuse = m.memo_applies(memo, position);
-  Impl::Closest near;  // the closest of the memo's triangles, when just gathered at `position`
-  const Impl::Closest* known = nullptr;
-  if (memo && !reuse) {
-    // A point that was outside stays outside while no surface crossed its
-    // way here: with nothing near, the memo then answers without the tree.
-    const bool was_outside = m.recently_outside(memo);
-    const Vector3d from = memo->centre;
-    near = m.remember(position, [&] { return was_outside && m.segment_clear(from, position); }, memo);
-    reuse = m.memo_applies(memo, position);
-    if (reuse) known = &near;
-  }
-  ContactMemo* refill = reuse ? nullptr : memo;
+  // The nearest seen triangle within reach (the memo's from the last
+  // resolve starts the search), or the contact deep inside.
   Impl::Contact c;
-  // Only a contact within thickness (or inside) is acted on.
-  if (!m.contact_with(position, m.reach2, true, c, memo, m.thickness * m.thickness, known) ||
-      !(c.distance - m.thickness < 0.0)) {
-    m.remember(position, yes, refill);
+  double behind = 0.0;  // how far the nearest triangle p is behind is (when near)
+  const Vector3d searched = position;
+  const bool near = m.nearest_contact(position, kNearbyReach, memo, c, nearby ? &behind : nullptr);
+  if (!near || !(c.distance - m.thickness < 0.0)) {
+    if (nearby) {
+      nearby->clearance = near ? c.distance - m.thickness : kNearbyReach;
+      nearby->has_plane = near;
+      nearby->normal = c.normal;
+      nearby->point = position - nearby->clearance * c.normal;
+      // Its side holds while the nearest triangle it is behind stays farther.
+      nearby->flip = near ? 0.5 * (behind - c.distance) : std::numeric_limits<double>::infinity();
+    }
+    m.remember(position, near ? c.triangle : -1, true, kNearbyReach, memo);
     return 0.0;
   }
+  // Where the point ends: thickness off its last push's surface.
+  const auto finish = [&](const Impl::Contact& last, double largest) {
+    if (nearby) {
+      nearby->clearance = 0.0;
+      nearby->has_plane = true;
+      nearby->normal = last.normal;
+      nearby->point = position;
+      // Now thickness off its surface, and the triangles it was behind at
+      // most as much nearer as it moved.
+      nearby->flip = std::max(0.0, 0.5 * (behind - (position - searched).norm() - m.thickness));
+    }
+    m.remember(position, last.triangle, true, kNearbyReach, memo);
+    return largest;
+  };
   // Inside, the nearest surface may be the far side of a limb that moved
   // more than half its width through the point this step (a shin swinging
   // at 3 m/s moves 25 mm per 1/120 s step): pushed there, cloth ends on
@@ -1608,17 +1612,16 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // nearest surface, as below.
   if (c.distance < 0.0) {
     Impl::Contact entry, there;
-    if (m.first_entry(start + m.surface_motion(c), position, entry, memo)) {
+    if (m.first_entry(start + m.surface_motion(c), position, entry)) {
       const Vector3d out = m.surface_point(entry) + m.thickness * entry.normal;
       // The entry triangle lies within thickness of `out`, so the closest
       // one does too: searching no farther finds the same one, sooner.
       const double within = m.thickness + 1e-9;
-      if (!(m.contact_with(out, within * within, true, there, memo) && there.distance < 0.0)) {
+      if (!(m.contact(out, within * within, true, there) && there.distance < 0.0)) {
         double largest = (out - position).norm();
         position = out;
-        m.project(position, m.thickness * m.thickness, largest, memo);
-        m.remember(position, no, refill);
-        return largest;
+        m.project(position, m.thickness * m.thickness, largest, &entry);
+        return finish(entry, largest);
       }
     }
   }
@@ -1631,9 +1634,8 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   position += correction * c.normal;
   double largest = correction;
   if (!friction) {
-    m.project(position, m.thickness * m.thickness, largest, memo);
-    m.remember(position, no, refill);
-    return largest;
+    m.project(position, m.thickness * m.thickness, largest, &c);
+    return finish(c, largest);
   }
   const Vector3d step = position - start - m.surface_motion(c);
   const Vector3d tangential = step - c.normal * c.normal.dot(step);
@@ -1646,9 +1648,8 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // can still hold it (the other side of a crease, or the surface it slid
   // along); pushes from there on are frictionless.
   const double reach = m.thickness + move.norm();
-  m.project(position, reach * reach, largest, memo);
-  m.remember(position, no, refill);
-  return largest;
+  m.project(position, reach * reach, largest, &c);
+  return finish(c, largest);
 }
 
 double MeshBody::penetration(const Eigen::Vector3d& p) const {

@@ -108,12 +108,13 @@ class MeshBody : public CollisionScene {
   /// triangles no query sees in this pose (turned_triangles); pseudo-normals
   /// are formed from the others.
   void update(const Eigen::MatrixX3d& vertices, const std::vector<char>& ignored = {});
-  /// With a memo, a point resolved again before the next update() (a later
-  /// collision round) is answered from the triangles remembered near it
-  /// whenever they certainly include its closest one, else from the tree:
-  /// the same answers, without the tree.
+  /// With a memo (the point's from its last resolve, in this pose or an
+  /// earlier one), the search starts from the triangle that was nearest,
+  /// and a point with nothing near that was left outside by the last pose
+  /// or this one, whose way since crossed no surface, is outside without a
+  /// search of the whole tree: the same answers, sooner.
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
-                 ContactMemo* memo = nullptr) const override;
+                 ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   double depth(const Eigen::Vector3d& p) const override;
   bool empty() const override { return false; }

@@ -33,11 +33,17 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
 class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
  public:
   MeshAndBridges(const MeshBody& mesh, const CapsuleBody* bridges) : mesh_(mesh), bridges_(bridges) {}
-  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
-                 ContactMemo* memo) const override {
-    double largest = mesh_.resolve(start, position, friction, memo);
-    const double bridged = bridges_ ? bridges_->resolve(start, position, friction) : 0.0;
-    if (bridged > 0.0) largest = std::max({largest, bridged, mesh_.resolve(start, position, false, memo)});
+  double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction, ContactMemo* memo,
+                 SurfaceNearby* nearby) const override {
+    SurfaceNearby on_mesh, on_bridges;
+    double largest = mesh_.resolve(start, position, friction, memo, nearby ? &on_mesh : nullptr);
+    const double bridged = bridges_ ? bridges_->resolve(start, position, friction, nullptr, nearby ? &on_bridges : nullptr) : 0.0;
+    if (bridged > 0.0) {
+      largest = std::max({largest, bridged, mesh_.resolve(start, position, false, memo, nearby ? &on_mesh : nullptr)});
+      // The mesh may have moved the point off where the bridges left it.
+      if (nearby) on_bridges = nearest_surface(bridges_->colliders(), position, kNearbyReach);
+    }
+    if (nearby) *nearby = bridges_ ? nearer(on_mesh, on_bridges) : on_mesh;
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

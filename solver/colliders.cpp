@@ -343,6 +343,40 @@ void colliders_near(const std::vector<Collider>& colliders, const Eigen::Vector3
   }
 }
 
+SurfaceNearby nearest_surface(const std::vector<Collider>& colliders, const Eigen::Vector3d& p, double reach) {
+  SurfaceNearby nearby;
+  nearby.clearance = std::numeric_limits<double>::infinity();
+  double planed = nearby.clearance;  // the clearance of the surface nearby.point lies on
+  for (const Collider& collider : colliders) {
+    // A capsule or sphere is at least its axis' distance less its larger
+    // radius away: beyond reach that bound is all the clearance needs.
+    double bound = -std::numeric_limits<double>::infinity();
+    if (const auto* capsule = std::get_if<CapsuleCollider>(&collider.shape))
+      bound = std::sqrt(axis_distance2(*capsule, p)) - std::max(capsule->radius_a, capsule->radius_b) - collider.thickness;
+    else if (const auto* sphere = std::get_if<SphereCollider>(&collider.shape))
+      bound = (p - sphere->center).norm() - sphere->radius - collider.thickness;
+    if (bound >= reach) {
+      nearby.clearance = std::min(nearby.clearance, bound);
+      continue;
+    }
+    const SurfaceQuery q = query_surface(collider, p);
+    const double clearance = q.distance - collider.thickness;
+    nearby.clearance = std::min(nearby.clearance, clearance);
+    if (clearance < planed) {
+      planed = clearance;
+      nearby.has_plane = true;
+      nearby.normal = q.normal;
+      nearby.point = p - clearance * q.normal;
+    }
+  }
+  // The plane is the nearest surface's, or none (one only bounded is nearer).
+  if (planed > nearby.clearance) nearby.has_plane = false;
+  // A point resolve_point left a hair inside (its sweeps are capped in
+  // sharp corners) counts as on the surface.
+  nearby.clearance = std::max(0.0, nearby.clearance);
+  return nearby;
+}
+
 double penetration(const std::vector<Collider>& colliders, const Eigen::Vector3d& p) {
   double deepest = 0.0;
   for (const Collider& collider : colliders) {

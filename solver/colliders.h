@@ -5,6 +5,7 @@
 // friction coefficient. Positions in metres.
 #include <Eigen/Core>
 
+#include <limits>
 #include <variant>
 #include <vector>
 
@@ -38,6 +39,25 @@ struct SurfaceQuery {
   Eigen::Vector3d normal{0, 1, 0};
 };
 SurfaceQuery query_surface(const Collider& collider, const Eigen::Vector3d& p);
+
+/// What lies near a point after its collision response, for the rest of a
+/// time step (the scene does not move within a step): how far the point is
+/// from every thickened surface, and the nearest one linearised there.
+struct SurfaceNearby {
+  double clearance = 0.0;             ///< metres, >= 0: the point is at least this far outside every surface + thickness (0: on one)
+  bool has_plane = false;             ///< whether the nearest thickened surface was found, within the scene's reach
+  Eigen::Vector3d point{0, 0, 0};     ///< the point's projection onto that thickened surface, metres
+  Eigen::Vector3d normal{0, 1, 0};    ///< its outward unit normal there
+  /// Metres the point may move from here and its nearest surface stay that
+  /// plane's (infinite: anywhere within the clearance); less where another
+  /// part of a body that passes into itself lies just behind.
+  double flip = std::numeric_limits<double>::infinity();
+};
+
+/// The nearest of `colliders`' thickened surfaces to p (p outside all of
+/// them, as resolve_point leaves it): exact within `reach` (metres) of
+/// them, a lower bound beyond.
+SurfaceNearby nearest_surface(const std::vector<Collider>& colliders, const Eigen::Vector3d& p, double reach);
 
 /// True when p is certainly farther than thickness from a capsule (farther
 /// from its axis segment than its larger radius plus the thickness): a few

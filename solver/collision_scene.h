@@ -7,26 +7,32 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <vector>
 
 namespace mrcloth {
 
-/// What a scene may remember about one cloth point between the collision
-/// rounds of a step to answer its later queries faster; it never changes an
-/// answer. The caller owns one per point and passes it to every resolve of
-/// that point; a scene that does not use it leaves it alone, and the first
-/// scene of a composite that uses it owns it.
+/// What a scene may remember about one cloth point from its last resolve
+/// to answer the next one (a later round of the step, or the next step)
+/// sooner; it never changes an answer. The caller owns one per point and
+/// passes it to every resolve of that point; a scene that does not use it
+/// leaves it alone, and the first scene of a composite that uses it owns it.
 struct ContactMemo {
-  std::vector<int> items;               ///< scene-defined (MeshBody: every triangle within `radius` of `centre`)
-  Eigen::Vector3d centre{0, 0, 0};      ///< where they were gathered
+  std::vector<int> items;               ///< scene-defined (CapsuleBody: the capsules within `radius` of `centre`)
+  int nearest = -1;                     ///< scene-defined (MeshBody: the seen triangle nearest to `centre`, -1: none within `radius`)
+  Eigen::Vector3d centre{0, 0, 0};      ///< where the point was left
   double radius = -1.0;                 ///< < 0: nothing remembered
   bool outside = true;                  ///< whether centre was outside the surface
-  double clear = 0.0;                   ///< MeshBody: no (seen) triangle is nearer than this to centre
-  bool sided = true;                    ///< MeshBody: false near ignored triangles, where `outside` may not carry to points near centre
+  bool sided = true;                    ///< MeshBody: whether `outside` may be carried to points whose way from centre crossed no surface
   const void* owner = nullptr;          ///< the scene that wrote it
   unsigned long long serial = 0;        ///< that scene's pose then
 };
+
+/// Within this distance (metres) beyond its thickness a scene reports the
+/// nearest surface's tangent plane in SurfaceNearby (beyond it, only a
+/// lower bound on the clearance).
+constexpr double kNearbyReach = 0.01;
 
 class CollisionScene {
  public:
@@ -36,9 +42,12 @@ class CollisionScene {
   /// the step began, while the scene was still in its previous pose), and
   /// when `friction` applies friction to the motion from `start` relative
   /// to the surface. Returns the largest normal correction (metres).
-  /// `memo`, if given, is this point's (see ContactMemo).
+  /// `memo`, if given, is this point's (see ContactMemo). `nearby`, if
+  /// given, receives what lies near where the point ends: its clearance
+  /// (a lower bound, exact within kNearbyReach) and, within kNearbyReach,
+  /// the nearest thickened surface's tangent plane.
   virtual double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
-                         ContactMemo* memo = nullptr) const = 0;
+                         ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const = 0;
   /// Depth of p inside surface + thickness (0 when outside), metres.
   virtual double penetration(const Eigen::Vector3d& p) const = 0;
   /// Depth of p below the surface itself, thickness not counted (0 when
@@ -53,8 +62,10 @@ class AnalyticScene : public CollisionScene {
  public:
   explicit AnalyticScene(std::vector<Collider> colliders = {}) : colliders_(std::move(colliders)) {}
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
-                 ContactMemo* = nullptr) const override {
-    return resolve_point(colliders_, colliders_, start, position, friction);
+                 ContactMemo* = nullptr, SurfaceNearby* nearby = nullptr) const override {
+    const double largest = resolve_point(colliders_, colliders_, start, position, friction);
+    if (nearby) *nearby = nearest_surface(colliders_, position, kNearbyReach);
+    return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override { return mrcloth::penetration(colliders_, p); }
   double depth(const Eigen::Vector3d& p) const override { return mrcloth::depth(colliders_, p); }
@@ -66,6 +77,21 @@ class AnalyticScene : public CollisionScene {
   std::vector<Collider> colliders_;
 };
 
+/// What an empty scene finds near any point: nothing, anywhere.
+inline SurfaceNearby nothing_near() {
+  SurfaceNearby none;
+  none.clearance = std::numeric_limits<double>::infinity();
+  return none;
+}
+
+/// What two scenes found near one point, as one: the smaller clearance and
+/// its plane; the point's side may flip within the smaller flip distance.
+inline SurfaceNearby nearer(const SurfaceNearby& a, const SurfaceNearby& b) {
+  SurfaceNearby out = b.clearance < a.clearance ? b : a;
+  out.flip = std::min(a.flip, b.flip);
+  return out;
+}
+
 /// Several scenes as one: resolves against each non-empty one in turn, and
 /// when there are several and one pushed, once more without friction (a
 /// point pushed from one into another settles); penetration is the deepest.
@@ -73,18 +99,27 @@ class CompositeScene : public CollisionScene {
  public:
   void add(const CollisionScene* scene) { scenes_.push_back(scene); }
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
-                 ContactMemo* memo = nullptr) const override {
+                 ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const override {
     double largest = 0.0;
     int active = 0;
+    SurfaceNearby here;
+    if (nearby) *nearby = nothing_near();
     for (const CollisionScene* s : scenes_) {
       if (s->empty()) continue;
       ++active;
-      largest = std::max(largest, s->resolve(start, position, friction, memo));
+      largest = std::max(largest, s->resolve(start, position, friction, memo, nearby ? &here : nullptr));
+      if (nearby) *nearby = nearer(*nearby, here);
     }
     // One scene has already had the last word; friction acts once per step.
+    // (With one scene, or no push, what each scene found near the point
+    // still holds where it ends.)
     if (active < 2 || largest <= 0.0) return largest;
-    for (const CollisionScene* s : scenes_)
-      if (!s->empty()) largest = std::max(largest, s->resolve(start, position, false, memo));
+    if (nearby) *nearby = nothing_near();
+    for (const CollisionScene* s : scenes_) {
+      if (s->empty()) continue;
+      largest = std::max(largest, s->resolve(start, position, false, memo, nearby ? &here : nullptr));
+      if (nearby) *nearby = nearer(*nearby, here);
+    }
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {

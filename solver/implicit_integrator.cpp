@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <cstdint>
 #include <limits>
+#include <queue>
 
 namespace mrcloth {
 namespace {
@@ -110,13 +112,85 @@ std::vector<int> wavefront_order(const DynamicsModel& model) {
   return stretch;
 }
 
+// Each free vertex's tether to its nearest pinned vertex over the cloth
+// (Dijkstra along the stretch and shear springs' rest lengths, which is at
+// least the geodesic distance, so the tether never binds cloth that is
+// within its stretch limit).
+std::vector<ImplicitIntegrator::Tether> tethers_to_pins(const DynamicsModel& model, const std::vector<int>& direct_free) {
+  std::vector<ImplicitIntegrator::Tether> tethers;
+  if (model.pinned_vertices.empty()) return tethers;
+  std::vector<std::vector<std::pair<int, double>>> edges(model.num_vertices);
+  for (const Spring& s : model.springs) {
+    if (s.kind == SpringKind::bend) continue;
+    edges[s.i].emplace_back(s.j, s.rest);
+    edges[s.j].emplace_back(s.i, s.rest);
+  }
+  std::vector<double> distance(model.num_vertices, std::numeric_limits<double>::infinity());
+  std::vector<int> source(model.num_vertices, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int v : model.pinned_vertices) {
+    distance[v] = 0.0;
+    source[v] = v;
+    queue.emplace(0.0, v);
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (const auto& [w, length] : edges[v])
+      if (d + length < distance[w]) {
+        distance[w] = d + length;
+        source[w] = source[v];
+        queue.emplace(distance[w], w);
+      }
+  }
+  const double limit = 1.0 + model.material.stretch_limit;
+  for (int v = 0; v < model.num_vertices; ++v)
+    if (direct_free[v] >= 0 && source[v] >= 0 && distance[v] > 0.0)
+      tethers.push_back({direct_free[v], source[v], limit * distance[v]});
+  return tethers;
+}
+
+// The rows of `points` (#P x 3) in Morton order of their positions: points
+// checked one after another then meet the same part of the scene, whose
+// tree stays in cache.
+std::vector<int> spatial_order(const Positions& points) {
+  std::vector<int> order(static_cast<std::size_t>(points.rows()));
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  if (points.rows() == 0) return order;
+  const Eigen::RowVector3d lo = points.colwise().minCoeff(), hi = points.colwise().maxCoeff();
+  const Eigen::RowVector3d extent = (hi - lo).cwiseMax(1e-12);
+  const auto spread = [](std::uint64_t v) {  // 21 bits to every third of 63
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::vector<std::uint64_t> code(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    std::uint64_t key = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double unit = (points(static_cast<Eigen::Index>(k), c) - lo(c)) / extent(c);
+      key |= spread(static_cast<std::uint64_t>(std::clamp(unit, 0.0, 1.0) * 2097151.0)) << c;
+    }
+    code[k] = key;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return code[static_cast<std::size_t>(a)] < code[static_cast<std::size_t>(b)]; });
+  return order;
+}
+
 void check(const IntegratorOptions& o) {
   if (!(o.time_step > 0.0) || !std::isfinite(o.time_step)) throw ArgumentError("time step must be > 0 seconds");
   if (o.iterations < 1) throw ArgumentError("iterations must be >= 1");
   if (o.strain_limit_sweeps < 0) throw ArgumentError("strain limit sweeps must be >= 0");
   if (o.collision_rounds < 1) throw ArgumentError("collision rounds must be >= 1");
   if (!(o.round_tolerance >= 0.0)) throw ArgumentError("the round tolerance must be >= 0");
-  if (!(o.settle_tolerance >= 0.0)) throw ArgumentError("the settle tolerance must be >= 0 metres");
+  if (!(o.contact_slack >= 0.0) || !std::isfinite(o.contact_slack))
+    throw ArgumentError("the contact slack must be a finite number >= 0 metres");
   if (!o.gravity.allFinite()) throw ArgumentError("gravity must be finite");
   if (o.threads < 1) throw ArgumentError("threads must be >= 1");
 }
@@ -145,8 +219,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   Q += M;
   solver_.factorize(Q);
   pool_ = options.threads > 1 ? std::make_shared<WorkerPool>(options.threads) : nullptr;
-  part_pushes_.assign(static_cast<std::size_t>(options.threads), {});
   part_largest_.assign(static_cast<std::size_t>(options.threads), 0.0);
+  part_checked_.assign(static_cast<std::size_t>(options.threads), 0);
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
   self_contact_.precompute(model, options.self_contact);
@@ -171,12 +245,15 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     l.rest = s.rest;
     sweep_.push_back(l);
   }
+  tethers_ = options.tethers ? tethers_to_pins(model, direct_free_) : std::vector<Tether>{};
+  check_order_ = spatial_order(free_rows(model, model.rest));
   const Eigen::Index plane_rows = static_cast<Eigen::Index>(model.free_vertices.size() + model.hanging_vertices.size());
   plane_point_.resize(plane_rows, 3);
   plane_normal_.resize(plane_rows, 3);
   has_plane_.assign(static_cast<std::size_t>(plane_rows), 0);
-  planes_.clear();
   t_node_planes_.clear();
+  anchor_.resize(plane_rows, 3);
+  slack_.assign(static_cast<std::size_t>(plane_rows), 0.0);
   pinned_part_ = Positions::Zero(model.num_vertices, 3);
   general_of_.assign(model.springs.size(), -1);
   general_.clear();
@@ -215,26 +292,6 @@ Eigen::Vector3d ImplicitIntegrator::position_of(int vertex, const Positions& q) 
   Eigen::Vector3d x = pinned_part_.row(vertex).transpose();
   for (const StencilTerm& t : model_->stencil[vertex]) x += t.weight * q.row(t.free).transpose();
   return x;
-}
-
-void ImplicitIntegrator::remember_plane(Eigen::Index f, const Eigen::Vector3d& before,
-                                        const Eigen::Vector3d& after) const {
-  if (!options_.contact_planes) return;
-  const Eigen::Vector3d push = after - before;
-  const double length = push.norm();
-  if (!(length > 0.0)) return;
-  const std::size_t k = static_cast<std::size_t>(f);
-  if (!has_plane_[k]) {
-    has_plane_[k] = 1;
-    planes_.push_back(static_cast<int>(f));
-    const Eigen::Index free_count = static_cast<Eigen::Index>(model_->free_vertices.size());
-    if (f >= free_count) t_node_planes_.push_back(static_cast<int>(f - free_count));
-  }
-  // The push's direction (the collider's normal, tilted by at most the
-  // friction angle in the first round): in front of this plane the point
-  // is where the collider put it or farther out.
-  plane_point_.row(f) = after.transpose();
-  plane_normal_.row(f) = push.transpose() / length;
 }
 
 bool ImplicitIntegrator::move_t_node(std::size_t h, const Eigen::Vector3d& delta, Positions& q,
@@ -375,8 +432,33 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   // Symmetric Gauss-Seidel: alternating sweep directions carry a correction
   // across the whole cloth in a few sweeps instead of one row per sweep.
   const std::size_t count = sweep_.size();
-  for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
+  // Tethers: no free vertex farther from its nearest pinned vertex than the
+  // cloth between them allows (long-range attachments): what a chain of
+  // springs hanging from the pins would take a sweep per link to pass down.
+  // Each sweep starts with them, and the springs have the last word. (Over
+  // the walk table at three pre-rolls, 108 runs, tethers first tore 6 runs
+  // against 11 with tethers last, which stretch springs to keep the reach
+  // exact, and 9 without tethers.)
+  const auto pull_tethers = [&] {
     bool any = false;
+    for (const Tether& t : tethers_) {
+      const auto f = static_cast<Eigen::Index>(t.free);
+      double d[3], length2 = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        d[c] = q(f, c) - pinned_part_(t.pinned, c);
+        length2 += d[c] * d[c];
+      }
+      if (length2 <= t.max_length * t.max_length) continue;
+      const double scale = t.max_length / std::sqrt(length2);
+      for (int c = 0; c < 3; ++c) q(f, c) = pinned_part_(t.pinned, c) + scale * d[c];
+      keep_in_front(f, q);
+      dirty[static_cast<std::size_t>(t.free)] = moved[static_cast<std::size_t>(t.free)] = 1;
+      any = true;
+    }
+    return any;
+  };
+  for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
+    bool any = options_.tethers && pull_tethers();
     if (sweep % 2 == 0)
       for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_[k]);
     else
@@ -392,130 +474,155 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   return largest;
 }
 
-double ImplicitIntegrator::resolve_collisions(const Positions& q_previous, Positions& q,
-                                              const CollisionScene& scene, bool friction,
-                                              const Positions* settled, double tolerance) const {
-  if (scene.empty()) return 0.0;
-  const DynamicsModel& m = *model_;
-  double largest = 0.0;
-  memos_.resize(static_cast<std::size_t>(q.rows()) + m.hanging_vertices.size());
-  // Where each vertex's last resolve left it, kept only when a step's
-  // rounds use a tolerance (with none, nothing reads it).
-  const bool track = options_.settle_tolerance > 0.0;
-  if (!settled && track) {
-    resolved_.resize(q.rows(), 3);
-    pending_.assign(static_cast<std::size_t>(q.rows()), 0);
+void ImplicitIntegrator::set_plane(Eigen::Index row, const Eigen::Vector3d& before, const Eigen::Vector3d& after,
+                                   const SurfaceNearby& nearby) const {
+  const auto k = static_cast<std::size_t>(row);
+  has_plane_[k] = 0;
+  if (!options_.contact_planes) return;
+  const Eigen::Vector3d push = after - before;
+  const double length = push.norm();
+  if (length > 0.0) {
+    // Pushed: across the push (the surface's normal, tilted by at most the
+    // friction angle in the step's first check). In front of it the point
+    // is where the collider put it or farther out, and the limiter cannot
+    // drag it on the way friction held it; sliding the other way along the
+    // plane it may sink into the thickness by up to the slack times the
+    // sine of the friction angle. (Over the walk table at three pre-rolls,
+    // 108 runs: planes across the push tore 6 and left none inside; the
+    // surface's tangent plane instead tore 9 and left 3 inside, both
+    // together tore 9 and left 1.)
+    plane_point_.row(row) = after.transpose();
+    plane_normal_.row(row) = push.transpose() / length;
+    has_plane_[k] = 1;
+  } else if (nearby.has_plane) {
+    // Near a surface: its thickened surface's tangent plane.
+    plane_point_.row(row) = nearby.point.transpose();
+    plane_normal_.row(row) = nearby.normal.transpose();
+    has_plane_[k] = 1;
   }
-  const double tolerance2 = tolerance * tolerance;
-  // Whether free vertex f needs no resolve this round: unmoved since the
-  // last round (and not left pending), or, with a tolerance, moved less than
-  // it since its own last resolve: then it is left pending, and the step's
-  // last round (tolerance 0) resolves it.
-  const auto settled_at = [&](Eigen::Index f) {
-    if (!settled) return false;
-    if (!track) return q.row(f) == settled->row(f);
-    char& pending = pending_[static_cast<std::size_t>(f)];
-    if (q.row(f) == settled->row(f)) return tolerance2 > 0.0 || !pending;
-    if (!(tolerance2 > 0.0 && (q.row(f) - resolved_.row(f)).squaredNorm() < tolerance2)) return false;
-    pending = 1;
-    return true;
+}
+
+double ImplicitIntegrator::slack_of(const SurfaceNearby& nearby, bool planed) const {
+  // A point may move as far as it is clear of every thickened surface, and
+  // on a plane at least contact_slack along it (the plane stands for the
+  // surface there).
+  return std::min(planed ? std::max(nearby.clearance, options_.contact_slack) : nearby.clearance, nearby.flip);
+}
+
+int ImplicitIntegrator::check_contacts(const Positions& q_previous, Positions& q, const CollisionScene& scene,
+                                       bool first, double& largest) const {
+  if (scene.empty()) return 0;
+  const DynamicsModel& m = *model_;
+  const Eigen::Index free_count = q.rows();
+  memos_.resize(static_cast<std::size_t>(free_count) + m.hanging_vertices.size());
+  // Whether row r (at x) needs a check: every row in the step's first, then
+  // those that moved beyond their slack from where their last check left them.
+  const auto needs = [&](Eigen::Index r, const Eigen::Vector3d& x) {
+    if (first) return true;  // (a forced check passes first too)
+    const double slack = slack_[static_cast<std::size_t>(r)];
+    return (x - anchor_.row(r).transpose()).squaredNorm() > slack * slack;
   };
-  // Resolves free vertex f and returns its correction; a push goes to
-  // pushed(f, before, after), which keeps its contact plane.
-  const auto resolve_vertex = [&](Eigen::Index f, bool with_friction, auto&& pushed) {
+  // Resolves free vertex f if it needs it (or `forced`), and returns the
+  // correction (-1: not checked). Friction acts once, in the step's first
+  // check. Each vertex's resolve reads and writes its own rows and memo.
+  const auto check_vertex = [&](Eigen::Index f, bool forced) {
     const Eigen::Vector3d before = q.row(f).transpose();
+    if (!forced && !needs(f, before)) return -1.0;
     Eigen::Vector3d x = before;
-    const double correction =
-        scene.resolve(q_previous.row(f).transpose(), x, with_friction, &memos_[static_cast<std::size_t>(f)]);
-    if (correction > 0.0) pushed(f, before, x);
+    SurfaceNearby nearby;
+    const double correction = scene.resolve(q_previous.row(f).transpose(), x, first && !forced,
+                                            &memos_[static_cast<std::size_t>(f)], &nearby);
     q.row(f) = x.transpose();
-    if (track) {
-      resolved_.row(f) = q.row(f);
-      pending_[static_cast<std::size_t>(f)] = 0;
-    }
+    anchor_.row(f) = x.transpose();
+    set_plane(f, before, x, nearby);
+    slack_[static_cast<std::size_t>(f)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(f)] != 0);
     return correction;
   };
-  const auto keep_plane = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
-    remember_plane(f, before, after);
-  };
-  const auto resolve_free = [&](Eigen::Index f, bool with_friction) {
-    largest = std::max(largest, resolve_vertex(f, with_friction, keep_plane));
-  };
-  {
-    if (!pool_) {
-      for (Eigen::Index f = 0; f < q.rows(); ++f) {
-        // A vertex the strain limiter left where the last round put it is
-        // already resolved against this (unchanged) scene (see settled_at).
-        if (settled_at(f)) continue;
-        resolve_free(f, friction);
-      }
-    } else {
-      // The same per vertex, in parts: a vertex's resolve reads and writes
-      // only its own row and memo, so any split gives the same bits. The
-      // planes are recorded afterwards (order does not matter: one per vertex).
-      pool_->run(static_cast<std::size_t>(q.rows()), [&](int part, std::size_t begin, std::size_t end) {
-        std::vector<Push>& pushes = part_pushes_[static_cast<std::size_t>(part)];
-        double& part_largest = part_largest_[static_cast<std::size_t>(part)];
-        pushes.clear();
-        part_largest = 0.0;
-        const auto defer = [&](Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
-          pushes.push_back({f, before, after});
-        };
-        for (auto f = static_cast<Eigen::Index>(begin); f < static_cast<Eigen::Index>(end); ++f) {
-          if (settled_at(f)) continue;
-          part_largest = std::max(part_largest, resolve_vertex(f, friction, defer));
-        }
-      });
-      for (std::size_t part = 0; part < part_pushes_.size(); ++part) {
-        largest = std::max(largest, part_largest_[part]);
-        for (const Push& push : part_pushes_[part]) remember_plane(push.free, push.before, push.after);
-      }
-    }
-    // A T-node can be inside while its parents are outside (the collider is
-    // curved): push its free stencil by the correction, mass-weighted.
-    // `check`: null, every T-node not settled; else only T-nodes with a free
-    // stencil vertex flagged there. Flags the free vertices it moves in `moved`.
-    std::vector<char>& moved = moved_;
-    std::vector<char>& check = check_;
-    moved.assign(static_cast<std::size_t>(q.rows()), 0);
-    const auto push_t_nodes = [&](const std::vector<char>* only) {
-      bool pushed = false;
-      for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
-        const int v = m.hanging_vertices[h];
-        if (only && std::none_of(m.stencil[v].begin(), m.stencil[v].end(), [&](const StencilTerm& t) {
-              return (*only)[static_cast<std::size_t>(t.free)] != 0;
-            }))
-          continue;
-        const Eigen::Vector3d x = position_of(v, q);
-        if (!only && settled && x == position_of(v, *settled)) continue;
-        Eigen::Vector3d target = x;
-        const double correction =
-            scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(q.rows()) + h]);
-        if (correction <= 0.0) continue;
+  int checked = 0;
+  const auto check_free = [&](const std::vector<char>* only) {
+    if (!pool_ || only) {
+      for (const int ordered : check_order_) {
+        const Eigen::Index f = ordered;
+        if (only && !(*only)[static_cast<std::size_t>(f)]) continue;
+        const double correction = check_vertex(f, only != nullptr);
+        if (correction < 0.0) continue;
+        ++checked;
         largest = std::max(largest, correction);
-        if (!move_t_node(h, target - x, q, &moved)) continue;
-        remember_plane(q.rows() + static_cast<Eigen::Index>(h), x, target);
-        pushed = true;
       }
-      return pushed;
-    };
-    // A push moves parents that neighbouring T-nodes share, after those
-    // T-nodes and the parents were resolved, and the settled copy would vouch
-    // for them in the next round: the moved parents are resolved again, then
-    // the T-nodes on them, a few times at most. (The shared skirt's
-    // multi-resolution mesh on the skinned body, CMU 07_03: T-nodes 45.9 ->
-    // 24.5 mm inside at worst, stretch 1676 -> 205 %; the deepest points are
-    // still T-nodes.)
-    bool pushed = push_t_nodes(nullptr);
-    for (int pass = 0; pushed && pass < 3; ++pass) {
-      check.swap(moved);
-      moved.assign(check.size(), 0);
-      for (Eigen::Index f = 0; f < q.rows(); ++f)
-        if (check[static_cast<std::size_t>(f)]) resolve_free(f, false);
-      pushed = push_t_nodes(&check);
+      return;
     }
+    // In parts: any split gives the same bits (each vertex is its own).
+    pool_->run(static_cast<std::size_t>(free_count), [&](int part, std::size_t begin, std::size_t end) {
+      double& part_largest = part_largest_[static_cast<std::size_t>(part)];
+      int& part_checked = part_checked_[static_cast<std::size_t>(part)];
+      part_largest = 0.0;
+      part_checked = 0;
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto f = static_cast<Eigen::Index>(check_order_[k]);
+        const double correction = check_vertex(f, false);
+        if (correction < 0.0) continue;
+        ++part_checked;
+        part_largest = std::max(part_largest, correction);
+      }
+    });
+    for (std::size_t part = 0; part < part_largest_.size(); ++part) {
+      largest = std::max(largest, part_largest_[part]);
+      checked += part_checked_[part];
+    }
+  };
+  // A T-node can be inside while its parents are outside (the collider is
+  // curved): its free stencil is pushed by the correction, mass-weighted,
+  // flagging the free vertices it moves in `moved`. `only`: null, every
+  // T-node that needs a check; else only T-nodes with a free stencil
+  // vertex flagged there.
+  std::vector<char>& moved = moved_;
+  std::vector<char>& check = check_;
+  moved.assign(static_cast<std::size_t>(free_count), 0);
+  const auto check_t_nodes = [&](const std::vector<char>* only) {
+    bool pushed = false;
+    for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
+      const int v = m.hanging_vertices[h];
+      if (only && std::none_of(m.stencil[v].begin(), m.stencil[v].end(), [&](const StencilTerm& t) {
+            return (*only)[static_cast<std::size_t>(t.free)] != 0;
+          }))
+        continue;
+      const Eigen::Index row = free_count + static_cast<Eigen::Index>(h);
+      const Eigen::Vector3d x = position_of(v, q);
+      if (!only && !needs(row, x)) continue;
+      ++checked;
+      Eigen::Vector3d target = x;
+      SurfaceNearby nearby;
+      const double correction =
+          scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(row)], &nearby);
+      anchor_.row(row) = target.transpose();
+      if (correction > 0.0 && move_t_node(h, target - x, q, &moved)) {
+        largest = std::max(largest, correction);
+        pushed = true;
+      } else {
+        target = x;
+      }
+      set_plane(row, x, target, nearby);
+      slack_[static_cast<std::size_t>(row)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(row)] != 0);
+    }
+    return pushed;
+  };
+  check_free(nullptr);
+  // A push moves parents that neighbouring T-nodes share, after those
+  // T-nodes and the parents were checked: the moved parents are checked
+  // again, then the T-nodes on them, a few times at most. (The shared
+  // skirt's multi-resolution mesh on the skinned body, CMU 07_03: T-nodes
+  // 45.9 -> 24.5 mm inside at worst, stretch 1676 -> 205 %.)
+  bool pushed = check_t_nodes(nullptr);
+  for (int pass = 0; pushed && pass < 3; ++pass) {
+    check.swap(moved);
+    moved.assign(check.size(), 0);
+    check_free(&check);
+    pushed = check_t_nodes(&check);
   }
-  return largest;
+  t_node_planes_.clear();
+  for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h)
+    if (has_plane_[static_cast<std::size_t>(free_count) + h]) t_node_planes_.push_back(static_cast<int>(h));
+  return checked;
 }
 
 StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next,
@@ -534,10 +641,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   if (m.P.cols() > 0) pinned_part_.noalias() = m.P * pinned_next;
 
   const Positions q_previous = state.positions;
-  for (int k : planes_) has_plane_[static_cast<std::size_t>(k)] = 0;  // planes last one step
   fresh_pass_ = true;  // the dynamics moved everything: the first limiter pass evaluates every spring
-  planes_.clear();
-  t_node_planes_.clear();
   // Gravity is integrated exactly (x += h v + h^2 g / 2, v += h g), so free
   // fall follows the true parabola and a hanging cloth carries its full weight.
   Positions y = state.positions + h * state.velocities;
@@ -559,48 +663,43 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     report.collision_ms = ms_since(gather_start);
   }
 
-  // Strain limiting and collisions alternate: a collision push-out can
-  // stretch springs, and limiting can pull vertices back in, so each round
-  // does both and the last word is the collision's. Friction acts once, on
-  // the step's own motion; later rounds only project, or friction would undo
-  // the strain limiter's tangential corrections and re-stretch the cloth.
-  // Rounds repeat, up to collision_rounds, while the limiter found springs
-  // more than the tolerance beyond the limit: a limb pushing a tube of
-  // cloth (a trouser leg) moves a few vertices far, and the limiter needs
-  // several alternations with the collisions to bring the rest of the tube
-  // along (2 rounds: trousers torn at 500 %, 8: 15 %, on the mannequin's
-  // walk). Every round ends with the collisions, which have the last word,
-  // and there are at least two, so the stretch the first round's friction
-  // leaves is limited too (one round when the limiter found nothing: the
-  // default skirt's stretch 3.5 % -> 15 %). (Stopping when the excess
-  // stops shrinking was tried: the excess each round starts from is what
-  // the collisions re-stretch, nearly constant, while the tube still
-  // follows, so it stopped the trousers at 460 %.)
-  // Within a step a point the limiter moved less than settle_tolerance
-  // since its last resolve is left for the last round: the body has not
-  // moved, so it is at most that far into the thickness layer, and the
-  // rounds between only feed the limiter. The last round resolves every
-  // point moved since its last resolve, so the collisions still have the
-  // last word everywhere.
+  // Collisions are found once per step, right after the solve: each point
+  // is resolved against the scene (posed for the end of the step, so it
+  // does not move within it), with friction on the step's motion, and
+  // leaves a contact plane where it was pushed or lies within reach of a
+  // surface: the surface linearised there, for the rest of the step. The
+  // strain limiter then keeps every point in front of its plane (it can
+  // pull cloth along the body, not into it), and a point it moved farther
+  // than its slack (its clearance, or contact_slack along a plane) from
+  // where its check left it is checked again: the planes stand for the
+  // surface only that far. Rounds of (limiting, checking) repeat while
+  // checks move points or a spring started the round more than the round
+  // tolerance beyond the limit, at most collision_rounds; the last word is
+  // the check's, or the limiter's where no point left its slack. (Checking
+  // once per step and then only what left its slack, against every moved
+  // point in every round before: over the walk table's 36 runs 1 tore
+  // instead of 4 and the median largest stretch fell from 53 % to 35 %, at
+  // about the same cost.)
+  {
+    const auto check_start = Clock::now();
+    for (std::size_t k = 0; k < has_plane_.size(); ++k) has_plane_[k] = 0;  // planes last one step
+    report.max_correction = 0.0;
+    check_contacts(q_previous, q, scene, /*first=*/true, report.max_correction);
+    report.first_round_ms = ms_since(check_start);
+    report.collision_ms += report.first_round_ms;
+  }
   for (int round = 0; round < options_.collision_rounds; ++round) {
     const auto limit_start = Clock::now();
     const double excess = limit_strain(q);
-    const bool last = round + 1 == options_.collision_rounds || (round > 0 && excess <= options_.round_tolerance);
     const double limit_ms = ms_since(limit_start);
     report.dynamics_ms += limit_ms;
     report.limiter_ms += limit_ms;
     const auto collide_start = Clock::now();
     if (self_contact_.enabled()) self_contact_.project(q, pinned_part_);
-    report.max_correction = std::max(report.max_correction,
-                                     resolve_collisions(q_previous, q, scene, /*friction=*/round == 0,
-                                                        round == 0 ? nullptr : &settled_,
-                                                        last ? 0.0 : options_.settle_tolerance));
-    const double collide_ms = ms_since(collide_start);
-    report.collision_ms += collide_ms;
-    if (round == 0) report.first_round_ms = collide_ms;
+    const int checked = check_contacts(q_previous, q, scene, /*first=*/false, report.max_correction);
+    report.collision_ms += ms_since(collide_start);
     ++report.rounds;
-    if (last) break;
-    settled_ = q;
+    if (checked == 0 && excess <= options_.round_tolerance) break;
   }
 
   const double keep = 1.0 / (1.0 + m.material.damping * h);

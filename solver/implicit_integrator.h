@@ -17,14 +17,24 @@
 // keeps the factor's fill that of the one-ring, and since
 // |xi - xk|^2 <= 2 (|xi - xj|^2 + |xj - xk|^2) the matrix dominates the true
 // one, so the iteration still converges (monotonically) and translations
-// stay exact. After the iterations, Gauss-Seidel sweeps bound every stretch
-// spring to (1 + stretch_limit) of its rest length (strain limiting, in free
-// coordinates, so T-nodes stay exact), then collisions are resolved.
-// Collisions and strain limiting alternate in rounds; every collision
-// push-out leaves a contact plane (the pushed point, the push direction)
-// that the strain limiter keeps its vertex (or T-node) in front of for the
-// rest of the step, so the limiter cannot pull cloth back into what pushed
-// it and the stretch goes to the cloth that is free to move.
+// stay exact.
+//
+// Then contacts, found once per step: every free vertex and T-node is
+// resolved against the scene (posed for the end of the step, so it does
+// not move within it), with friction on the step's motion, and keeps a
+// contact plane for the rest of the step: across its push where it was
+// pushed, else the tangent plane of a surface within reach. Gauss-Seidel
+// sweeps then bound every stretch spring to (1 + stretch_limit) of its rest
+// length (strain limiting, in free coordinates, so T-nodes stay exact),
+// keeping each point in front of its plane, so the limiter pulls cloth
+// along the body rather than into it and the stretch goes to the cloth that
+// is free to move; each sweep starts with tethers that keep every free
+// vertex within the cloth's reach of its nearest pinned vertex. A point the
+// limiter moved farther than its slack (its clearance, or contact_slack
+// along a plane, less where another part of the body lies just behind) from
+// where it was checked is checked again, and limiting and checking
+// alternate in rounds while checks move points or springs stay beyond the
+// round tolerance.
 //
 // Accuracy trade-off: with few iterations the step is a damped
 // approximation of implicit Euler (energy is lost in stiff directions,
@@ -46,12 +56,13 @@ namespace mrcloth {
 struct IntegratorOptions {
   double time_step = 1.0 / 120.0;               ///< seconds, > 0
   int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
-  int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs per round, >= 0
+  int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
-  int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collisions) per step, >= 1
-  double round_tolerance = 0.01;                ///< another round only while a spring starts it this much strain beyond the limit (0.01 = 1 %)
-  double settle_tolerance = 0.0;                ///< metres, >= 0: in the rounds between a step's first and last, a point the limiter moved less than this since its own last resolve waits for the last round (which resolves every moved point); 0: every moved point in every round (1 mm: a quarter less collision time, more stretch; see README)
-  bool contact_planes = true;                   ///< the strain limiter keeps pushed points in front of their contact planes (see above)
+  int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collision checks) per step, >= 1
+  double round_tolerance = 0.01;                ///< another round also while a spring starts it this much strain beyond the limit (0.01 = 1 %)
+  double contact_slack = 0.002;                 ///< metres, >= 0: how far the limiter may move a point along its contact plane before the point is checked against the scene again
+  bool contact_planes = true;                   ///< the strain limiter keeps points in front of their contact planes (see above)
+  bool tethers = true;                          ///< the strain limiter also keeps each free vertex within the cloth's reach of its nearest pinned vertex
   SelfContactOptions self_contact;              ///< cloth-cloth contact (self_contact.h), projected in every round before the body collisions; thickness 0: off
   bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
   int threads = 1;                              ///< threads resolving the vertices' collisions, >= 1; the same bits for any count (each vertex's resolve is its own)
@@ -70,11 +81,11 @@ ClothState rest_state(const DynamicsModel& model);
 
 struct StepReport {
   double dynamics_ms = 0.0;        ///< local/global iterations and strain limiting
-  double collision_ms = 0.0;       ///< collision resolution, bodies and cloth-cloth contact
+  double collision_ms = 0.0;       ///< collision checks, bodies and cloth-cloth contact
   double limiter_ms = 0.0;         ///< of dynamics_ms: strain limiting, all rounds
-  double first_round_ms = 0.0;     ///< of collision_ms: the first round (every vertex against the new pose)
+  double first_round_ms = 0.0;     ///< of collision_ms: the first check (every vertex against the new pose)
   double max_correction = 0.0;     ///< largest collision push-out this step, metres
-  int rounds = 0;                  ///< rounds of (strain limiting, collisions) taken
+  int rounds = 0;                  ///< rounds of (strain limiting, collision checks) taken
   bool finite = true;              ///< false if any position became NaN or infinite
 };
 
@@ -92,6 +103,13 @@ class ImplicitIntegrator {
   StepReport step(ClothState& state, const Positions& pinned_next, const std::vector<Collider>& colliders);
 
   const IntegratorOptions& options() const { return options_; }
+
+  /// A free vertex kept within `max_length` (metres) of a pinned vertex.
+  struct Tether {
+    int free = -1;            ///< free index
+    int pinned = -1;          ///< the pinned vertex's full index
+    double max_length = 0.0;  ///< (1 + stretch limit) x its distance over the cloth at rest
+  };
   std::size_t factor_nonzeros() const { return solver_.factor_nonzeros(); }
   /// The threads options().threads asked for (null for one): callers may
   /// run their own per-vertex loops on it between steps.
@@ -101,16 +119,21 @@ class ImplicitIntegrator {
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
-  /// Resolves every free vertex and T-node of q; with `settled` (the last
-  /// round's result), only those that have moved since, and of those, with
-  /// `tolerance` (metres, > 0 in all but a step's last round), only those
-  /// moved at least that far since their own last resolve.
-  double resolve_collisions(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool friction,
-                            const Positions* settled = nullptr, double tolerance = 0.0) const;
+  /// Checks the free vertices and T-nodes of q against the scene: every one
+  /// in the step's `first` check (with friction), else those moved beyond
+  /// their slack since their last check. Sets their contact planes and
+  /// slack; raises `largest` to the largest correction. Returns how many
+  /// were checked.
+  int check_contacts(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool first,
+                     double& largest) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
-  /// Records the contact plane of a push of free vertex `f` (or T-node
-  /// `f - #free`) from `before` to `after` (no plane when they are equal).
-  void remember_plane(Eigen::Index f, const Eigen::Vector3d& before, const Eigen::Vector3d& after) const;
+  /// The contact plane of free vertex `row` (or T-node `row - #free`) after
+  /// a check moved it from `before` to `after`: across the push when it was
+  /// pushed, else the nearby surface's tangent plane, else none.
+  void set_plane(Eigen::Index row, const Eigen::Vector3d& before, const Eigen::Vector3d& after,
+                 const SurfaceNearby& nearby) const;
+  /// How far a checked point may move before it needs another check.
+  double slack_of(const SurfaceNearby& nearby, bool planed) const;
   /// Moves free vertex f back onto its contact plane if it is behind it.
   /// (Inline: the strain limiter calls it after every projection.)
   void keep_in_front(Eigen::Index f, Positions& q) const {
@@ -134,29 +157,22 @@ class ImplicitIntegrator {
   SelfContact self_contact_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
-  Positions settled_;                  // scratch: q after the last collision round of this step
-  mutable Positions resolved_;         // scratch: each free vertex where its last resolve of this step left it
-  mutable std::vector<char> pending_;  // per free vertex: moved within settle_tolerance since its last resolve, which the last round owes it
-  mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between rounds
+  mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between checks
+  // Per free vertex, then per T-node: where its last check left it, and
+  // how far it may move from there before it needs another.
+  mutable Positions anchor_;
+  mutable std::vector<double> slack_;
   /// Threads for the free vertices' resolves (null: options_.threads is 1);
   /// shared so the integrator stays copyable (copies take turns, never
   /// running two loops at once).
   std::shared_ptr<WorkerPool> pool_;
-  /// A collision push found by a pool part, recorded as a contact plane
-  /// after the loop (remember_plane appends to planes_).
-  struct Push {
-    Eigen::Index free;
-    Eigen::Vector3d before, after;
-  };
-  mutable std::vector<std::vector<Push>> part_pushes_;  // per pool part
-  mutable std::vector<double> part_largest_;            // per pool part: its largest correction
+  mutable std::vector<double> part_largest_;  // per pool part: its largest correction
+  mutable std::vector<int> part_checked_;     // per pool part: the points it checked
   mutable std::vector<char> moved_, check_;  // per free vertex: moved by a T-node's push (reused, not reallocated per round)
-  // Per free vertex, then per T-node: the contact plane of its last push
-  // this step (point on it, unit outward normal); has_plane_ marks those
-  // with one, planes_ lists them for clearing.
+  // Per free vertex, then per T-node: its contact plane this step (point on
+  // it, unit outward normal); has_plane_ marks those with one.
   mutable Positions plane_point_, plane_normal_;
   mutable std::vector<char> has_plane_;
-  mutable std::vector<int> planes_;
   mutable std::vector<int> t_node_planes_;  // T-node indices (into hanging_vertices) with a plane
   /// A stretch spring as the limiter reads it, in sweep order: one
   /// contiguous read where the spring, its ends' free indices and its kind
@@ -169,6 +185,8 @@ class ImplicitIntegrator {
     double rest = 0.0;        // metres
   };
   std::vector<LimitedSpring> sweep_;   // stretch springs in strain-limiting order
+  std::vector<Tether> tethers_;
+  std::vector<int> check_order_;       // free vertices in the order they are checked (near each other in space)
   // The limiter's active set (see limit_strain): per free vertex, moved
   // since its springs were last evaluated / moved in the current sweep; q
   // as the last pass left it; whether the next pass is the step's first.

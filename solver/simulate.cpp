@@ -88,7 +88,9 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.collision_rounds = options.collision_rounds;
-  io.settle_tolerance = options.settle_tolerance;
+  io.contact_slack = options.contact_slack;
+  io.round_tolerance = options.round_tolerance;
+  io.tethers = options.tethers;
   io.threads = options.threads;
   io.gravity = options.gravity;
   io.self_contact = options.self_contact;

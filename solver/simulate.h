@@ -18,7 +18,9 @@ struct SimulationOptions {
   int iterations = 2;                         ///< local/global iterations per step
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   int collision_rounds = 8;                   ///< see IntegratorOptions
-  double settle_tolerance = 0.0;              ///< metres, see IntegratorOptions
+  double contact_slack = 0.002;               ///< metres, see IntegratorOptions
+  double round_tolerance = 0.01;              ///< see IntegratorOptions
+  bool tethers = true;                        ///< see IntegratorOptions
   int threads = 1;                            ///< see IntegratorOptions (the same bits for any count)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};   ///< m/s^2
   std::vector<Collider> colliders;            ///< analytic colliders

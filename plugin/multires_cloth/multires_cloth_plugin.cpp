@@ -757,10 +757,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
         QStringLiteral(
             "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
             "iterations: int >= 1 = 2 (per step), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
-            "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collisions per step, at most; fewer: "
-            "faster, and refined garments on a moving body tear), settleTolerance: m >= 0 = 0 (between a step's first "
-            "and last round, a point moved less than this since its last collision waits for the last round: "
-            "0.001 costs a quarter less collision time on refined garments, and they stretch more), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "
+            "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
+            "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
+            "before the point is checked against the body again), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "
             "core; the same result for any count), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
             "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
             "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 2 (stiffness x "

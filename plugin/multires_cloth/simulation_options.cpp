@@ -187,7 +187,7 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
                      QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("collisionRounds"),
-                     QStringLiteral("settleTolerance"), QStringLiteral("material"),   QStringLiteral("alpha"),
+                     QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
                      QStringLiteral("updateObject"), QStringLiteral("selfContact"), QStringLiteral("threads")} +
@@ -221,7 +221,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
   sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
-  sim.settle_tolerance = fields.numberFrom(QStringLiteral("settleTolerance"), sim.settle_tolerance, 0.0, false);
+  sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));

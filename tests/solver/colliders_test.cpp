@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -574,6 +575,45 @@ TEST(ResolvePoint, OverlappingSpheresSettle) {
   Vector3d position(0.0, 0.3, 0.0);
   resolve_point(body, position, position);
   EXPECT_LE(penetration(body, position), 1e-12) << position.transpose();
+}
+
+TEST(NearestSurface, IsTheExactNearestWithinReachAndABoundBeyond) {
+  // Random points outside a plane, a sphere and two tapered capsules: the
+  // clearance is the smallest exact distance less thickness wherever that
+  // is within reach, else a lower bound of it; the plane is the nearest
+  // thickened surface's, through the point's projection onto it.
+  const std::vector<Collider> colliders = {make(PlaneCollider{{0, -0.5, 0}, {0, 1, 0}}, 0.002, 0.3),
+                                           make(SphereCollider{{0.3, 0.0, 0.0}, 0.1}, 0.004, 0.3),
+                                           make(CapsuleCollider{{-0.2, 0, 0}, {-0.2, 0.4, 0}, 0.06, 0.03}, 0.004, 0.3),
+                                           make(CapsuleCollider{{0, 0.1, -0.3}, {0, 0.1, 0.3}, 0.05, 0.05}, 0.003, 0.3)};
+  const double reach = 0.01;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> x(-0.45, 0.45), y(-0.5, 0.55), z(-0.4, 0.4);
+  int exact = 0, bounded = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vector3d p(x(rng), y(rng), z(rng));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Collider& c : colliders) nearest = std::min(nearest, query_surface(c, p).distance - c.thickness);
+    if (nearest < 0.0) continue;  // resolve_point leaves no point there
+    const SurfaceNearby n = nearest_surface(colliders, p, reach);
+    if (nearest < reach) {
+      ++exact;
+      ASSERT_NEAR(n.clearance, nearest, 1e-12) << p.transpose();
+      ASSERT_TRUE(n.has_plane);
+      ASSERT_NEAR(n.normal.norm(), 1.0, 1e-12);
+      ASSERT_LT((n.point + n.clearance * n.normal - p).norm(), 1e-12) << "p lies along the normal from the plane's point";
+      double on = std::numeric_limits<double>::infinity();
+      for (const Collider& c : colliders) on = std::min(on, query_surface(c, n.point).distance - c.thickness);
+      ASSERT_NEAR(on, 0.0, 1e-12) << "the plane's point lies on the thickened surface";
+    } else {
+      ++bounded;
+      ASSERT_LE(n.clearance, nearest + 1e-12) << p.transpose();
+      ASSERT_GE(n.clearance, std::min(nearest, reach) - 1e-12) << "beyond reach, a bound no smaller than the reach";
+    }
+  }
+  EXPECT_GT(exact, 200);
+  EXPECT_GT(bounded, 2000);
+  EXPECT_EQ(nearest_surface({}, Vector3d::Zero(), reach).clearance, std::numeric_limits<double>::infinity());
 }
 
 TEST(Penetration, IsTheDeepestIntrusionIntoTheThicknessBand) {

@@ -330,6 +330,46 @@ TEST(MeshBody, ResolveLeavesNoPointWithinThickness) {
   }
 }
 
+TEST(MeshBody, ResolveSaysWhatIsNear) {
+  // After a resolve, for points left outside: within the nearby reach (1
+  // cm beyond the thickness) the clearance is the brute-force distance less
+  // the thickness, and the plane passes through the point's projection onto
+  // the thickened surface; beyond it the clearance is a lower bound of at
+  // least the reach. A pushed point lies on its plane with no clearance.
+  std::mt19937 rng(8);
+  const double thickness = 0.02, reach = 0.01;
+  for (const auto& [name, mesh] : {std::pair<std::string, Mesh>{"icosphere", icosphere(3)}, {"cube", subdivided_cube(5)}}) {
+    const MeshBody body(mesh.vertices, mesh.triangles, thickness, 0.3);
+    int near = 0, far = 0, pushed = 0;
+    for (const Vector3d& p : sample_points(mesh, rng, 1500, 0.1)) {
+      Vector3d position = p;
+      SurfaceNearby n;
+      const double correction = body.resolve(p, position, false, nullptr, &n);
+      const double distance = brute_distance(mesh, position);
+      if (correction > 0.0) {
+        ++pushed;
+        EXPECT_EQ(n.clearance, 0.0);
+        ASSERT_TRUE(n.has_plane);
+        EXPECT_LT((n.point - position).norm(), 1e-12);
+        EXPECT_NEAR(n.normal.norm(), 1.0, 1e-12);
+      } else if (distance - thickness < reach) {
+        ++near;
+        ASSERT_NEAR(n.clearance, distance - thickness, 1e-12) << name << " at (" << p.transpose() << ")";
+        ASSERT_TRUE(n.has_plane);
+        EXPECT_LT((n.point + n.clearance * n.normal - position).norm(), 1e-12);
+        EXPECT_NEAR(brute_distance(mesh, n.point), thickness, 1e-12) << "the plane's point is on the thickened surface";
+      } else {
+        ++far;
+        EXPECT_LE(n.clearance, distance - thickness + 1e-12) << name;
+        EXPECT_GE(n.clearance, reach - 1e-12) << name;
+      }
+    }
+    EXPECT_GT(pushed, 200) << name;
+    EXPECT_GT(near, 50) << name;
+    EXPECT_GT(far, 100) << name;
+  }
+}
+
 TEST(MeshBody, ALimbThatPassedMostOfTheWayThroughAPointCarriesItOut) {
   // A slab 4 cm thick (a shin, seen edge-on) moves 3.5 cm down in one step
   // onto a point resting 5 mm below it: the point ends 1 cm below the
@@ -357,12 +397,12 @@ TEST(MeshBody, ALimbThatPassedMostOfTheWayThroughAPointCarriesItOut) {
 }
 
 TEST(MeshBody, AMemoNeverChangesAnAnswer) {
-  // Collision rounds: each point resolved with friction, then nudged (as the
-  // strain limiter does) and resolved again, five times, with and without
-  // its memo; then the body moves and the memo must be ignored. The
-  // answers must be the same, and most later rounds must hit the memo
-  // (checked through the cube's crease points too: the memo's triangles
-  // must include the second side).
+  // Collision checks: each point resolved with friction, then nudged (as
+  // the strain limiter does) and resolved again, five times, with and
+  // without its memo; then the body moves and the memos carry into the next
+  // pose. The answers must be the same, and most memos must hold the
+  // triangle the next search starts from (the cube's crease points too,
+  // where a nudge makes another side the nearest).
   std::mt19937 rng(5);
   std::normal_distribution<double> nudge(0.0, 0.0015);
   Mesh cube = subdivided_cube(6);
@@ -385,21 +425,22 @@ TEST(MeshBody, AMemoNeverChangesAnAnswer) {
         const Vector3d moved(nudge(rng), nudge(rng), nudge(rng));
         a += moved;
         b += moved;
-        remembered += memos[i].radius > 0.0 && (a - memos[i].centre).norm() < 0.5 * memos[i].radius;
+        remembered += memos[i].radius > 0.0 && memos[i].nearest >= 0;
         same(points[i], a, b, false, memos[i], "round " + std::to_string(round) + ", point " + std::to_string(i));
       }
     }
-    // The body moves: every memo is stale.
+    // The body moves: the memos' triangles have moved with it.
     Mesh moved = cube;
     moved.vertices.rowwise() += Eigen::RowVector3d(0.003, 0.0, -0.002);
     with.update(moved.vertices);
     without.update(moved.vertices);
   }
-  EXPECT_GT(remembered, 4000) << "the later rounds should mostly be answered from memos";
+  EXPECT_GT(remembered, 3000) << "most searches should start from the memo's triangle";
 
   // A point remembered clear of everything (2.7 cm above the top face, no
-  // triangle within the memo's 2.6 cm) and then moved 1.2 cm down is within
-  // the 2 cm thickness: the memo must not call it clear.
+  // triangle within the thickness and the nearby reach, 3 cm) and then
+  // moved 1.2 cm down is within the 2 cm thickness: the memo must not call
+  // it clear.
   MeshBody fresh(cube.vertices, cube.triangles, 0.02, 0.3);
   ContactMemo memo;
   Vector3d p(0.1, 1.027, 0.1);
@@ -416,8 +457,7 @@ TEST(MeshBody, WhereAPointEnteredNextToAnotherPartTheMemoAnswersAsTheTree) {
   // first whose way came from inside the second entered the first where
   // the second lies within the thickness, so the entry is refused and the
   // nearest surface answers; where the way came from outside both, the
-  // entry stands. The memo's triangles answer both queries (the way's
-  // entry and that check) for such shallow points: exactly as the tree.
+  // entry stands. A memo must change neither answer.
   const Mesh a = subdivided_cube(4);
   Mesh two;
   two.vertices.resize(2 * a.vertices.rows(), 3);
@@ -609,14 +649,15 @@ TEST(MeshBody, AMemoNearIgnoredTrianglesHandsOnNoSide) {
   EXPECT_LT((a - b).norm(), 1e-12);
 }
 
-TEST(MeshBody, AMemoWhereTwoPartsOverlapVouchesForNoSide) {
+TEST(MeshBody, WhereTwoPartsOverlapAMemoVouchesForNoSideAndThePlaneForLittle) {
   // Skinning drives one part of the body into another (the thighs, a hand
   // into the hip). A point inside part A, 7 mm under its top, is 2 mm in
   // front of part B's side, which lies inside A: its closest triangle says
-  // outside. Moved 4.2 mm away from B, it is nearest to A's top, 5.9 mm
-  // behind it: the tree calls it inside. With nothing of the memo's within
-  // its slack, "on the centre's side" would say outside; the memo must
-  // answer as the tree does.
+  // outside, and it is pushed out of B's side to the thickness. Moved 4.2
+  // mm away from B, it is nearest to A's top, 5.9 mm behind it: the tree
+  // calls it inside. A memo made next to B must not carry "outside" there;
+  // and the plane the point was left on vouches for it only until A's top
+  // (7 mm, behind) could become nearer than B's side (4 mm): 1.5 mm.
   const auto box = [](const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi) {
     Mesh b = subdivided_cube(4);  // [-1, 1]^3
     for (Eigen::Index i = 0; i < b.vertices.rows(); ++i)
@@ -632,18 +673,37 @@ TEST(MeshBody, AMemoWhereTwoPartsOverlapVouchesForNoSide) {
   const double thickness = 0.004;
   const MeshBody with(body.vertices, body.triangles, thickness, 0.0), without(body.vertices, body.triangles, thickness, 0.0);
   ContactMemo memo;
+  SurfaceNearby nearby;
   const Vector3d p(0.0, -0.007, 0.0), q(0.0041, -0.0059, 0.0);
   Vector3d a = p, b = p;
-  const double pa = with.resolve(a, a, false, &memo), pb = without.resolve(b, b, false);
+  const double pa = with.resolve(a, a, false, &memo, &nearby), pb = without.resolve(b, b, false);
   EXPECT_NEAR(pa, 0.002, 1e-12) << "pushed out of B's side to the thickness";
   EXPECT_NEAR(pa, pb, 1e-12);
   ASSERT_GT(memo.radius, 0.0) << "the memo was made";
-  ASSERT_LT((q - memo.centre).norm(), 0.5 * memo.radius) << "q is where the memo answers";
+  EXPECT_GE(memo.nearest, 0) << "it remembers B's side";
+  EXPECT_FALSE(memo.sided) << "next to a triangle, no side is carried";
+  EXPECT_TRUE(nearby.has_plane);
+  EXPECT_NEAR(nearby.normal.x(), 1.0, 1e-12) << "B's side";
+  // Until A's top (7 mm behind) may be nearer than B's side (4 mm): 1.5 mm
+  // where it ends. The push's resolve vouches for less (it found A's top
+  // before the 2 mm push, which could have brought it that much nearer).
+  EXPECT_GT(nearby.flip, 0.0);
+  EXPECT_LE(nearby.flip, 0.5 * (0.007 - thickness) + 1e-12);
+  Vector3d again = a;
+  EXPECT_EQ(with.resolve(again, again, false, nullptr, &nearby), 0.0);
+  EXPECT_NEAR(nearby.flip, 0.5 * (0.007 - thickness), 1e-12) << "resting there";
+  EXPECT_NEAR(nearby.clearance, 0.0, 1e-12);
   a = b = q;
   const double qa = with.resolve(a, a, false, &memo), qb = without.resolve(b, b, false);
   EXPECT_NEAR(qb, 0.0059 + thickness, 1e-9) << "the tree: 5.9 mm inside A, pushed out of its top";
   EXPECT_NEAR(qa, qb, 1e-12) << "the memo must not change the answer";
   EXPECT_LT((a - b).norm(), 1e-12);
+  // Farther below A's top than the search for flips looks (5 mm beyond the
+  // nearest surface), the plane vouches for at least 2.5 mm.
+  Vector3d deep(0.002, -0.02, 0.0);
+  SurfaceNearby far_below;
+  EXPECT_EQ(with.resolve(deep, deep, false, nullptr, &far_below), 0.0);
+  EXPECT_GE(far_below.flip, 0.0025 - 1e-12);
 }
 
 TEST(MeshBody, FrictionMatchesTheAnalyticColliders) {
