@@ -39,7 +39,9 @@ struct BenchOptions {
   int rounds = SimulationOptions{}.collision_rounds;  // rounds of (strain limiting, collisions) per step, at most
   int sweeps = SimulationOptions{}.strain_limit_sweeps;  // limiter sweeps per round
   double slack = SimulationOptions{}.contact_slack;  // metres a point may move along its contact plane before it is checked again
-  bool tethers = SimulationOptions{}.tethers;  // the limiter's tethers to the pinned waist
+  bool tethers = SimulationOptions{}.tethers;
+  int iterations = SimulationOptions{}.iterations;  // local/global iterations per step
+  double stretch_stiffness = Material{}.stretch_stiffness;  // N/m, the cloth's stretch springs (cotton's by default)  // the limiter's tethers to the pinned waist
   double round_tolerance = SimulationOptions{}.round_tolerance;  // another round while a spring is this much strain beyond the limit
   double step_rate = CharacterSetup{}.step_rate;  // time steps per second (the plugin's stepRate)
   int threads = 1;  // threads resolving collisions (the target is one core's; any count gives the same bits)
@@ -68,6 +70,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   const PlacedGarment placed = place_garment(character, setup, garment);
   DynamicsOptions d;
   d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  d.material.stretch_stiffness = b.stretch_stiffness;
   const DynamicsModel model = build_dynamics(placed.mesh, d);
   ClothState state = rest_state(model);
   SimulationOptions simulation;
@@ -77,6 +80,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   simulation.strain_limit_sweeps = b.sweeps;
   simulation.contact_slack = b.slack;
   simulation.tethers = b.tethers;
+  simulation.iterations = b.iterations;
   simulation.round_tolerance = b.round_tolerance;
   simulation.threads = b.threads;
   const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
@@ -141,6 +145,8 @@ int run_benchmark(int argc, char** argv) {
     else if (key == "--sweeps") b.sweeps = std::atoi(argv[a + 1]);
     else if (key == "--slack") b.slack = std::atof(argv[a + 1]);
     else if (key == "--tethers") b.tethers = std::atoi(argv[a + 1]) != 0;
+    else if (key == "--iterations") b.iterations = std::atoi(argv[a + 1]);
+    else if (key == "--stretch-stiffness") b.stretch_stiffness = std::atof(argv[a + 1]);
     else if (key == "--round-tolerance") b.round_tolerance = std::atof(argv[a + 1]);
     else if (key == "--step-rate") b.step_rate = std::atof(argv[a + 1]);
     else if (key == "--threads") b.threads = std::atoi(argv[a + 1]);

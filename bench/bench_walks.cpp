@@ -45,6 +45,7 @@ struct WalkOptions {
   std::vector<std::string> garments{"skirt", "knee", "trousers"};
   std::vector<std::string> walks{"07_06", "07_03", "08_03", "02_01"};
   SimulationOptions simulation;  // the solver's settings (the plugin's defaults unless overridden)
+  double stretch_stiffness = Material{}.stretch_stiffness;  // N/m, the cloth's stretch springs (cotton's by default)
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -88,6 +89,7 @@ Result run(const std::string& garment, const std::string& walk, const std::strin
   const PlacedGarment placed = place_garment(character, setup, mesh);
   DynamicsOptions d;
   d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  d.material.stretch_stiffness = w.stretch_stiffness;
   const DynamicsModel model = build_dynamics(placed.mesh, d);
   ClothState state = rest_state(model);
   SimulationOptions simulation = w.simulation;
@@ -124,6 +126,8 @@ int run_table(int argc, char** argv) {
     else if (key == "--threads") w.simulation.threads = std::atoi(value.c_str());
     else if (key == "--slack") w.simulation.contact_slack = std::atof(value.c_str());
     else if (key == "--tethers") w.simulation.tethers = std::atoi(value.c_str()) != 0;
+    else if (key == "--iterations") w.simulation.iterations = std::atoi(value.c_str());
+    else if (key == "--stretch-stiffness") w.stretch_stiffness = std::atof(value.c_str());
     else if (key == "--round-tolerance") w.simulation.round_tolerance = std::atof(value.c_str());
     else {
       std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage);
