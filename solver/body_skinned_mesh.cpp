@@ -719,6 +719,22 @@ struct MeshBody::Impl {
     double b0 = 0, b1 = 0, b2 = 0;
   };
 
+  /// Every seen triangle within `radius` of `centre`, as a search found
+  /// them: the later searches of the same resolve that stay inside that
+  /// ball read them instead of the tree. Empty (radius 0) when there were
+  /// more than fit.
+  struct Candidates {
+    static constexpr int kCapacity = 96;
+    int items[kCapacity];
+    int count = 0;
+    Vector3d centre{0, 0, 0};
+    double radius = 0.0;
+    /// Whether they hold every triangle within sqrt(search2) of p.
+    bool cover(const Vector3d& p, double search2) const {
+      return radius > 0.0 && (p - centre).norm() + std::sqrt(search2) <= radius;
+    }
+  };
+
   std::vector<Node> nodes;
   /// Per node, its children's boxes over both of the last two poses (what
   /// each subtree swept through between the last two updates, if its
@@ -1026,7 +1042,8 @@ struct MeshBody::Impl {
   /// can be in front of its nearest triangle and inside the other part,
   /// and moving a little then makes the other part's surface the nearest:
   /// its side flips. `out` may hold a first candidate (its d2 the bound).
-  bool closest_and_behind(const Vector3d& p, double max_d2, double margin, Closest& out, double& behind) const {
+  bool closest_and_behind(const Vector3d& p, double max_d2, double margin, Closest& out, double& behind,
+                          Candidates* candidates = nullptr) const {
     struct Item {
       int node;
       double d2;
@@ -1041,10 +1058,16 @@ struct MeshBody::Impl {
       return r * r;
     };
     double limit2 = limit_of(best);
+    bool overflow = false;
+    if (candidates) candidates->count = 0;
     const auto visit = [&](int t) {
       if (any_ignored && ignored[static_cast<std::size_t>(t)]) return;
       const double box2 = triangle_box_distance2(p, t);
       if (!(box2 < limit2)) return;
+      if (candidates) {
+        if (candidates->count < Candidates::kCapacity) candidates->items[candidates->count++] = t;
+        else overflow = true;
+      }
       const Vector3d a = corner(t, 0);
       const bool is_behind = (p - a).dot((corner(t, 1) - a).cross(corner(t, 2) - a)) < 0.0;
       if (!(box2 < best) && !is_behind) return;
@@ -1084,6 +1107,12 @@ struct MeshBody::Impl {
       }
       if (d_far < limit2 && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
       if (d_near < limit2 && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
+    }
+    if (candidates) {
+      // Everything pruned lay beyond the limit when it was pruned, and the
+      // limit only shrank: the list holds every triangle within it.
+      candidates->centre = p;
+      candidates->radius = overflow ? 0.0 : std::sqrt(limit2);
     }
     if (out.triangle < 0) return false;
     const Behind& other = first.triangle != out.triangle ? first : second;
@@ -1344,7 +1373,7 @@ struct MeshBody::Impl {
   /// given, receives closest_and_behind's distance for a contact found
   /// within reach (the depth for one deep inside).
   bool nearest_contact(const Vector3d& p, double reach, const ContactMemo* memo, Contact& out,
-                       double* behind = nullptr) const {
+                       double* behind = nullptr, Candidates* candidates = nullptr) const {
     const double near2 = (thickness + reach) * (thickness + reach);
     Closest c;
     if (memo && memo->owner == this && memo->nearest >= 0 &&
@@ -1362,7 +1391,7 @@ struct MeshBody::Impl {
     // The search finds any triangle nearer than the memo's, which stays
     // the answer when none is.
     double behind_distance = 0.0;
-    const bool found = behind ? closest_and_behind(p, near2, 2.0 * kFlipReach, c, behind_distance)
+    const bool found = behind ? closest_and_behind(p, near2, 2.0 * kFlipReach, c, behind_distance, candidates)
                               : (closest(p, c.triangle >= 0 ? c.d2 : near2, c) || c.triangle >= 0);
     if (found) {
       out = signed_contact(p, c);
@@ -1403,14 +1432,37 @@ struct MeshBody::Impl {
   /// fingers) no place is clear of both sides and the pushes alternate: then
   /// the place seen farthest out is kept. `largest` takes the largest push;
   /// `last` (if given) the contact of the last push kept.
-  void project(Vector3d& p, double search2, double& largest, Contact* last = nullptr) const {
+  /// contact(p, search2, false, out), from `candidates` when they cover
+  /// that ball.
+  bool contact_near(const Vector3d& p, double search2, const Candidates* candidates, Contact& out) const {
+    if (!candidates || !candidates->cover(p, search2)) return contact(p, search2, false, out);
+    Closest c;
+    c.d2 = search2;
+    for (int k = 0; k < candidates->count; ++k) {
+      const int t = candidates->items[k];
+      if (!(triangle_box_distance2(p, t) < c.d2)) continue;
+      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+      const double d2 = (p - at.point).squaredNorm();
+      if (d2 < c.d2) {
+        c.d2 = d2;
+        c.triangle = t;
+        c.at = at;
+      }
+    }
+    if (c.triangle < 0) return false;
+    out = signed_contact(p, c);
+    return true;
+  }
+
+  void project(Vector3d& p, double search2, double& largest, Contact* last = nullptr,
+               const Candidates* candidates = nullptr) const {
     Vector3d best_p = p;
     double best_distance = -std::numeric_limits<double>::infinity();
     Contact best_contact;
     const double near2 = thickness * thickness;
     for (int sweep = 0; sweep <= kMaxSweeps; ++sweep) {
       Contact c;
-      if (!contact(p, sweep == 0 ? search2 : near2, false, c)) return;
+      if (!contact_near(p, sweep == 0 ? search2 : near2, candidates, c)) return;
       const double gap = c.distance - thickness;
       if (!(gap < -1e-12)) return;  // round-off short of thickness is clear: no endless re-pushes
       if (c.distance > best_distance) {
@@ -1573,7 +1625,8 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   Impl::Contact c;
   double behind = 0.0;  // how far the nearest triangle p is behind is (when near)
   const Vector3d searched = position;
-  const bool near = m.nearest_contact(position, kNearbyReach, memo, c, nearby ? &behind : nullptr);
+  Impl::Candidates candidates;  // what that search saw, for the searches after a push
+  const bool near = m.nearest_contact(position, kNearbyReach, memo, c, nearby ? &behind : nullptr, &candidates);
   if (!near || !(c.distance - m.thickness < 0.0)) {
     if (nearby) {
       nearby->clearance = near ? c.distance - m.thickness : kNearbyReach;
@@ -1634,7 +1687,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   position += correction * c.normal;
   double largest = correction;
   if (!friction) {
-    m.project(position, m.thickness * m.thickness, largest, &c);
+    m.project(position, m.thickness * m.thickness, largest, &c, &candidates);
     return finish(c, largest);
   }
   const Vector3d step = position - start - m.surface_motion(c);
@@ -1648,7 +1701,7 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   // can still hold it (the other side of a crease, or the surface it slid
   // along); pushes from there on are frictionless.
   const double reach = m.thickness + move.norm();
-  m.project(position, reach * reach, largest, &c);
+  m.project(position, reach * reach, largest, &c, &candidates);
   return finish(c, largest);
 }
 

@@ -342,9 +342,12 @@ TEST(MeshBody, ResolveSaysWhatIsNear) {
     const MeshBody body(mesh.vertices, mesh.triangles, thickness, 0.3);
     int near = 0, far = 0, pushed = 0;
     for (const Vector3d& p : sample_points(mesh, rng, 1500, 0.1)) {
-      Vector3d position = p;
+      Vector3d position = p, plain = p;
       SurfaceNearby n;
-      const double correction = body.resolve(p, position, false, nullptr, &n);
+      const Vector3d start = p + Vector3d(0.003, 0.004, -0.002);
+      const double correction = body.resolve(start, position, true, nullptr, &n);
+      ASSERT_EQ(body.resolve(start, plain, true), correction) << "asking what is near changes no answer";
+      ASSERT_EQ(plain, position);
       const double distance = brute_distance(mesh, position);
       if (correction > 0.0) {
         ++pushed;
