@@ -997,35 +997,42 @@ struct MeshBody::Impl {
     }
   }
 
-  /// Closest triangle to p closer than sqrt(max_d2), of those `skip(t)`
-  /// does not rule out; false when none is. Nearer child first, pruned by
-  /// box distance; no allocation.
-  template <typename Skip>
-  bool closest(const Vector3d& p, double max_d2, Closest& out, Skip skip) const {
+  /// Visits the leaves whose box lies nearer to p than sqrt(limit()) (a
+  /// bound that may shrink as they are visited), nearer child first, each
+  /// leaf as visit(first, count); inner nodes wait on a fixed stack, the
+  /// nearer on top. No allocation.
+  template <typename Limit, typename Visit>
+  void leaves_near(const Vector3d& p, Limit limit, Visit visit) const {
     struct Item {
       int node;
       double d2;
     };
     Item stack[kStackSize];
     int top = 0;
-    double best = max_d2;
     const double root_d2 = root_distance2(p);
-    if (!(root_d2 < best)) return false;
+    if (!(root_d2 < limit())) return;
     stack[top++] = {0, root_d2};
     while (top > 0) {
       const Item item = stack[--top];
-      if (!(item.d2 < best)) continue;
+      if (!(item.d2 < limit())) continue;
       const Node& node = nodes[static_cast<std::size_t>(item.node)];
       const double d0 = box_distance2(node, 0, p), d1 = box_distance2(node, 1, p);
       const int near = d0 <= d1 ? 0 : 1, far = 1 - near;
       const double d_near = near == 0 ? d0 : d1, d_far = near == 0 ? d1 : d0;
-      // Leaves at once (nearer first, shrinking best); inner nodes onto the
-      // stack, the nearer on top.
-      if (d_near < best && node.count[near] > 0) search_leaf(p, node.index[near], node.count[near], best, out, skip);
-      if (d_far < best && node.count[far] > 0) search_leaf(p, node.index[far], node.count[far], best, out, skip);
-      if (d_far < best && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
-      if (d_near < best && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
+      if (d_near < limit() && node.count[near] > 0) visit(node.index[near], node.count[near]);
+      if (d_far < limit() && node.count[far] > 0) visit(node.index[far], node.count[far]);
+      if (d_far < limit() && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
+      if (d_near < limit() && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
     }
+  }
+
+  /// Closest triangle to p closer than sqrt(max_d2), of those `skip(t)`
+  /// does not rule out; false when none is.
+  template <typename Skip>
+  bool closest(const Vector3d& p, double max_d2, Closest& out, Skip skip) const {
+    double best = max_d2;
+    leaves_near(p, [&] { return best; },
+                [&](int first, int count) { search_leaf(p, first, count, best, out, skip); });
     return out.triangle >= 0;
   }
   bool closest(const Vector3d& p, double max_d2, Closest& out) const {
@@ -1044,10 +1051,6 @@ struct MeshBody::Impl {
   /// its side flips. `out` may hold a first candidate (its d2 the bound).
   bool closest_and_behind(const Vector3d& p, double max_d2, double margin, Closest& out, double& behind,
                           Candidates* candidates = nullptr) const {
-    struct Item {
-      int node;
-      double d2;
-    };
     struct Behind {
       double d2 = std::numeric_limits<double>::infinity();
       int triangle = -1;
@@ -1089,25 +1092,9 @@ struct MeshBody::Impl {
         out.at = at;
       }
     };
-    Item stack[kStackSize];
-    int top = 0;
-    const double root_d2 = root_distance2(p);
-    if (root_d2 < limit2) stack[top++] = {0, root_d2};
-    while (top > 0) {
-      const Item item = stack[--top];
-      if (!(item.d2 < limit2)) continue;
-      const Node& node = nodes[static_cast<std::size_t>(item.node)];
-      const double d0 = box_distance2(node, 0, p), d1 = box_distance2(node, 1, p);
-      const int near = d0 <= d1 ? 0 : 1, far = 1 - near;
-      const double d_near = near == 0 ? d0 : d1, d_far = near == 0 ? d1 : d0;
-      for (const int k : {near, far}) {
-        const double dk = k == near ? d_near : d_far;
-        if (!(dk < limit2) || node.count[k] == 0) continue;
-        for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) visit(t);
-      }
-      if (d_far < limit2 && node.count[far] == 0 && node.index[far] >= 0) stack[top++] = {node.index[far], d_far};
-      if (d_near < limit2 && node.count[near] == 0 && node.index[near] >= 0) stack[top++] = {node.index[near], d_near};
-    }
+    leaves_near(p, [&] { return limit2; }, [&](int first, int count) {
+      for (int t = first; t < first + count; ++t) visit(t);
+    });
     if (candidates) {
       // Everything pruned lay beyond the limit when it was pruned, and the
       // limit only shrank: the list holds every triangle within it.
