@@ -10,13 +10,14 @@
 // max_tear_opening), then where each row's time went (solve, limiter, posing,
 // first and later collision rounds, rounds per step).
 //
-// Usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all]
-//                        [--self-contact METRES] [--rounds N] [--sweeps N] [--slack METRES] [--round-tolerance STRAIN] [--step-rate HZ]
-//                        [--threads N]
+// Usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] and
+//                        the run options of garment_on_character.h (--frames, --preroll,
+//                        --rounds, --sweeps, --slack, --step-rate, --threads, ...)
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/uniform_refine.h"
+#include "garment_on_character.h"
 #include "solver/character_setup.h"
 
 #include <cstdio>
@@ -31,20 +32,9 @@ namespace {
 using namespace mrcloth;
 
 struct BenchOptions {
-  int frames = 60;         // output frames at 30 fps (2 s of walking)
-  double preroll = 0.5;    // seconds, not timed in the table
   std::string garment = "all";  // coarse | refined | all: which rows to run (one row is handy under a profiler)
   std::string body = "all";     // capsules | mesh | all
-  double self_contact = 0.0;    // cloth-cloth contact thickness, metres (0: off, the default)
-  int rounds = SimulationOptions{}.collision_rounds;  // rounds of (strain limiting, collisions) per step, at most
-  int sweeps = SimulationOptions{}.strain_limit_sweeps;  // limiter sweeps per round
-  double slack = SimulationOptions{}.contact_slack;  // metres a point may move along its contact plane before it is checked again
-  bool tethers = SimulationOptions{}.tethers;
-  int iterations = SimulationOptions{}.iterations;  // local/global iterations per step
-  double stretch_stiffness = Material{}.stretch_stiffness;  // N/m, the cloth's stretch springs (cotton's by default)  // the limiter's tethers to the pinned waist
-  double round_tolerance = SimulationOptions{}.round_tolerance;  // another round while a spring is this much strain beyond the limit
-  double step_rate = CharacterSetup{}.step_rate;  // time steps per second (the plugin's stepRate)
-  int threads = 1;  // threads resolving collisions (the target is one core's; any count gives the same bits)
+  bench::GarmentRunOptions run;  // 60 frames at 30 fps (2 s of walking) after 0.5 s, one thread (the target is one core's)
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -56,39 +46,18 @@ struct Row {
 };
 
 /// One row: `garment` (as modelled on base.obj) on a character built as
-/// the plugin builds one for `body` (make_character, place_garment,
-/// character_run_options with the plugin's defaults).
+/// the plugin builds one for `body`.
 Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, CharacterBodyKind body,
         const BenchOptions& b) {
-  CharacterSetup setup;
-  setup.body = body;
-  setup.makehuman = makehuman_files(data("bodies/makehuman"));
-  setup.place = GarmentPlacement::makehuman;
-  setup.preroll_seconds = b.preroll;
-  setup.step_rate = b.step_rate;
-  Character character = make_character(clip, setup, garment);
-  const PlacedGarment placed = place_garment(character, setup, garment);
-  DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
-  d.material.stretch_stiffness = b.stretch_stiffness;
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  ClothState state = rest_state(model);
-  SimulationOptions simulation;
-  simulation.frames = b.frames;
-  simulation.self_contact.thickness = b.self_contact;
-  simulation.collision_rounds = b.rounds;
-  simulation.strain_limit_sweeps = b.sweeps;
-  simulation.contact_slack = b.slack;
-  simulation.tethers = b.tethers;
-  simulation.iterations = b.iterations;
-  simulation.round_tolerance = b.round_tolerance;
-  simulation.threads = b.threads;
-  const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
+  bench::GarmentRunOptions o = b.run;
+  o.makehuman_folder = data("bodies/makehuman");
+  o.body = body;
+  bench::GarmentRun r = bench::run_garment_on_character(garment, clip, o);
   Row row;
   row.garment = name;
   row.body = body == CharacterBodyKind::mesh ? "mesh" : "capsules";
-  row.vertices = placed.mesh.n_vertices();
-  row.report = simulate_on_character(model, state, *character.motion, *character.body, o);
+  row.vertices = r.vertices;
+  row.report = std::move(r.report);
   return row;
 }
 
@@ -123,38 +92,16 @@ void print_parts(const std::vector<Row>& rows) {
 
 int run_benchmark(int argc, char** argv) {
   BenchOptions b;
-  const char* usage =
-      "usage: bench_character [--frames N] [--preroll S] [--garment coarse|refined|all] [--body capsules|mesh|all] "
-      "[--self-contact METRES] [--rounds N] [--sweeps N] [--slack METRES] [--round-tolerance STRAIN] [--step-rate HZ] [--threads N]\n";
-  for (int a = 1; a < argc; a += 2) {
-    const std::string key = argv[a];
-    if (key == "--help" || key == "-h") {
-      std::printf("%s", usage);
-      return 0;
-    }
-    if (a + 1 == argc) {
-      std::fprintf(stderr, "option %s needs a value\n%s", argv[a], usage);
-      return 2;
-    }
-    if (key == "--frames") b.frames = std::atoi(argv[a + 1]);
-    else if (key == "--preroll") b.preroll = std::atof(argv[a + 1]);
-    else if (key == "--garment") b.garment = argv[a + 1];
-    else if (key == "--body") b.body = argv[a + 1];
-    else if (key == "--self-contact") b.self_contact = std::atof(argv[a + 1]);
-    else if (key == "--rounds") b.rounds = std::atoi(argv[a + 1]);
-    else if (key == "--sweeps") b.sweeps = std::atoi(argv[a + 1]);
-    else if (key == "--slack") b.slack = std::atof(argv[a + 1]);
-    else if (key == "--tethers") b.tethers = std::atoi(argv[a + 1]) != 0;
-    else if (key == "--iterations") b.iterations = std::atoi(argv[a + 1]);
-    else if (key == "--stretch-stiffness") b.stretch_stiffness = std::atof(argv[a + 1]);
-    else if (key == "--round-tolerance") b.round_tolerance = std::atof(argv[a + 1]);
-    else if (key == "--step-rate") b.step_rate = std::atof(argv[a + 1]);
-    else if (key == "--threads") b.threads = std::atoi(argv[a + 1]);
-    else {
-      std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage);
-      return 2;
-    }
-  }
+  b.run.simulation.frames = 60;
+  const std::string usage = std::string("usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] ") +
+                            bench::kRunOptionsUsage + "\n";
+  const int exit_code = bench::read_command_line(argc, argv, usage, b.run, [&](const std::string& key, const std::string& value) {
+    if (key == "--garment") b.garment = value;
+    else if (key == "--body") b.body = value;
+    else return false;
+    return true;
+  });
+  if (exit_code >= 0) return exit_code;
   const std::string skirt_path = data("garments/makehuman/skirthelper.obj");
   if (!std::filesystem::exists(skirt_path)) {
     std::printf("shared data absent (%s): nothing to measure\n", skirt_path.c_str());
@@ -170,7 +117,10 @@ int run_benchmark(int argc, char** argv) {
   std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, %d thread(s), set up as "
               "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps, "
               "contact slack %.2f mm, round tolerance %.3f\n\n",
-              b.frames, b.preroll, b.step_rate, b.threads, 1000.0 * b.self_contact, b.rounds, b.sweeps, 1000.0 * b.slack, b.round_tolerance);
+              b.run.simulation.frames, b.run.preroll, b.run.step_rate, b.run.simulation.threads,
+              1000.0 * b.run.simulation.self_contact.thickness, b.run.simulation.collision_rounds,
+              b.run.simulation.strain_limit_sweeps, 1000.0 * b.run.simulation.contact_slack,
+              b.run.simulation.round_tolerance);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",
               "dyn ms/f", "coll ms/f", "total", "stretch", "tear mm", "depth mm", "crossings");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|----|\n", std::string(24, '-').c_str(), std::string(10, '-').c_str(),

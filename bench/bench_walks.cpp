@@ -15,14 +15,16 @@
 // summary: runs torn more than 1 cm open, runs deeper than 2 mm, the median
 // and largest stretch, the total time.
 //
-// Usage: bench_walks [--frames N] [--preroll S] [--kinds LIST] [--garments LIST] [--walks LIST]
-//                    [--rounds N] [--sweeps N] [--threads N]
+// Usage: bench_walks [--kinds LIST] [--garments LIST] [--walks LIST] and the
+//                    run options of garment_on_character.h (--frames, --preroll,
+//                    --rounds, --sweeps, --slack, --threads, ...)
 //   LIST: comma-separated; kinds coarse-capsules,coarse-mesh,refined-mesh;
 //   garments skirt,knee,trousers; walks 07_06,07_03,08_03,02_01.
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/uniform_refine.h"
+#include "garment_on_character.h"
 #include "solver/character_setup.h"
 
 #include <algorithm>
@@ -39,13 +41,10 @@ namespace {
 using namespace mrcloth;
 
 struct WalkOptions {
-  int frames = 60;        // output frames at 30 fps after the pre-roll
-  double preroll = 0.5;   // seconds
   std::vector<std::string> kinds{"coarse-capsules", "coarse-mesh", "refined-mesh"};
   std::vector<std::string> garments{"skirt", "knee", "trousers"};
   std::vector<std::string> walks{"07_06", "07_03", "08_03", "02_01"};
-  SimulationOptions simulation;  // the solver's settings (the plugin's defaults unless overridden)
-  double stretch_stiffness = Material{}.stretch_stiffness;  // N/m, the cloth's stretch springs (cotton's by default)
+  bench::GarmentRunOptions run;  // 60 frames at 30 fps after a 0.5 s pre-roll, the plugin's solver defaults
 };
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
@@ -80,67 +79,35 @@ Result run(const std::string& garment, const std::string& walk, const std::strin
   const Motion clip = read_bvh(data("motions/cmu_mb/" + walk + ".bvh"), bvh);
   QuadMesh mesh = load_garment(data(garment_file(garment)), {"dm"}).mesh;
   if (kind == "refined-mesh") uniform_refine(mesh, 1);
-  CharacterSetup setup;
-  setup.body = kind == "coarse-capsules" ? CharacterBodyKind::capsules : CharacterBodyKind::mesh;
-  setup.makehuman = makehuman_files(data("bodies/makehuman"));
-  setup.place = GarmentPlacement::makehuman;
-  setup.preroll_seconds = w.preroll;
-  Character character = make_character(clip, setup, mesh);
-  const PlacedGarment placed = place_garment(character, setup, mesh);
-  DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
-  d.material.stretch_stiffness = w.stretch_stiffness;
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  ClothState state = rest_state(model);
-  SimulationOptions simulation = w.simulation;
-  simulation.frames = w.frames;
-  const CharacterRunOptions o = character_run_options(character, setup, model, simulation);
-  Result r{garment, walk, kind, placed.mesh.n_vertices(), {}};
-  r.motion = simulate_on_character(model, state, *character.motion, *character.body, o).motion;
+  bench::GarmentRunOptions o = w.run;
+  o.makehuman_folder = data("bodies/makehuman");
+  o.body = kind == "coarse-capsules" ? CharacterBodyKind::capsules : CharacterBodyKind::mesh;
+  bench::GarmentRun run = bench::run_garment_on_character(mesh, clip, o);
+  Result r{garment, walk, kind, run.vertices, std::move(run.report.motion)};
   return r;
 }
 
 int run_table(int argc, char** argv) {
   WalkOptions w;
-  const char* usage =
-      "usage: bench_walks [--frames N] [--preroll S] [--kinds LIST] [--garments LIST] [--walks LIST] "
-      "[--rounds N] [--sweeps N] [--threads N]\n";
-  for (int a = 1; a < argc; a += 2) {
-    const std::string key = argv[a];
-    if (key == "--help" || key == "-h") {
-      std::printf("%s", usage);
-      return 0;
-    }
-    if (a + 1 == argc) {
-      std::fprintf(stderr, "option %s needs a value\n%s", argv[a], usage);
-      return 2;
-    }
-    const std::string value = argv[a + 1];
-    if (key == "--frames") w.frames = std::atoi(value.c_str());
-    else if (key == "--preroll") w.preroll = std::atof(value.c_str());
-    else if (key == "--kinds") w.kinds = split_list(value);
+  w.run.simulation.frames = 60;
+  const std::string usage = std::string("usage: bench_walks [--kinds LIST] [--garments LIST] [--walks LIST] ") +
+                            bench::kRunOptionsUsage + "\n";
+  const int exit_code = bench::read_command_line(argc, argv, usage, w.run, [&](const std::string& key, const std::string& value) {
+    if (key == "--kinds") w.kinds = split_list(value);
     else if (key == "--garments") w.garments = split_list(value);
     else if (key == "--walks") w.walks = split_list(value);
-    else if (key == "--rounds") w.simulation.collision_rounds = std::atoi(value.c_str());
-    else if (key == "--sweeps") w.simulation.strain_limit_sweeps = std::atoi(value.c_str());
-    else if (key == "--threads") w.simulation.threads = std::atoi(value.c_str());
-    else if (key == "--slack") w.simulation.contact_slack = std::atof(value.c_str());
-    else if (key == "--tethers") w.simulation.tethers = std::atoi(value.c_str()) != 0;
-    else if (key == "--iterations") w.simulation.iterations = std::atoi(value.c_str());
-    else if (key == "--stretch-stiffness") w.stretch_stiffness = std::atof(value.c_str());
-    else if (key == "--round-tolerance") w.simulation.round_tolerance = std::atof(value.c_str());
-    else {
-      std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage);
-      return 2;
-    }
-  }
+    else return false;
+    return true;
+  });
+  if (exit_code >= 0) return exit_code;
   if (!std::filesystem::exists(data("bodies/makehuman/base.obj"))) {
     std::printf("shared data absent (%s): nothing to measure\n", data("").c_str());
     return 0;
   }
   std::printf("the walk table: %d frames at 30 fps after a %.3f s pre-roll, at most %d rounds of %d limiter sweeps, "
               "%d thread(s)\n\n",
-              w.frames, w.preroll, w.simulation.collision_rounds, w.simulation.strain_limit_sweeps, w.simulation.threads);
+              w.run.simulation.frames, w.run.preroll, w.run.simulation.collision_rounds,
+              w.run.simulation.strain_limit_sweeps, w.run.simulation.threads);
   std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %9s | %8s | %8s | %8s |\n", "garment", "walk", "kind", "vertices",
               "depth mm", "stretch", "tear mm", "dyn ms/f", "coll ms/f");
   std::printf("|----------|-------|-----------------|----------|----------|-----------|----------|----------|----------|\n");

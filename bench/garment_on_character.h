@@ -1,0 +1,104 @@
+#pragma once
+// One shared MakeHuman garment on a CMU clip, set up as the plugin's
+// multirescloth.simulate sets it up (character_setup.h: make_character,
+// place_garment, character_run_options; the waist loop pinned), for the
+// benchmarks that time such runs (bench_character) and count how whole
+// they stay (bench_walks).
+#include "mesh_ops/boundary_loops.h"
+#include "solver/character_setup.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace mrcloth::bench {
+
+/// What a benchmark varies about a garment run.
+struct GarmentRunOptions {
+  std::string makehuman_folder;  ///< bodies/makehuman of the shared data
+  CharacterBodyKind body = CharacterBodyKind::mesh;
+  double preroll = 0.5;                                     ///< seconds, not recorded
+  double step_rate = CharacterSetup{}.step_rate;            ///< time steps per second
+  double stretch_stiffness = Material{}.stretch_stiffness;  ///< N/m, the cloth's stretch springs (cotton's by default)
+  SimulationOptions simulation;                             ///< frames and the solver's settings
+};
+
+struct GarmentRun {
+  std::size_t vertices = 0;  ///< of the placed garment
+  CharacterRunReport report;
+};
+
+/// The command-line options both benchmarks take for a run, after their own.
+inline constexpr const char* kRunOptionsUsage =
+    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--slack METRES] "
+    "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--stretch-stiffness N/M] "
+    "[--self-contact METRES] [--threads N]";
+
+/// Takes option `key` with `value` into `o` when it is one of
+/// kRunOptionsUsage's; false when it is not.
+inline bool take_run_option(const std::string& key, const char* value, GarmentRunOptions& o) {
+  SimulationOptions& s = o.simulation;
+  if (key == "--frames") s.frames = std::atoi(value);
+  else if (key == "--preroll") o.preroll = std::atof(value);
+  else if (key == "--step-rate") o.step_rate = std::atof(value);
+  else if (key == "--rounds") s.collision_rounds = std::atoi(value);
+  else if (key == "--sweeps") s.strain_limit_sweeps = std::atoi(value);
+  else if (key == "--slack") s.contact_slack = std::atof(value);
+  else if (key == "--round-tolerance") s.round_tolerance = std::atof(value);
+  else if (key == "--tethers") s.tethers = std::atoi(value) != 0;
+  else if (key == "--iterations") s.iterations = std::atoi(value);
+  else if (key == "--stretch-stiffness") o.stretch_stiffness = std::atof(value);
+  else if (key == "--self-contact") s.self_contact.thickness = std::atof(value);
+  else if (key == "--threads") s.threads = std::atoi(value);
+  else return false;
+  return true;
+}
+
+/// Reads "--key value" pairs: `own(key, value)` takes a benchmark's own
+/// options (false: not one of them), then take_run_option the run's into
+/// `run`. Returns -1 to go on, else the exit code: 0 after --help, 2 after
+/// a bad command line (said on stderr with the usage).
+template <typename Own>
+int read_command_line(int argc, char** argv, const std::string& usage, GarmentRunOptions& run, Own own) {
+  for (int a = 1; a < argc; a += 2) {
+    const std::string key = argv[a];
+    if (key == "--help" || key == "-h") {
+      std::printf("%s", usage.c_str());
+      return 0;
+    }
+    if (a + 1 == argc) {
+      std::fprintf(stderr, "option %s needs a value\n%s", argv[a], usage.c_str());
+      return 2;
+    }
+    if (!own(key, std::string(argv[a + 1])) && !take_run_option(key, argv[a + 1], run)) {
+      std::fprintf(stderr, "unknown option %s\n%s", argv[a], usage.c_str());
+      return 2;
+    }
+  }
+  return -1;
+}
+
+/// Runs `garment` (as modelled on base.obj, metres) on `clip` (as read,
+/// frame 0 kept).
+inline GarmentRun run_garment_on_character(const QuadMesh& garment, const Motion& clip, const GarmentRunOptions& o) {
+  CharacterSetup setup;
+  setup.body = o.body;
+  setup.makehuman = makehuman_files(o.makehuman_folder);
+  setup.place = GarmentPlacement::makehuman;
+  setup.preroll_seconds = o.preroll;
+  setup.step_rate = o.step_rate;
+  Character character = make_character(clip, setup, garment);
+  const PlacedGarment placed = place_garment(character, setup, garment);
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  d.material.stretch_stiffness = o.stretch_stiffness;
+  const DynamicsModel model = build_dynamics(placed.mesh, d);
+  ClothState state = rest_state(model);
+  const CharacterRunOptions run = character_run_options(character, setup, model, o.simulation);
+  GarmentRun out;
+  out.vertices = placed.mesh.n_vertices();
+  out.report = simulate_on_character(model, state, *character.motion, *character.body, run);
+  return out;
+}
+
+}  // namespace mrcloth::bench
