@@ -112,7 +112,12 @@ class MeshBody : public CollisionScene {
   /// earlier one), the search starts from the triangle that was nearest,
   /// and a point with nothing near that was left outside by the last pose
   /// or this one, whose way since crossed no surface, is outside without a
-  /// search of the whole tree: the same answers, sooner.
+  /// search of the whole tree: the same answers, sooner (up to which of two
+  /// triangles meeting at the closest point is named). `nearby` also says
+  /// how far the point may move before another part of the body, which
+  /// skinning drives into this one, could become its nearest surface
+  /// (SurfaceNearby::flip; at least 2.5 mm where none lies within 5 mm
+  /// beyond the nearest).
   double resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction = true,
                  ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
