@@ -693,8 +693,9 @@ struct MeshBody::Impl {
   /// left out, the side comes from the whole mesh (inside_whole_mesh),
   /// metres: well outside the thickness layer, where pushes are decided.
   static constexpr double kWholeMeshSideBeyond = 0.01;
-  /// How far (metres) flip_distance looks: a point's side is vouched for
-  /// at most this far (SurfaceNearby::flip).
+  /// A resolve's search looks twice this far (metres) beyond the nearest
+  /// surface for triangles the point is behind, so it vouches for the
+  /// point's side at most this far (SurfaceNearby::flip).
   static constexpr double kFlipReach = 0.0025;
 
   /// An internal node holding both children's boxes (one 64-byte line
@@ -977,23 +978,17 @@ struct MeshBody::Impl {
     return (p.array() >= root_lo.array()).all() && (p.array() <= root_hi.array()).all();
   }
 
-  /// Tests the triangles of a leaf that `skip(t)` does not rule out against
-  /// the best so far.
-  template <typename Skip>
-  void search_leaf(const Vector3d& p, int first, int count, double& best, Closest& out, Skip skip) const {
-    for (int t = first; t < first + count; ++t) {
-      if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
-      // The triangle's own box first: it rejects most of a leaf.
-      const double box2 = triangle_box_distance2(p, t);
-      if (!(box2 < best) || skip(t)) continue;
-      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
-      const double d2 = (p - at.point).squaredNorm();
-      if (d2 < best) {
-        best = d2;
-        out.d2 = d2;
-        out.triangle = t;
-        out.at = at;
-      }
+  /// Tests seen triangle t against the closest so far (`best`, its squared
+  /// distance, and `out`); its own box first, which rejects most.
+  void consider(const Vector3d& p, int t, double& best, Closest& out) const {
+    if (!(triangle_box_distance2(p, t) < best)) return;
+    const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
+    const double d2 = (p - at.point).squaredNorm();
+    if (d2 < best) {
+      best = d2;
+      out.d2 = d2;
+      out.triangle = t;
+      out.at = at;
     }
   }
 
@@ -1026,17 +1021,14 @@ struct MeshBody::Impl {
     }
   }
 
-  /// Closest triangle to p closer than sqrt(max_d2), of those `skip(t)`
-  /// does not rule out; false when none is.
-  template <typename Skip>
-  bool closest(const Vector3d& p, double max_d2, Closest& out, Skip skip) const {
-    double best = max_d2;
-    leaves_near(p, [&] { return best; },
-                [&](int first, int count) { search_leaf(p, first, count, best, out, skip); });
-    return out.triangle >= 0;
-  }
+  /// Closest seen triangle to p closer than sqrt(max_d2); false when none is.
   bool closest(const Vector3d& p, double max_d2, Closest& out) const {
-    return closest(p, max_d2, out, [](int) { return false; });
+    double best = max_d2;
+    leaves_near(p, [&] { return best; }, [&](int first, int count) {
+      for (int t = first; t < first + count; ++t)
+        if (!(any_ignored && ignored[static_cast<std::size_t>(t)])) consider(p, t, best, out);
+    });
+    return out.triangle >= 0;
   }
 
   /// closest(p, max_d2, out), and also the distance to the nearest other
@@ -1092,8 +1084,8 @@ struct MeshBody::Impl {
         out.at = at;
       }
     };
-    leaves_near(p, [&] { return limit2; }, [&](int first, int count) {
-      for (int t = first; t < first + count; ++t) visit(t);
+    leaves_near(p, [&] { return limit2; }, [&](int leaf, int count) {
+      for (int t = leaf; t < leaf + count; ++t) visit(t);
     });
     if (candidates) {
       // Everything pruned lay beyond the limit when it was pruned, and the
@@ -1424,18 +1416,8 @@ struct MeshBody::Impl {
   bool contact_near(const Vector3d& p, double search2, const Candidates* candidates, Contact& out) const {
     if (!candidates || !candidates->cover(p, search2)) return contact(p, search2, false, out);
     Closest c;
-    c.d2 = search2;
-    for (int k = 0; k < candidates->count; ++k) {
-      const int t = candidates->items[k];
-      if (!(triangle_box_distance2(p, t) < c.d2)) continue;
-      const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
-      const double d2 = (p - at.point).squaredNorm();
-      if (d2 < c.d2) {
-        c.d2 = d2;
-        c.triangle = t;
-        c.at = at;
-      }
-    }
+    double best = search2;
+    for (int k = 0; k < candidates->count; ++k) consider(p, candidates->items[k], best, c);
     if (c.triangle < 0) return false;
     out = signed_contact(p, c);
     return true;
