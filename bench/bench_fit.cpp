@@ -1,0 +1,144 @@
+// Whether the shared skirts can go round the walking body at all: at eight
+// heights of each skirt (top to hem), the strain a level loop of it needs to go
+// round the skinned MakeHuman body's section over a walk (garment_fit.h;
+// arms and hands not counted: they hang beside a skirt, not in it). Where
+// this exceeds the cloth's stretch limit (cotton's 3 %), the stride asks for
+// cloth that is not there, and no solver keeps the skirt whole and within
+// its limit: the strain limiter spends every round it has.
+//
+// Usage: bench_fit [--frames N] [--preroll S]  (N output frames at 30 fps
+//                  after the pre-roll, as bench_character and bench_walks run)
+#include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/garment_io.h"
+#include "solver/body_skinned_mesh.h"
+#include "solver/character_setup.h"
+#include "solver/character_sim.h"
+#include "solver/garment_fit.h"
+#include "solver/material.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace mrcloth;
+
+std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
+
+/// Per body vertex: whether at most half its weight is on an arm's joints.
+std::vector<char> not_arms(const SkinnedBody& body, const Skeleton& skeleton) {
+  std::vector<char> counted(body.weights.size(), 1);
+  for (std::size_t v = 0; v < body.weights.size(); ++v) {
+    double arm = 0.0;
+    for (const auto& [joint, weight] : body.weights[v]) {
+      const std::string& name = skeleton.joints[static_cast<std::size_t>(joint)].name;
+      for (const char* part : {"Shoulder", "Arm", "Hand", "Finger", "Thumb"})
+        if (name.find(part) != std::string::npos) {
+          arm += weight;
+          break;
+        }
+    }
+    counted[v] = arm <= 0.5;
+  }
+  return counted;
+}
+
+std::vector<Eigen::Vector2i> garment_edges(const QuadMesh& mesh) {
+  std::vector<Eigen::Vector2i> edges;
+  for (const auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    edges.emplace_back(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx());
+  }
+  return edges;
+}
+
+/// The triangles' edges (each shared one twice: the section's hull does not mind).
+std::vector<Eigen::Vector2i> body_edges(const SkinnedBody& body) {
+  std::vector<Eigen::Vector2i> edges;
+  for (const Eigen::Vector3i& t : body.triangles)
+    for (int k = 0; k < 3; ++k) edges.emplace_back(t(k), t((k + 1) % 3));
+  return edges;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int frames = 60;
+  double preroll = 0.5;
+  for (int a = 1; a < argc; a += 2) {
+    const std::string key = argv[a];
+    if (key == "--help" || key == "-h" || a + 1 == argc) {
+      std::printf("usage: bench_fit [--frames N] [--preroll S]\n");
+      return key == "--help" || key == "-h" ? 0 : 2;
+    }
+    if (key == "--frames") frames = std::atoi(argv[a + 1]);
+    else if (key == "--preroll") preroll = std::atof(argv[a + 1]);
+    else {
+      std::fprintf(stderr, "unknown option %s\nusage: bench_fit [--frames N] [--preroll S]\n", argv[a]);
+      return 2;
+    }
+  }
+  const std::string garments[] = {"skirthelper.obj", "female_elegantsuit01_skirt_on_base.obj"};
+  const std::string walks[] = {"07_06", "07_03", "08_03", "02_01"};
+  if (!std::filesystem::exists(data("garments/makehuman/" + garments[0]))) {
+    std::printf("shared data absent (%s): nothing to measure\n", data("garments/makehuman").c_str());
+    return 0;
+  }
+  const HoopDemandOptions levels;
+  std::printf("strain a level loop of the skirt needs to go round the walking body (arms not counted), at %d levels from the "
+              "waist (level 1) to the hem, over %d frames at 30 fps after a %.1f s pre-roll; the cloth's "
+              "stretch limit is %.0f %% (cotton)\n\n",
+              levels.levels, frames, preroll, 100.0 * material_preset("cotton").stretch_limit);
+  std::printf("| skirt | walk |");
+  for (int k = 1; k <= levels.levels; ++k) std::printf(" level %d |", k);
+  std::printf(" lowest level's girth, m |\n|---|---|");
+  for (int k = 1; k <= levels.levels; ++k) std::printf("---|");
+  std::printf("---|\n");
+  for (const std::string& garment_file : garments) {
+    const QuadMesh garment = load_garment(data("garments/makehuman/" + garment_file), {"dm"}).mesh;
+    for (const std::string& walk : walks) {
+      BvhReadOptions bvh;
+      bvh.scale = 0.056444;          // CMU units to metres
+      bvh.skip_first_frame = false;  // make_character drops CMU's added T-pose
+      const Motion clip = read_bvh(data("motions/cmu_mb/" + walk + ".bvh"), bvh);
+      CharacterSetup setup;
+      setup.body = CharacterBodyKind::mesh;
+      setup.makehuman = makehuman_files(data("bodies/makehuman"));
+      setup.place = GarmentPlacement::makehuman;
+      setup.preroll_seconds = preroll;
+      Character character = make_character(clip, setup, garment);
+      const PlacedGarment placed = place_garment(character, setup, garment);
+      DynamicsOptions dynamics;
+      dynamics.pinned = boundary_loop_by_name(placed.mesh, "top");
+      const DynamicsModel model = build_dynamics(placed.mesh, dynamics);
+      SimulationOptions simulation;
+      simulation.frames = frames;
+      const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
+      const SkinnedBody body = load_makehuman_body(*setup.makehuman, character.motion->skeleton);
+      const auto skinned = static_cast<Eigen::Index>(body.rest_vertices.rows());
+      // The waist rides on the pelvis: heights are compared as the pelvis
+      // carries them (each frame lowered by how far the pelvis rose since
+      // the pose the garment was modelled on).
+      const int pelvis = character.motion->skeleton.find(run.pelvis_joint);
+      const double pelvis_rest = reference_pose(*character.motion, run).global[static_cast<std::size_t>(pelvis)].translation().y();
+      std::vector<Eigen::MatrixX3d> sections;
+      for (int f = 0; f < frames; ++f) {
+        const double time = run.preroll_seconds + (f + 1) / 30.0;
+        const Pose pose = character_pose(*character.motion, time, run);
+        Eigen::MatrixX3d section = character.body->surface(pose).vertices.topRows(skinned);  // the skinned mesh, then the leg bridges
+        section.col(1).array() -= pose.global[static_cast<std::size_t>(pelvis)].translation().y() - pelvis_rest;
+        sections.push_back(std::move(section));
+      }
+      const std::vector<HoopLevel> result = hoop_demand(model.rest, garment_edges(placed.mesh), sections,
+                                                        body_edges(body), not_arms(body, character.motion->skeleton), levels);
+      std::printf("| %s | %s |", garment_file.substr(0, garment_file.find('.')).c_str(), walk.c_str());
+      for (const HoopLevel& level : result) std::printf(" %+.0f %% |", 100.0 * level.demand());
+      std::printf(" %.3f |\n", result.back().garment_girth);
+    }
+  }
+  return 0;
+}
