@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libopenmesh-dev       # mesh data structure and IO (OBJ/OFF/PLY/OM)
   libeigen3-dev         # dense and sparse linear algebra
-  libcgal-dev           # robust geometry (AABB trees, closest points)
+  libcgal-dev           # robust geometry (planar convex hulls)
   qt6-base-dev          # Qt Core/Gui: plugin system, offscreen images
   qt6-declarative-dev   # QJSEngine: the scripting host
   libgtest-dev          # unit tests
