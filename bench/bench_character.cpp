@@ -10,7 +10,10 @@
 // max_tear_opening), then where each row's time went (solve, limiter, posing,
 // first and later collision rounds, rounds per step).
 //
-// Usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] and
+// --flare 0.6 runs a copy of the skirt widened toward its hem (60 % there)
+// that goes round the walking body (bench_fit --flare 0.6).
+//
+// Usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] [--flare AMOUNT] and
 //                        the run options of garment_on_character.h (--frames, --preroll,
 //                        --rounds, --sweeps, --slack, --step-rate, --threads, ...)
 #include "mesh_ops/errors.h"
@@ -34,6 +37,7 @@ using namespace mrcloth;
 struct BenchOptions {
   std::string garment = "all";  // coarse | refined | all: which rows to run (one row is handy under a profiler)
   std::string body = "all";     // capsules | mesh | all
+  double flare = 0.0;           // the skirt widened toward its hem by this (bench::flare_skirt; 0: as shared)
   bench::GarmentRunOptions run;  // 60 frames at 30 fps (2 s of walking) after 0.5 s, one thread (the target is one core's)
 };
 
@@ -93,11 +97,12 @@ void print_parts(const std::vector<Row>& rows) {
 int run_benchmark(int argc, char** argv) {
   BenchOptions b;
   b.run.simulation.frames = 60;
-  const std::string usage = std::string("usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] ") +
+  const std::string usage = std::string("usage: bench_character [--garment coarse|refined|all] [--body capsules|mesh|all] [--flare AMOUNT] ") +
                             bench::kRunOptionsUsage + "\n";
   const int exit_code = bench::read_command_line(argc, argv, usage, b.run, [&](const std::string& key, const std::string& value) {
     if (key == "--garment") b.garment = value;
     else if (key == "--body") b.body = value;
+    else if (key == "--flare") b.flare = std::atof(value.c_str());
     else return false;
     return true;
   });
@@ -111,9 +116,11 @@ int run_benchmark(int argc, char** argv) {
   bvh.scale = 0.056444;         // CMU units to metres
   bvh.skip_first_frame = false;  // make_character drops CMU's added T-pose
   const Motion clip = read_bvh(data("motions/cmu_mb/07_06.bvh"), bvh);
-  const QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
+  QuadMesh coarse = load_garment(skirt_path, {"dm"}).mesh;
+  bench::flare_skirt(coarse, b.flare);
   QuadMesh high = copy_mesh(coarse);
   uniform_refine(high, 2);
+  if (b.flare != 0.0) std::printf("the skirt flared by %.2f toward its hem (bench::flare_skirt)\n", b.flare);
   std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, %d thread(s), set up as "
               "multirescloth.simulate sets it up, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps, "
               "contact slack %.2f mm, round tolerance %.3f\n\n",

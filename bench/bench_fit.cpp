@@ -6,10 +6,13 @@
 // cloth that is not there, and no solver keeps the skirt whole and within
 // its limit: the strain limiter spends every round it has.
 //
-// Usage: bench_fit [--frames N] [--preroll S]  (N output frames at 30 fps
-//                  after the pre-roll, as bench_character and bench_walks run)
+// Usage: bench_fit [--frames N] [--preroll S] [--flare AMOUNT]  (N output
+//        frames at 30 fps after the pre-roll, as bench_character and
+//        bench_walks run; --flare widens the skirts toward their hems,
+//        bench::flare_skirt)
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/garment_io.h"
+#include "garment_on_character.h"
 #include "solver/body_skinned_mesh.h"
 #include "solver/character_setup.h"
 #include "solver/character_sim.h"
@@ -69,16 +72,18 @@ std::vector<Eigen::Vector2i> body_edges(const SkinnedBody& body) {
 int main(int argc, char** argv) {
   int frames = 60;
   double preroll = 0.5;
+  double flare = 0.0;  // the skirts widened toward their hems by this (bench::flare_skirt)
   for (int a = 1; a < argc; a += 2) {
     const std::string key = argv[a];
     if (key == "--help" || key == "-h" || a + 1 == argc) {
-      std::printf("usage: bench_fit [--frames N] [--preroll S]\n");
+      std::printf("usage: bench_fit [--frames N] [--preroll S] [--flare AMOUNT]\n");
       return key == "--help" || key == "-h" ? 0 : 2;
     }
     if (key == "--frames") frames = std::atoi(argv[a + 1]);
     else if (key == "--preroll") preroll = std::atof(argv[a + 1]);
+    else if (key == "--flare") flare = std::atof(argv[a + 1]);
     else {
-      std::fprintf(stderr, "unknown option %s\nusage: bench_fit [--frames N] [--preroll S]\n", argv[a]);
+      std::fprintf(stderr, "unknown option %s\nusage: bench_fit [--frames N] [--preroll S] [--flare AMOUNT]\n", argv[a]);
       return 2;
     }
   }
@@ -99,7 +104,8 @@ int main(int argc, char** argv) {
   for (int k = 1; k <= levels.levels; ++k) std::printf("---|");
   std::printf("---|\n");
   for (const std::string& garment_file : garments) {
-    const QuadMesh garment = load_garment(data("garments/makehuman/" + garment_file), {"dm"}).mesh;
+    QuadMesh garment = load_garment(data("garments/makehuman/" + garment_file), {"dm"}).mesh;
+    bench::flare_skirt(garment, flare);
     for (const std::string& walk : walks) {
       BvhReadOptions bvh;
       bvh.scale = 0.056444;          // CMU units to metres

@@ -7,6 +7,7 @@
 #include "mesh_ops/boundary_loops.h"
 #include "solver/character_setup.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -76,6 +77,31 @@ int read_command_line(int argc, char** argv, const std::string& usage, GarmentRu
     }
   }
   return -1;
+}
+
+/// Widens a skirt toward its hem (the fit experiment): each vertex moves
+/// away from the vertical line through the mean of all of them, by the
+/// factor 1 + amount s^2 at the fraction s of the way from its top (0) to
+/// its bottom (1): 0 leaves it as it is, 0.6 makes its hem 60 % wider.
+inline void flare_skirt(QuadMesh& skirt, double amount) {
+  if (amount == 0.0) return;
+  double cx = 0.0, cz = 0.0, top = -1e300, bottom = 1e300;
+  for (const auto v : skirt.vertices()) {
+    const auto p = skirt.point(v);
+    cx += p[0];
+    cz += p[2];
+    top = std::max<double>(top, p[1]);
+    bottom = std::min<double>(bottom, p[1]);
+  }
+  cx /= static_cast<double>(skirt.n_vertices());
+  cz /= static_cast<double>(skirt.n_vertices());
+  for (const auto v : skirt.vertices()) {
+    auto p = skirt.point(v);
+    const double s = (top - p[1]) / (top - bottom), factor = 1.0 + amount * s * s;
+    p[0] = cx + factor * (p[0] - cx);
+    p[2] = cz + factor * (p[2] - cz);
+    skirt.set_point(v, p);
+  }
 }
 
 /// Runs `garment` (as modelled on base.obj, metres) on `clip` (as read,
