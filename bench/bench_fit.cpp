@@ -1,6 +1,6 @@
 // Whether the shared skirts can go round the walking body at all: at eight
 // heights of each skirt (top to hem), the strain a level loop of it needs to go
-// round the skinned MakeHuman body's section over a walk (garment_fit.h;
+// round the skinned MakeHuman body's section over a walk (character_fit.h;
 // arms and hands not counted: they hang beside a skirt, not in it). Where
 // this exceeds the cloth's stretch limit (cotton's 3 %), the stride asks for
 // cloth that is not there, and no solver keeps the skirt whole and within
@@ -13,10 +13,8 @@
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/garment_io.h"
 #include "garment_on_character.h"
-#include "solver/body_skinned_mesh.h"
 #include "solver/character_setup.h"
-#include "solver/character_sim.h"
-#include "solver/garment_fit.h"
+#include "solver/character_fit.h"
 #include "solver/material.h"
 
 #include <cmath>
@@ -31,41 +29,6 @@ namespace {
 using namespace mrcloth;
 
 std::string data(const std::string& relative) { return std::string(MRCLOTH_SHARED_DATA) + "/" + relative; }
-
-/// Per body vertex: whether at most half its weight is on an arm's joints.
-std::vector<char> not_arms(const SkinnedBody& body, const Skeleton& skeleton) {
-  std::vector<char> counted(body.weights.size(), 1);
-  for (std::size_t v = 0; v < body.weights.size(); ++v) {
-    double arm = 0.0;
-    for (const auto& [joint, weight] : body.weights[v]) {
-      const std::string& name = skeleton.joints[static_cast<std::size_t>(joint)].name;
-      for (const char* part : {"Shoulder", "Arm", "Hand", "Finger", "Thumb"})
-        if (name.find(part) != std::string::npos) {
-          arm += weight;
-          break;
-        }
-    }
-    counted[v] = arm <= 0.5;
-  }
-  return counted;
-}
-
-std::vector<Eigen::Vector2i> garment_edges(const QuadMesh& mesh) {
-  std::vector<Eigen::Vector2i> edges;
-  for (const auto e : mesh.edges()) {
-    const auto h = mesh.halfedge_handle(e, 0);
-    edges.emplace_back(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx());
-  }
-  return edges;
-}
-
-/// The triangles' edges (each shared one twice: the section's hull does not mind).
-std::vector<Eigen::Vector2i> body_edges(const SkinnedBody& body) {
-  std::vector<Eigen::Vector2i> edges;
-  for (const Eigen::Vector3i& t : body.triangles)
-    for (int k = 0; k < 3; ++k) edges.emplace_back(t(k), t((k + 1) % 3));
-  return edges;
-}
 
 }  // namespace
 
@@ -124,23 +87,8 @@ int main(int argc, char** argv) {
       SimulationOptions simulation;
       simulation.frames = frames;
       const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
-      const SkinnedBody body = load_makehuman_body(*setup.makehuman, character.motion->skeleton);
-      const auto skinned = static_cast<Eigen::Index>(body.rest_vertices.rows());
-      // The waist rides on the pelvis: heights are compared as the pelvis
-      // carries them (each frame lowered by how far the pelvis rose since
-      // the pose the garment was modelled on).
-      const int pelvis = character.motion->skeleton.find(run.pelvis_joint);
-      const double pelvis_rest = reference_pose(*character.motion, run).global[static_cast<std::size_t>(pelvis)].translation().y();
-      std::vector<Eigen::MatrixX3d> sections;
-      for (int f = 0; f < frames; ++f) {
-        const double time = run.preroll_seconds + (f + 1) / 30.0;
-        const Pose pose = character_pose(*character.motion, time, run);
-        Eigen::MatrixX3d section = character.body->surface(pose).vertices.topRows(skinned);  // the skinned mesh, then the leg bridges
-        section.col(1).array() -= pose.global[static_cast<std::size_t>(pelvis)].translation().y() - pelvis_rest;
-        sections.push_back(std::move(section));
-      }
-      const std::vector<HoopLevel> result = hoop_demand(model.rest, garment_edges(placed.mesh), sections,
-                                                        body_edges(body), not_arms(body, character.motion->skeleton), levels);
+      const std::vector<HoopLevel> result =
+          run_hoop_demand(*character.motion, *character.body, run, model.rest, polygon_edges(active_face_polygons(placed.mesh)), levels);
       std::printf("| %s | %s |", garment_file.substr(0, garment_file.find('.')).c_str(), walk.c_str());
       for (const HoopLevel& level : result) std::printf(" %+.0f %% |", 100.0 * level.demand());
       std::printf(" %.3f |\n", result.back().garment_girth);

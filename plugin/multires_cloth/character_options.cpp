@@ -7,6 +7,7 @@
 #include <QDir>
 #include <QFileInfo>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -319,6 +320,23 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
   if (request.setup.body == CharacterBodyKind::mesh) map.insert(QStringLiteral("bodyVertices"), character.body_vertices);
   else map.insert(QStringLiteral("capsules"), character.body_capsules);
   return map;
+}
+
+QVariantMap hoopDemandMap(const std::vector<HoopLevel>& levels, double stretch_limit) {
+  QVariantList list;
+  double largest = -std::numeric_limits<double>::infinity();
+  for (const HoopLevel& level : levels) {
+    const double demand = level.demand();
+    if (std::isfinite(demand)) largest = std::max(largest, demand);
+    list << QVariantMap{{QStringLiteral("height"), level.height},
+                        {QStringLiteral("garmentGirth"), level.garment_girth},
+                        {QStringLiteral("bodyGirth"), level.body_girth},
+                        {QStringLiteral("demand"), std::isfinite(demand) ? QVariant(demand) : QVariant()},
+                        {QStringLiteral("frame"), level.frame}};
+  }
+  return {{QStringLiteral("levels"), list},
+          {QStringLiteral("largestDemand"), std::isfinite(largest) ? QVariant(largest) : QVariant()},
+          {QStringLiteral("stretchLimit"), stretch_limit}};
 }
 
 }  // namespace mrcloth

@@ -9,6 +9,7 @@
 #include "mesh_ops/quad_mesh.h"
 #include "solver/character_setup.h"
 #include "solver/character_sim.h"
+#include "solver/garment_fit.h"
 
 #include <QString>
 #include <QStringList>
@@ -50,5 +51,11 @@ QString placementName(GarmentPlacement place);
 /// bodyCache and bodyMesh (added by the caller once written).
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const Character& character, const CharacterRunOptions& run);
+
+/// The report's `fit` for a tube garment (run_hoop_demand): levels [{height
+/// (m, up axis), garmentGirth, bodyGirth (m), demand (strain, null without a
+/// garment section), frame (output frame, -1: no body section)}] from the
+/// garment's top down, largestDemand, and stretchLimit (the material's).
+QVariantMap hoopDemandMap(const std::vector<HoopLevel>& levels, double stretch_limit);
 
 }  // namespace mrcloth

@@ -14,6 +14,8 @@
 #include "plugin/core/script_values.h"
 #include "simulation_options.h"
 #include "plugin/core/option_fields.h"
+#include "mesh_ops/boundary_loops.h"
+#include "solver/character_fit.h"
 #include "solver/deformation_modes.h"
 #include "solver/result_comparison.h"
 #include "solver/dynamics_model.h"
@@ -570,6 +572,30 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     emit log(LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
                                      "capsules stand out of the body where it is narrower than a taper)")
                           .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules));
+  // A tube garment (two boundary loops: a skirt or dress) too narrow for
+  // the motion cannot stay whole within its material's stretch limit:
+  // said now, with where, rather than found as a tear after the run.
+  QVariantMap fit;
+  if (boundary_loops(*garment).size() == 2) {
+    const int stride = std::max(1, (run.frames + 99) / 100);  // at most 100 frames of the body sectioned
+    const std::vector<HoopLevel> levels =
+        run_hoop_demand(motion, *character.body, run, model.rest, polygon_edges(active_face_polygons(*garment)), {}, stride);
+    fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
+    const auto worst = std::max_element(levels.begin(), levels.end(), [](const HoopLevel& a, const HoopLevel& b) {
+      return !(a.demand() >= b.demand());  // NaN (no section) sorts first
+    });
+    if (worst != levels.end() && worst->demand() > request.dynamics.material.stretch_limit)
+      emit log(LOGWARN, QStringLiteral("%1: the body needs %2 % more girth than the garment has %3 m below its top "
+                                       "(level %4 of %5, output frame %6), and material '%7' stretches %8 % at "
+                                       "most: expect the garment stretched or torn there (a wider garment or a "
+                                       "stretchier material fits; the report's 'fit' has every level)")
+                            .arg(slot).arg(100.0 * worst->demand(), 0, 'f', 0)
+                            .arg(model.rest.col(HoopDemandOptions{}.up_axis).maxCoeff() - worst->height, 0, 'f', 2)
+                            .arg(static_cast<int>(worst - levels.begin()) + 1).arg(levels.size())
+                            .arg(worst->frame)
+                            .arg(QString::fromStdString(request.dynamics.material.name))
+                            .arg(100.0 * request.dynamics.material.stretch_limit, 0, 'f', 0));
+  }
   const double end_time = run.motion_start + run.frames / run.fps;
   if (end_time > motion.duration() + 0.5 / run.fps)
     emit log(LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
@@ -624,6 +650,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                        {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
                        {QStringLiteral("objFiles"), obj_files}});
   last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
+  if (!fit.isEmpty()) last_report_.insert(QStringLiteral("fit"), fit);
   last_report_.insert(QStringLiteral("garmentCleared"),
                       QVariantMap{{QStringLiteral("vertices"), placed.clearance.moved},
                                   {QStringLiteral("largestMove"), placed.clearance.largest_move}});

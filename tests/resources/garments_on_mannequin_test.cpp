@@ -1,9 +1,12 @@
 // The default garments start outside the default mannequin's capsule body
 // (T-pose, frame 0 of mannequin.bvh) and the skirt's waist lies close to
-// the pelvis, so pinning it there holds it where it was modelled.
+// the pelvis, so pinning it there holds it where it was modelled; the
+// skirt's girth against the walking mannequin's (character_fit.h).
 #include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "solver/body_capsules.h"
+#include "solver/character_fit.h"
 #include "solver/skeleton.h"
 
 #include <gtest/gtest.h>
@@ -132,6 +135,65 @@ TEST_F(GarmentsOnMannequin, TrousersWaistLiesOnThePelvis) {
   std::printf("trousers waist to the torso capsules: mean %.4f, max %.4f m\n", mean, largest);
   EXPECT_LT(mean, 0.04);
   EXPECT_LT(largest, 0.06);
+}
+
+// In the T-pose the arms reach sideways past the shoulders and the legs
+// hang below the pelvis: every surface vertex out on an arm is left out of
+// a skirt's girth, every one below the pelvis counts.
+TEST_F(GarmentsOnMannequin, ArmsAreLeftOutOfTheGirth) {
+  const CapsulePosedBody body(*rig_, mannequin_->skeleton);
+  const Pose rest = rest_pose(mannequin_->skeleton);
+  const BodySurface surface = body.surface(rest);
+  const std::vector<char> counted = vertices_off_arms(body, mannequin_->skeleton);
+  ASSERT_EQ(counted.size(), static_cast<std::size_t>(surface.vertices.rows()));
+  const Vector3d pelvis = rest.position(mannequin_->skeleton.find("Hips"));
+  const double shoulder = std::abs(rest.position(mannequin_->skeleton.find("LeftArm")).x() - pelvis.x());
+  int out_on_arms = 0, below_pelvis = 0;
+  for (Eigen::Index v = 0; v < surface.vertices.rows(); ++v) {
+    const Vector3d p = surface.vertices.row(v).transpose();
+    if (std::abs(p.x() - pelvis.x()) > shoulder + 0.05) {
+      ++out_on_arms;
+      EXPECT_FALSE(counted[static_cast<std::size_t>(v)]) << "vertex " << v;
+    }
+    if (p.y() < pelvis.y() - 0.1) {
+      ++below_pelvis;
+      EXPECT_TRUE(counted[static_cast<std::size_t>(v)]) << "vertex " << v;
+    }
+  }
+  EXPECT_GT(out_on_arms, 100);
+  EXPECT_GT(below_pelvis, 100);
+}
+
+// A skirt narrowed by s about a vertical line has every level's girth
+// times s, so what the body asks of it is (1 + demand) / s - 1, the body's
+// girth unchanged: the run's measure to round-off. The default skirt fits
+// the default walk at its waist.
+TEST_F(GarmentsOnMannequin, SkirtGirthAgainstTheWalk) {
+  const Motion walk = read_bvh(std::string(MRCLOTH_DEFAULT_CHARACTER_DIR) + "/walk_instance.bvh");
+  const CapsulePosedBody body(make_capsule_rig(walk.skeleton), walk.skeleton);
+  CharacterRunOptions run;
+  run.frames = 30;
+  run.preroll_seconds = 0.5;
+  const QuadMesh& skirt = skirt_->mesh;
+  Eigen::MatrixX3d rest(static_cast<Eigen::Index>(skirt.n_vertices()), 3);
+  for (int v = 0; v < static_cast<int>(skirt.n_vertices()); ++v) rest.row(v) = point(skirt, v).transpose();
+  const std::vector<Eigen::Vector2i> edges = polygon_edges(active_face_polygons(skirt));
+  const std::vector<HoopLevel> as_is = run_hoop_demand(walk, body, run, rest, edges, {}, 3);
+  const double s = 0.7;
+  Eigen::MatrixX3d narrow = rest;
+  narrow.col(0) = (rest.col(0).array() - 0.25).matrix() * s;  // about x = 0.25, z = -0.1
+  narrow.col(2) = (rest.col(2).array() + 0.1).matrix() * s;
+  const std::vector<HoopLevel> narrowed = run_hoop_demand(walk, body, run, narrow, edges, {}, 3);
+  ASSERT_EQ(as_is.size(), 8u);
+  for (std::size_t k = 0; k < as_is.size(); ++k) {
+    EXPECT_NEAR(narrowed[k].height, as_is[k].height, 1e-12);
+    EXPECT_NEAR(narrowed[k].garment_girth, s * as_is[k].garment_girth, 1e-12);
+    EXPECT_EQ(narrowed[k].body_girth, as_is[k].body_girth);
+    EXPECT_NEAR(narrowed[k].demand(), (1.0 + as_is[k].demand()) / s - 1.0, 1e-12);
+    EXPECT_GE(as_is[k].frame, 0);
+  }
+  EXPECT_LT(as_is.front().demand(), 0.03);
+  EXPECT_THROW(run_hoop_demand(walk, body, run, rest, edges, {}, 0), ArgumentError);
 }
 
 }  // namespace

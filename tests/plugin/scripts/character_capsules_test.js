@@ -27,6 +27,11 @@ const pc2 = tmpDir + "/walk_capsules.pc2";
 const report = multirescloth.simulate(skirt, {
   motion: {path: walk, units: "m"}, body: body, place: "firstFrame", frames: frames, output: pc2});
 expectEqual([report.frames, report.nonFinite, report.cancelled], [frames, false, false], "run completed");
+// The skirt's girth against the walking mannequin's, level by level (a tube
+// garment: two boundary loops): it fits within cotton's 3 % everywhere.
+print("character capsules: fit " + report.fit.levels.map(l => (100 * l.demand).toFixed(1) + " %").join(", "));
+expectEqual([report.fit.levels.length, report.fit.stretchLimit], [8, 0.03], "fit levels and the material's limit");
+expectAtMost(report.fit.largestDemand, report.fit.stretchLimit, "girth the walk needs beyond the skirt's");
 expectEqual([report.body, report.motion, report.motionUnits, report.skipFirst, report.place],
             ["capsules", walk, "m", true, "firstFrame"], "character fields");
 expectEqual([report.preroll.frames, report.preroll.steps, report.steps, report.stepRate],

@@ -1,0 +1,82 @@
+#include "character_fit.h"
+
+#include "mesh_ops/errors.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+namespace mrcloth {
+
+namespace {
+
+bool arm_joint(const std::string& name) {
+  for (const char* part : {"Shoulder", "Arm", "Hand", "Finger", "Thumb"})
+    if (name.find(part) != std::string::npos) return true;
+  return false;
+}
+
+double segment_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double length2 = d.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).squaredNorm();
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2i> polygon_edges(const std::vector<std::vector<int>>& polygons) {
+  std::vector<Eigen::Vector2i> edges;
+  for (const std::vector<int>& f : polygons)
+    for (std::size_t k = 0; k < f.size(); ++k) edges.emplace_back(f[k], f[(k + 1) % f.size()]);
+  return edges;
+}
+
+std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skeleton) {
+  const Pose rest = rest_pose(skeleton);
+  const BodySurface surface = body.surface(rest);
+  std::vector<char> counted(static_cast<std::size_t>(surface.vertices.rows()), 1);
+  for (Eigen::Index v = 0; v < surface.vertices.rows(); ++v) {
+    const Eigen::Vector3d p = surface.vertices.row(v).transpose();
+    double nearest = std::numeric_limits<double>::infinity();
+    bool arm = false;
+    for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+      const int parent = skeleton.joints[j].parent;
+      if (parent < 0) continue;
+      const double d2 = segment_distance2(p, rest.position(parent), rest.position(static_cast<int>(j)));
+      if (d2 < nearest) {
+        nearest = d2;
+        arm = arm_joint(skeleton.joints[j].name);
+      }
+    }
+    counted[static_cast<std::size_t>(v)] = !arm;
+  }
+  return counted;
+}
+
+std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
+                                       const Eigen::MatrixX3d& garment, const std::vector<Eigen::Vector2i>& garment_edges,
+                                       const HoopDemandOptions& levels, int stride) {
+  if (stride < 1) throw ArgumentError("run_hoop_demand: stride " + std::to_string(stride) + "; expected at least 1");
+  const int pelvis = motion.skeleton.find(options.pelvis_joint);
+  if (pelvis < 0)
+    throw ArgumentError("run_hoop_demand: the skeleton has no joint '" + options.pelvis_joint + "' (the pelvis)");
+  const int up = levels.up_axis;
+  const double pelvis_rest = reference_pose(motion, options).position(pelvis)(up);
+  std::vector<Eigen::MatrixX3d> frames;
+  std::vector<std::vector<int>> faces;
+  for (int f = 0; f < options.frames; f += stride) {
+    const Pose pose = character_pose(motion, options.preroll_seconds + (f + 1) / options.fps, options);
+    BodySurface surface = body.surface(pose);
+    surface.vertices.col(up).array() -= pose.position(pelvis)(up) - pelvis_rest;
+    frames.push_back(std::move(surface.vertices));
+    if (faces.empty()) faces = std::move(surface.faces);
+  }
+  std::vector<HoopLevel> out =
+      hoop_demand(garment, garment_edges, frames, polygon_edges(faces), vertices_off_arms(body, motion.skeleton), levels);
+  for (HoopLevel& level : out)
+    if (level.frame >= 0) level.frame *= stride;  // the output frame, not the sample
+  return out;
+}
+
+}  // namespace mrcloth
