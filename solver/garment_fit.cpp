@@ -15,6 +15,16 @@ double HoopLevel::demand() const {
   return body_girth / garment_girth - 1.0;
 }
 
+int most_demanding_level(const std::vector<HoopLevel>& levels) {
+  int worst = -1;
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const double demand = levels[k].demand();
+    if (std::isfinite(demand) && (worst < 0 || demand > levels[static_cast<std::size_t>(worst)].demand()))
+      worst = static_cast<int>(k);
+  }
+  return worst;
+}
+
 std::vector<Eigen::Vector2d> level_section(const Eigen::MatrixX3d& points, const std::vector<Eigen::Vector2i>& edges,
                                            int up, double height, const std::vector<char>* counted) {
   const int a = (up + 1) % 3, b = (up + 2) % 3;

@@ -29,6 +29,10 @@ struct HoopLevel {
   double demand() const;
 };
 
+/// The index of the level whose demand is largest (the first of equals),
+/// -1 when no level has a garment section.
+int most_demanding_level(const std::vector<HoopLevel>& levels);
+
 /// Where `edges` (vertex index pairs into `points`, #P x 3, metres) cross
 /// the plane at `height` along `up`, projected along it; an edge lying in
 /// the plane gives both ends. `counted` (per point, or null: all): only

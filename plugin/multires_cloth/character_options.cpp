@@ -7,7 +7,6 @@
 #include <QDir>
 #include <QFileInfo>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -324,18 +323,17 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
 
 QVariantMap hoopDemandMap(const std::vector<HoopLevel>& levels, double stretch_limit) {
   QVariantList list;
-  double largest = -std::numeric_limits<double>::infinity();
   for (const HoopLevel& level : levels) {
     const double demand = level.demand();
-    if (std::isfinite(demand)) largest = std::max(largest, demand);
     list << QVariantMap{{QStringLiteral("height"), level.height},
                         {QStringLiteral("garmentGirth"), level.garment_girth},
                         {QStringLiteral("bodyGirth"), level.body_girth},
                         {QStringLiteral("demand"), std::isfinite(demand) ? QVariant(demand) : QVariant()},
                         {QStringLiteral("frame"), level.frame}};
   }
+  const int worst = most_demanding_level(levels);
   return {{QStringLiteral("levels"), list},
-          {QStringLiteral("largestDemand"), std::isfinite(largest) ? QVariant(largest) : QVariant()},
+          {QStringLiteral("largestDemand"), worst < 0 ? QVariant() : QVariant(levels[static_cast<std::size_t>(worst)].demand())},
           {QStringLiteral("stretchLimit"), stretch_limit}};
 }
 

@@ -581,17 +581,16 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     const std::vector<HoopLevel> levels =
         run_hoop_demand(motion, *character.body, run, model.rest, polygon_edges(active_face_polygons(*garment)), {}, stride);
     fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
-    const auto worst = std::max_element(levels.begin(), levels.end(), [](const HoopLevel& a, const HoopLevel& b) {
-      return !(a.demand() >= b.demand());  // NaN (no section) sorts first
-    });
-    if (worst != levels.end() && worst->demand() > request.dynamics.material.stretch_limit)
+    const int worst_level = most_demanding_level(levels);
+    const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
+    if (worst && worst->demand() > request.dynamics.material.stretch_limit)
       emit log(LOGWARN, QStringLiteral("%1: the body needs %2 % more girth than the garment has %3 m below its top "
                                        "(level %4 of %5, output frame %6), and material '%7' stretches %8 % at "
                                        "most: expect the garment stretched or torn there (a wider garment or a "
                                        "stretchier material fits; the report's 'fit' has every level)")
                             .arg(slot).arg(100.0 * worst->demand(), 0, 'f', 0)
                             .arg(model.rest.col(HoopDemandOptions{}.up_axis).maxCoeff() - worst->height, 0, 'f', 2)
-                            .arg(static_cast<int>(worst - levels.begin()) + 1).arg(levels.size())
+                            .arg(worst_level + 1).arg(levels.size())
                             .arg(worst->frame)
                             .arg(QString::fromStdString(request.dynamics.material.name))
                             .arg(100.0 * request.dynamics.material.stretch_limit, 0, 'f', 0));

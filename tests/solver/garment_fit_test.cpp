@@ -95,6 +95,7 @@ TEST(HoopDemand, TwoLegsInATube) {
     EXPECT_EQ(levels[k].frame, 1);
     EXPECT_NEAR(levels[k].demand(), body / garment - 1.0, 1e-12);
   }
+  EXPECT_EQ(most_demanding_level(levels), 0);  // every level the same section, exactly: the first
   // Only the left leg counted: its polygon alone (the same in both frames).
   std::vector<char> left(static_cast<std::size_t>(frames[0].rows()), 0);
   std::fill(left.begin(), left.begin() + 64 * 16, 1);
@@ -124,6 +125,12 @@ TEST(HoopDemand, LevelsWithoutSectionsAndBadInput) {
   const std::vector<HoopLevel> open = hoop_demand(with_top, flat.edges, {}, {}, {}, o);
   EXPECT_EQ(open[0].garment_girth, 0.0);
   EXPECT_TRUE(std::isnan(open[0].demand()));
+  EXPECT_EQ(most_demanding_level(open), -1);
+  std::vector<HoopLevel> three(3);
+  three[0].garment_girth = three[1].garment_girth = 1.0;
+  three[0].body_girth = 1.02;
+  three[1].body_girth = 1.30;  // three[2] has no garment section (NaN)
+  EXPECT_EQ(most_demanding_level(three), 1);
   o.levels = 0;
   EXPECT_THROW(hoop_demand(tube.rows(), tube.edges, {}, {}, {}, o), ArgumentError);
   o.levels = 2;
