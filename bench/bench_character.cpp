@@ -8,7 +8,9 @@
 // the deepest vertex below the body's surface at an output frame; tear: the
 // largest opening of an edge at least doubled, SimulationReport::
 // max_tear_opening), then where each row's time went (solve, limiter, posing,
-// first and later collision rounds, rounds per step).
+// first and later collision rounds, rounds per step), then how much more
+// girth than it has the body asks of the skirt on each body (the warning
+// multirescloth.simulate gives before such a run).
 //
 // --flare 0.6 runs a copy of the skirt widened toward its hem (60 % there)
 // that goes round the walking body (bench_fit --flare 0.6).
@@ -22,7 +24,9 @@
 #include "mesh_ops/uniform_refine.h"
 #include "garment_on_character.h"
 #include "solver/character_setup.h"
+#include "solver/material.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -47,6 +51,7 @@ struct Row {
   std::string garment, body;
   std::size_t vertices = 0;
   CharacterRunReport report;
+  std::vector<HoopLevel> fit;  // bench::GarmentRun::fit
 };
 
 /// One row: `garment` (as modelled on base.obj) on a character built as
@@ -62,6 +67,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   row.body = body == CharacterBodyKind::mesh ? "mesh" : "capsules";
   row.vertices = r.vertices;
   row.report = std::move(r.report);
+  row.fit = std::move(r.fit);
   return row;
 }
 
@@ -71,6 +77,23 @@ void print(const Row& r) {
               r.body.c_str(), r.vertices, m.mean_frame.dynamics_ms, m.mean_frame.collision_ms, m.mean_frame.total_ms(),
               100.0 * m.max_stretch, 1000.0 * m.max_tear_opening, 1000.0 * m.max_depth, m.max_self_crossings,
               m.non_finite ? "NaN!" : "ok");
+}
+
+/// The first row's fit on each body (bench_fit measures the shared walks):
+/// the skirt's most demanding level against its cloth's limit.
+void print_fit(const std::vector<Row>& rows) {
+  std::printf("\nthe skirt's fit (character_fit.h, as multirescloth.simulate warns before a run; cotton stretches %.0f %%)\n\n",
+              100.0 * material_preset("cotton").stretch_limit);
+  std::vector<std::string> bodies_done;
+  for (const Row& r : rows) {
+    if (r.fit.empty() || std::find(bodies_done.begin(), bodies_done.end(), r.body) != bodies_done.end()) continue;
+    bodies_done.push_back(r.body);
+    const int worst = most_demanding_level(r.fit);
+    if (worst < 0) continue;
+    const HoopLevel& level = r.fit[static_cast<std::size_t>(worst)];
+    std::printf("- %s: the body needs %+.0f %% girth at level %d of %zu (output frame %d)\n", r.body.c_str(),
+                100.0 * level.demand(), worst + 1, r.fit.size(), level.frame);
+  }
 }
 
 /// Where each row's time went, ms per output frame: the solve and the
@@ -148,6 +171,7 @@ int run_benchmark(int argc, char** argv) {
     if (b.body == "all" || b.body == "mesh") keep(run(name, *g, clip, CharacterBodyKind::mesh, b));
   }
   print_parts(rows);
+  print_fit(rows);
   return 0;
 }
 

@@ -5,6 +5,7 @@
 // benchmarks that time such runs (bench_character) and count how whole
 // they stay (bench_walks).
 #include "mesh_ops/boundary_loops.h"
+#include "solver/character_fit.h"
 #include "solver/character_setup.h"
 
 #include <algorithm>
@@ -27,6 +28,10 @@ struct GarmentRunOptions {
 struct GarmentRun {
   std::size_t vertices = 0;  ///< of the placed garment
   CharacterRunReport report;
+  /// For a tube garment (two boundary loops), how much more girth than it
+  /// has the body asks of it over the run, as multirescloth.simulate
+  /// measures it before a run (character_fit.h); empty otherwise.
+  std::vector<HoopLevel> fit;
 };
 
 /// The command-line options both benchmarks take for a run, after their own.
@@ -123,6 +128,9 @@ inline GarmentRun run_garment_on_character(const QuadMesh& garment, const Motion
   const CharacterRunOptions run = character_run_options(character, setup, model, o.simulation);
   GarmentRun out;
   out.vertices = placed.mesh.n_vertices();
+  if (boundary_loops(placed.mesh).size() == 2)
+    out.fit = run_hoop_demand(*character.motion, *character.body, run, model.rest,
+                              polygon_edges(active_face_polygons(placed.mesh)), {}, std::max(1, (run.frames + 99) / 100));
   out.report = simulate_on_character(model, state, *character.motion, *character.body, run);
   return out;
 }
