@@ -184,15 +184,6 @@ Collider bridge_collider(const CapsuleRig& rig, const BridgeCapsule& bridge, con
   return Collider{capsule, rig.thickness, rig.friction};
 }
 
-/// Distance from p to segment [a, b] and the parameter t in [0, 1] of the
-/// closest point (t = 0 for a zero-length segment).
-std::pair<double, double> segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
-  const Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return {(p - (a + t * ab)).norm(), t};
-}
-
 /// Where the centre of a limb's cross-section lies relative to its bone
 /// a -> c (metres): the mean of the samples' offsets perpendicular to the
 /// bone (from a; for a zero-length bone, of their offsets from a).
@@ -217,6 +208,13 @@ double percentile(std::vector<double> values, double fraction) {
 }
 
 }  // namespace
+
+std::pair<double, double> segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
+  const Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return {(p - (a + t * ab)).norm(), t};
+}
 
 CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& options) {
   check_skeleton(skeleton, "make_capsule_rig");

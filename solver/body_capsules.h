@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrcloth {
@@ -44,6 +45,10 @@ struct CapsuleRig {
   double thickness = 0.004;
   double friction = 0.3;
 };
+
+/// Distance from p to segment [a, b] (metres) and the parameter t in [0, 1]
+/// of the closest point (t = 0 for a zero-length segment).
+std::pair<double, double> segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
 /// Capsules along the bones of `skeleton` with default radii for the CMU
 /// joint names (legs, spine, arms, neck, head; hands, fingers and toes get

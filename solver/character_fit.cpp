@@ -16,13 +16,6 @@ bool arm_joint(const std::string& name) {
   return false;
 }
 
-double segment_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d = b - a;
-  const double length2 = d.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).squaredNorm();
-}
-
 }  // namespace
 
 std::vector<Eigen::Vector2i> polygon_edges(const std::vector<std::vector<int>>& polygons) {
@@ -43,9 +36,9 @@ std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skele
     for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
       const int parent = skeleton.joints[j].parent;
       if (parent < 0) continue;
-      const double d2 = segment_distance2(p, rest.position(parent), rest.position(static_cast<int>(j)));
-      if (d2 < nearest) {
-        nearest = d2;
+      const double d = segment_distance(p, rest.position(parent), rest.position(static_cast<int>(j))).first;
+      if (d < nearest) {
+        nearest = d;
         arm = arm_joint(skeleton.joints[j].name);
       }
     }
