@@ -61,7 +61,7 @@ Row run(const std::string& name, const QuadMesh& garment, const Motion& clip, Ch
   bench::GarmentRunOptions o = b.run;
   o.makehuman_folder = data("bodies/makehuman");
   o.body = body;
-  bench::GarmentRun r = bench::run_garment_on_character(garment, clip, o);
+  bench::GarmentRun r = bench::run_garment_on_character(garment, clip, o, /*fit=*/true);
   Row row;
   row.garment = name;
   row.body = body == CharacterBodyKind::mesh ? "mesh" : "capsules";

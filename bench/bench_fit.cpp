@@ -8,12 +8,11 @@
 //
 // Usage: bench_fit [--frames N] [--preroll S] [--flare AMOUNT]  (N output
 //        frames at 30 fps after the pre-roll, as bench_character and
-//        bench_walks run; --flare widens the skirts toward their hems,
+//        bench_walks run, at most 100 of them sectioned as simulate does;
+//        --flare widens the skirts toward their hems,
 //        bench::flare_skirt)
-#include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/garment_io.h"
 #include "garment_on_character.h"
-#include "solver/character_setup.h"
 #include "solver/character_fit.h"
 #include "solver/material.h"
 
@@ -74,21 +73,11 @@ int main(int argc, char** argv) {
       bvh.scale = 0.056444;          // CMU units to metres
       bvh.skip_first_frame = false;  // make_character drops CMU's added T-pose
       const Motion clip = read_bvh(data("motions/cmu_mb/" + walk + ".bvh"), bvh);
-      CharacterSetup setup;
-      setup.body = CharacterBodyKind::mesh;
-      setup.makehuman = makehuman_files(data("bodies/makehuman"));
-      setup.place = GarmentPlacement::makehuman;
-      setup.preroll_seconds = preroll;
-      Character character = make_character(clip, setup, garment);
-      const PlacedGarment placed = place_garment(character, setup, garment);
-      DynamicsOptions dynamics;
-      dynamics.pinned = boundary_loop_by_name(placed.mesh, "top");
-      const DynamicsModel model = build_dynamics(placed.mesh, dynamics);
-      SimulationOptions simulation;
-      simulation.frames = frames;
-      const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
-      const std::vector<HoopLevel> result =
-          run_hoop_demand(*character.motion, *character.body, run, model.rest, polygon_edges(active_face_polygons(placed.mesh)), levels);
+      bench::GarmentRunOptions run;
+      run.makehuman_folder = data("bodies/makehuman");
+      run.preroll = preroll;
+      run.simulation.frames = frames;
+      const std::vector<HoopLevel> result = bench::garment_fit(bench::prepare_garment_on_character(garment, clip, run));
       std::printf("| %s | %s |", garment_file.substr(0, garment_file.find('.')).c_str(), walk.c_str());
       for (const HoopLevel& level : result) std::printf(" %+.0f %% |", 100.0 * level.demand());
       std::printf(" %.3f |\n", result.back().garment_girth);

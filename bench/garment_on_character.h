@@ -28,10 +28,7 @@ struct GarmentRunOptions {
 struct GarmentRun {
   std::size_t vertices = 0;  ///< of the placed garment
   CharacterRunReport report;
-  /// For a tube garment (two boundary loops), how much more girth than it
-  /// has the body asks of it over the run, as multirescloth.simulate
-  /// measures it before a run (character_fit.h); empty otherwise.
-  std::vector<HoopLevel> fit;
+  std::vector<HoopLevel> fit;  ///< garment_fit, when asked for (run_garment_on_character)
 };
 
 /// The command-line options both benchmarks take for a run, after their own.
@@ -109,29 +106,51 @@ inline void flare_skirt(QuadMesh& skirt, double amount) {
   }
 }
 
-/// Runs `garment` (as modelled on base.obj, metres) on `clip` (as read,
-/// frame 0 kept).
-inline GarmentRun run_garment_on_character(const QuadMesh& garment, const Motion& clip, const GarmentRunOptions& o) {
+/// A garment placed on a character as multirescloth.simulate places it,
+/// with its model and run settings.
+struct PreparedGarment {
+  Character character;
+  PlacedGarment placed;
+  DynamicsModel model;
+  CharacterRunOptions run;
+};
+
+/// `garment` (as modelled on base.obj, metres) placed on `clip` (as read,
+/// frame 0 kept) with the waist loop pinned.
+inline PreparedGarment prepare_garment_on_character(const QuadMesh& garment, const Motion& clip,
+                                                    const GarmentRunOptions& o) {
   CharacterSetup setup;
   setup.body = o.body;
   setup.makehuman = makehuman_files(o.makehuman_folder);
   setup.place = GarmentPlacement::makehuman;
   setup.preroll_seconds = o.preroll;
   setup.step_rate = o.step_rate;
-  Character character = make_character(clip, setup, garment);
-  const PlacedGarment placed = place_garment(character, setup, garment);
+  PreparedGarment g{make_character(clip, setup, garment), {}, {}, {}};
+  g.placed = place_garment(g.character, setup, garment);
   DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  d.pinned = boundary_loop_by_name(g.placed.mesh, "top");
   d.material.stretch_stiffness = o.stretch_stiffness;
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  ClothState state = rest_state(model);
-  const CharacterRunOptions run = character_run_options(character, setup, model, o.simulation);
+  g.model = build_dynamics(g.placed.mesh, d);
+  g.run = character_run_options(g.character, setup, g.model, o.simulation);
+  return g;
+}
+
+/// What multirescloth.simulate measures of a prepared tube garment's fit
+/// before its run (run_hoop_demand; empty for other garments).
+inline std::vector<HoopLevel> garment_fit(const PreparedGarment& g) {
+  return run_hoop_demand(*g.character.motion, *g.character.body, g.run, g.placed.mesh);
+}
+
+/// Runs `garment` (as modelled on base.obj, metres) on `clip` (as read,
+/// frame 0 kept); with `fit`, also measures garment_fit first.
+inline GarmentRun run_garment_on_character(const QuadMesh& garment, const Motion& clip, const GarmentRunOptions& o,
+                                           bool fit = false) {
+  PreparedGarment g = prepare_garment_on_character(garment, clip, o);
+  ClothState state = rest_state(g.model);
   GarmentRun out;
-  out.vertices = placed.mesh.n_vertices();
-  if (boundary_loops(placed.mesh).size() == 2)
-    out.fit = run_hoop_demand(*character.motion, *character.body, run, model.rest,
-                              polygon_edges(active_face_polygons(placed.mesh)), {}, std::max(1, (run.frames + 99) / 100));
-  out.report = simulate_on_character(model, state, *character.motion, *character.body, run);
+  out.vertices = g.placed.mesh.n_vertices();
+  if (fit) out.fit = garment_fit(g);
+  out.report = simulate_on_character(g.model, state, *g.character.motion, *g.character.body, g.run);
   return out;
 }
 

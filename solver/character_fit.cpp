@@ -1,5 +1,6 @@
 #include "character_fit.h"
 
+#include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 
 #include <algorithm>
@@ -47,10 +48,19 @@ std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skele
   return counted;
 }
 
+bool is_tube_garment(const QuadMesh& garment) { return boundary_loops(garment).size() == 2; }
+
 std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
-                                       const Eigen::MatrixX3d& garment, const std::vector<Eigen::Vector2i>& garment_edges,
-                                       const HoopDemandOptions& levels, int stride) {
-  if (stride < 1) throw ArgumentError("run_hoop_demand: stride " + std::to_string(stride) + "; expected at least 1");
+                                       const QuadMesh& garment, const HoopDemandOptions& levels, int max_samples) {
+  if (max_samples < 1)
+    throw ArgumentError("run_hoop_demand: " + std::to_string(max_samples) + " samples; expected at least 1");
+  if (!is_tube_garment(garment)) return {};
+  const int stride = std::max(1, (options.frames + max_samples - 1) / max_samples);
+  Eigen::MatrixX3d rest(static_cast<Eigen::Index>(garment.n_vertices()), 3);
+  for (const auto v : garment.vertices()) {
+    const auto p = garment.point(v);
+    rest.row(v.idx()) << p[0], p[1], p[2];
+  }
   const int pelvis = motion.skeleton.find(options.pelvis_joint);
   if (pelvis < 0)
     throw ArgumentError("run_hoop_demand: the skeleton has no joint '" + options.pelvis_joint + "' (the pelvis)");
@@ -66,7 +76,8 @@ std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& bo
     if (faces.empty()) faces = std::move(surface.faces);
   }
   std::vector<HoopLevel> out =
-      hoop_demand(garment, garment_edges, frames, polygon_edges(faces), vertices_off_arms(body, motion.skeleton), levels);
+      hoop_demand(rest, polygon_edges(active_face_polygons(garment)), frames, polygon_edges(faces),
+                  vertices_off_arms(body, motion.skeleton), levels);
   for (HoopLevel& level : out)
     if (level.frame >= 0) level.frame *= stride;  // the output frame, not the sample
   return out;

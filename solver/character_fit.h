@@ -4,6 +4,7 @@
 // garment too narrow for the motion is a warning, not a mystery tear.
 #include "character_sim.h"
 #include "garment_fit.h"
+#include "mesh_ops/quad_mesh.h"
 
 #include <vector>
 
@@ -19,15 +20,21 @@ std::vector<Eigen::Vector2i> polygon_edges(const std::vector<std::vector<int>>& 
 /// Arm, Hand, Finger or Thumb). Arms hang beside a skirt, not in it.
 std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skeleton);
 
-/// The hoop demand (hoop_demand) of `garment` (#G x 3 rest positions in the
-/// reference pose, metres, and its edges) on `body` over the output frames
-/// of the run `options` describes, every `stride`-th of them (>= 1), the
-/// body's heights taken as the pelvis joint carries the waist: each frame
-/// lowered by how far the pelvis rose since the reference pose. Each
-/// level's `frame` is the output frame (0-based). Leaves the body's
-/// collision state untouched.
+/// Whether `garment` is one tube (two boundary loops: a skirt or dress),
+/// the garment a girth is measured for.
+bool is_tube_garment(const QuadMesh& garment);
+
+/// The hoop demand (hoop_demand) of `garment` (placed: at rest in the
+/// reference pose, metres; its active faces' sides are its edges) on
+/// `body` over the output frames of the run `options` describes, at most
+/// `max_samples` of them (>= 1; evenly strided), the body's heights taken
+/// as the pelvis joint carries the waist: each frame lowered by how far
+/// the pelvis rose since the reference pose. Each level's `frame` is the
+/// output frame (0-based). Empty unless is_tube_garment(garment). Leaves
+/// the body's collision state untouched. What multirescloth.simulate
+/// warns from before a run.
 std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
-                                       const Eigen::MatrixX3d& garment, const std::vector<Eigen::Vector2i>& garment_edges,
-                                       const HoopDemandOptions& levels = {}, int stride = 1);
+                                       const QuadMesh& garment, const HoopDemandOptions& levels = {},
+                                       int max_samples = 100);
 
 }  // namespace mrcloth

@@ -14,7 +14,6 @@
 #include "plugin/core/script_values.h"
 #include "simulation_options.h"
 #include "plugin/core/option_fields.h"
-#include "mesh_ops/boundary_loops.h"
 #include "solver/character_fit.h"
 #include "solver/deformation_modes.h"
 #include "solver/result_comparison.h"
@@ -576,10 +575,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // the motion cannot stay whole within its material's stretch limit:
   // said now, with where, rather than found as a tear after the run.
   QVariantMap fit;
-  if (boundary_loops(*garment).size() == 2) {
-    const int stride = std::max(1, (run.frames + 99) / 100);  // at most 100 frames of the body sectioned
-    const std::vector<HoopLevel> levels =
-        run_hoop_demand(motion, *character.body, run, model.rest, polygon_edges(active_face_polygons(*garment)), {}, stride);
+  if (is_tube_garment(*garment)) {
+    const std::vector<HoopLevel> levels = run_hoop_demand(motion, *character.body, run, *garment);
     fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
     const int worst_level = most_demanding_level(levels);
     const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
