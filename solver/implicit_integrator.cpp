@@ -188,6 +188,8 @@ void check(const IntegratorOptions& o) {
   if (!(o.time_step > 0.0) || !std::isfinite(o.time_step)) throw ArgumentError("time step must be > 0 seconds");
   if (o.iterations < 1) throw ArgumentError("iterations must be >= 1");
   if (o.strain_limit_sweeps < 0) throw ArgumentError("strain limit sweeps must be >= 0");
+  if (!(o.limiter_acceleration >= 0.0 && o.limiter_acceleration < 1.0))
+    throw ArgumentError("the limiter acceleration (a spectral radius estimate) must be >= 0 and < 1");
   if (o.collision_rounds < 1) throw ArgumentError("collision rounds must be >= 1");
   if (!(o.round_tolerance >= 0.0)) throw ArgumentError("the round tolerance must be >= 0");
   if (!(o.contact_slack >= 0.0) || !std::isfinite(o.contact_slack))
@@ -197,6 +199,12 @@ void check(const IntegratorOptions& o) {
 }
 
 }  // namespace
+
+double chebyshev_weight(int iteration, double rho, double previous) {
+  if (iteration <= 0) return 1.0;
+  if (iteration == 1) return 2.0 / (2.0 - rho * rho);
+  return 4.0 / (4.0 - rho * rho * previous);
+}
 
 ClothState rest_state(const DynamicsModel& model) {
   ClothState state;
@@ -348,7 +356,8 @@ void ImplicitIntegrator::gradient(const Positions& q, const Positions& y, Positi
 double ImplicitIntegrator::limit_strain(Positions& q) const {
   const DynamicsModel& m = *model_;
   const double limit = 1.0 + m.material.stretch_limit;
-  double largest = 0.0;  // the largest strain beyond the limit met
+  double largest = 0.0;        // the largest strain beyond the limit met
+  double sweep_largest = 0.0;  // the same in the current sweep
   // Ends that are T-nodes or pinned: the constraint acts on their free
   // stencils, mass-weighted (general, slower path).
   // (The arithmetic is position_of's and the per-term update's, so a spring
@@ -359,7 +368,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     const double length = e.norm();
     const double excess = length - limit * s.rest;
     if (excess <= 0.0) return false;
-    largest = std::max(largest, excess / s.rest);
+    sweep_largest = std::max(sweep_largest, excess / s.rest);
     if (g.denominator <= 0.0) return false;  // both ends pinned
     const Eigen::Vector3d n = e / length;
     const double lambda = excess / g.denominator;
@@ -381,7 +390,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     const double max_length = s.max_length;
     if (length2 <= max_length * max_length) return false;
     const double length = std::sqrt(length2);
-    largest = std::max(largest, (length - max_length) / s.rest);
+    sweep_largest = std::max(sweep_largest, (length - max_length) / s.rest);
     const double wi = inverse_mass_[fi], wj = inverse_mass_[fj];
     const double lambda = (length - max_length) / ((wi + wj) * length);
     for (int c = 0; c < 3; ++c) {
@@ -458,12 +467,35 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     }
     return any;
   };
+  // Chebyshev semi-iterative acceleration (Wang 2015, "A Chebyshev
+  // semi-iterative approach for accelerating projective and position-based
+  // dynamics"): after sweep k >= 1 of a round, q = older + w_k (q - older),
+  // older the iterate two sweeps back. A correction then crosses a long
+  // chain of springs (a trouser leg from waist to cuff) in far fewer sweeps
+  // than plain Gauss-Seidel passes it, one link per sweep. The round's last
+  // sweep is not extrapolated: the limiter's last word is a projection. (The
+  // walk table at three pre-rolls, 108 runs: with rho 0.97 3 tore and the
+  // median largest stretch was 27-31 %, against 5 and 35-36 % plain; see
+  // README.)
+  const double rho = options_.limiter_acceleration;
+  double weight = 1.0;
+  bool accelerating = rho > 0.0;
+  if (accelerating) previous_ = q;
   for (int sweep = 0; sweep < options_.strain_limit_sweeps; ++sweep) {
     bool any = options_.tethers && pull_tethers();
+    sweep_largest = 0.0;
     if (sweep % 2 == 0)
       for (std::size_t k = 0; k < count; ++k) any |= limit_spring(sweep_[k]);
     else
       for (std::size_t k = count; k-- > 0;) any |= limit_spring(sweep_[k]);
+    largest = std::max(largest, sweep_largest);
+    accelerating = accelerating && sweep_largest > options_.round_tolerance;
+    if (accelerating && any && sweep + 1 < options_.strain_limit_sweeps) {
+      weight = chebyshev_weight(sweep, rho, weight);
+      if (sweep >= 1) extrapolate(q, weight, moved);
+      older_.swap(previous_);
+      previous_ = q;
+    }
     keep_t_nodes_in_front(q, moved);
     if (options_.active_set) {
       dirty.swap(moved);  // the next sweep evaluates the springs of what moved in this one
@@ -473,6 +505,17 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   }
   limited_ = q;
   return largest;
+}
+
+void ImplicitIntegrator::extrapolate(Positions& q, double weight, std::vector<char>& moved) const {
+  for (Eigen::Index f = 0; f < q.rows(); ++f) {
+    // Unmoved over the last two sweeps: the extrapolation leaves it (and
+    // the active set's record of it) as it is.
+    if (!moved[static_cast<std::size_t>(f)] && q.row(f) == older_.row(f)) continue;
+    for (int c = 0; c < 3; ++c) q(f, c) = older_(f, c) + weight * (q(f, c) - older_(f, c));
+    keep_in_front(f, q);
+    moved[static_cast<std::size_t>(f)] = 1;
+  }
 }
 
 void ImplicitIntegrator::set_plane(Eigen::Index row, const Eigen::Vector3d& before, const Eigen::Vector3d& after,

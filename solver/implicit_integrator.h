@@ -57,6 +57,7 @@ struct IntegratorOptions {
   double time_step = 1.0 / 120.0;               ///< seconds, > 0
   int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
+  double limiter_acceleration = 0.97;           ///< spectral radius estimate rho in [0, 1) for Chebyshev acceleration of a round's sweeps (see limit_strain); 0: plain sweeps
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collision checks) per step, >= 1
   double round_tolerance = 0.01;                ///< another round also while a spring starts it this much strain beyond the limit (0.01 = 1 %)
@@ -75,6 +76,14 @@ struct ClothState {
   Positions pinned;      ///< #pinned x 3, current pinned targets, metres
   double time = 0.0;     ///< seconds
 };
+
+/// The weight of Chebyshev semi-iterative acceleration after iteration
+/// `iteration` (0-based) of an iteration whose error shrinks by about `rho`
+/// (in [0, 1)) per step, given the weight after the one before: 1, then
+/// 2 / (2 - rho^2), then 4 / (4 - rho^2 previous), rising to
+/// 2 / (1 + sqrt(1 - rho^2)). The accelerated iterate is
+/// older + weight (new - older), older the iterate two iterations back.
+double chebyshev_weight(int iteration, double rho, double previous);
 
 /// The rest state of a model at rest velocity 0, pinned at their rest positions.
 ClothState rest_state(const DynamicsModel& model);
@@ -119,6 +128,10 @@ class ImplicitIntegrator {
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
+  /// Chebyshev extrapolation after sweep `sweep` of a round (see
+  /// limit_strain): q from older_ by `weight`, free vertices it moves kept
+  /// in front of their planes and flagged in `moved`.
+  void extrapolate(Positions& q, double weight, std::vector<char>& moved) const;
   /// Checks the free vertices and T-nodes of q against the scene: every one
   /// in the step's `first` check (with friction), else those moved beyond
   /// their slack since their last check. Sets their contact planes and
@@ -192,6 +205,7 @@ class ImplicitIntegrator {
   // as the last pass left it; whether the next pass is the step's first.
   mutable std::vector<char> dirty_, swept_;
   mutable Positions limited_;
+  mutable Positions older_, previous_;  // the limiter's iterates two sweeps and one sweep back (Chebyshev acceleration)
   mutable bool fresh_pass_ = true;
   std::vector<int> direct_free_;       // per vertex: its free index if it is exactly one free vertex, else -1
   /// A spring with a T-node or pinned end, as the constraint sees it: the

@@ -87,6 +87,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.time_step = 1.0 / (options.fps * options.substeps);
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
+  io.limiter_acceleration = options.limiter_acceleration;
   io.collision_rounds = options.collision_rounds;
   io.contact_slack = options.contact_slack;
   io.round_tolerance = options.round_tolerance;
