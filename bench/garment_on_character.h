@@ -33,7 +33,7 @@ struct GarmentRun {
 
 /// The command-line options both benchmarks take for a run, after their own.
 inline constexpr const char* kRunOptionsUsage =
-    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--slack METRES] "
+    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--stretch-stiffness N/M] "
     "[--self-contact METRES] [--threads N]";
 
@@ -46,6 +46,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--step-rate") o.step_rate = std::atof(value);
   else if (key == "--rounds") s.collision_rounds = std::atoi(value);
   else if (key == "--sweeps") s.strain_limit_sweeps = std::atoi(value);
+  else if (key == "--acceleration") s.limiter_acceleration = std::atof(value);
   else if (key == "--slack") s.contact_slack = std::atof(value);
   else if (key == "--round-tolerance") s.round_tolerance = std::atof(value);
   else if (key == "--tethers") s.tethers = std::atoi(value) != 0;

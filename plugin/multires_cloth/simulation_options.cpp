@@ -186,7 +186,8 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
-                     QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("collisionRounds"),
+                     QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
+                     QStringLiteral("collisionRounds"),
                      QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
@@ -220,6 +221,11 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   if (!character) sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
+  sim.limiter_acceleration = fields.numberFrom(QStringLiteral("limiterAcceleration"), sim.limiter_acceleration, 0.0, false);
+  if (!(sim.limiter_acceleration < 1.0))
+    fail(QStringLiteral("%1 must be a number >= 0 and < 1 (0: plain limiter sweeps), got %2")
+             .arg(fields.label(QStringLiteral("limiterAcceleration")))
+             .arg(sim.limiter_acceleration));
   sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
