@@ -24,7 +24,8 @@
 // not move within it), with friction on the step's motion, and keeps a
 // contact plane for the rest of the step: across its push where it was
 // pushed, else the tangent plane of a surface within reach. Gauss-Seidel
-// sweeps then bound every stretch spring to (1 + stretch_limit) of its rest
+// sweeps (Chebyshev-accelerated while they meet springs far beyond the
+// limit) then bound every stretch spring to (1 + stretch_limit) of its rest
 // length (strain limiting, in free coordinates, so T-nodes stay exact),
 // keeping each point in front of its plane, so the limiter pulls cloth
 // along the body rather than into it and the stretch goes to the cloth that
@@ -128,9 +129,9 @@ class ImplicitIntegrator {
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
-  /// Chebyshev extrapolation after sweep `sweep` of a round (see
-  /// limit_strain): q from older_ by `weight`, free vertices it moves kept
-  /// in front of their planes and flagged in `moved`.
+  /// Chebyshev extrapolation after a limiter sweep (see limit_strain): each
+  /// free vertex moved over the last two sweeps goes to older_ + weight
+  /// (q - older_), kept in front of its plane and flagged in `moved`.
   void extrapolate(Positions& q, double weight, std::vector<char>& moved) const;
   /// Checks the free vertices and T-nodes of q against the scene: every one
   /// in the step's `first` check (with friction), else those moved beyond
