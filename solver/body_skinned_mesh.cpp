@@ -600,6 +600,115 @@ std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skel
   return turned;
 }
 
+std::vector<char> hand_joints(const Skeleton& skeleton) {
+  std::vector<char> hand(skeleton.joints.size(), 0);
+  // Parents precede their children, so one pass carries the flag down.
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+    const Joint& joint = skeleton.joints[j];
+    const bool named = joint.name == "LeftHand" || joint.name == "RightHand";
+    const bool below = joint.parent >= 0 && hand[static_cast<std::size_t>(joint.parent)];
+    hand[j] = named || below ? 1 : 0;
+  }
+  return hand;
+}
+
+std::vector<char> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton) {
+  const std::vector<char> hand = hand_joints(skeleton);
+  std::vector<char> out(body.weights.size(), 0);
+  for (std::size_t v = 0; v < body.weights.size(); ++v) {
+    double on_hands = 0.0;
+    for (const auto& [joint, w] : body.weights[v])
+      if (joint >= 0 && static_cast<std::size_t>(joint) < hand.size() && hand[static_cast<std::size_t>(joint)])
+        on_hands += w;
+    out[v] = on_hands > 0.5 ? 1 : 0;
+  }
+  return out;
+}
+
+SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton) {
+  check_body(body, skeleton.joints.size(), "without_hands");
+  const std::vector<char> hand = hand_vertices(body, skeleton);
+  SkinnedBody out = body;
+  out.triangles.clear();
+  for (const Eigen::Vector3i& t : body.triangles)
+    if (!hand[static_cast<std::size_t>(t[0])] && !hand[static_cast<std::size_t>(t[1])] &&
+        !hand[static_cast<std::size_t>(t[2])])
+      out.triangles.push_back(t);
+  // The openings: directed edges of the kept triangles whose reverse no
+  // kept triangle has, chained head to tail.
+  std::map<std::pair<int, int>, int> directed;
+  for (const Eigen::Vector3i& t : out.triangles)
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  std::map<int, int> next;  // boundary edge a -> b, by a
+  for (const auto& [edge, count] : directed) {
+    if (directed.count({edge.second, edge.first})) continue;
+    if (!next.emplace(edge.first, edge.second).second)
+      throw ArgumentError("without_hands: vertex " + std::to_string(edge.first) +
+                          " starts two edges of the cut's openings; expected one simple opening per hand");
+  }
+  // The hands that hold vertices: a hand vertex belongs to the hand its
+  // heaviest hand joint hangs from.
+  const std::vector<char> in_hand = hand_joints(skeleton);
+  std::set<int> hands_with_vertices;
+  for (std::size_t v = 0; v < hand.size(); ++v) {
+    if (!hand[v]) continue;
+    int joint = -1;
+    double best = -1.0;
+    for (const auto& [j, w] : body.weights[v])
+      if (in_hand[static_cast<std::size_t>(j)] && w > best) {
+        best = w;
+        joint = j;
+      }
+    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
+                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
+      joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
+    hands_with_vertices.insert(joint);
+  }
+  const int hands = static_cast<int>(hands_with_vertices.size());
+  std::vector<std::vector<int>> loops;
+  std::set<int> seen;
+  for (const auto& [start, unused] : next) {
+    if (seen.count(start)) continue;
+    std::vector<int> loop;
+    for (int v = start; !seen.count(v);) {
+      seen.insert(v);
+      loop.push_back(v);
+      const auto it = next.find(v);
+      if (it == next.end())
+        throw ArgumentError("without_hands: the opening at vertex " + std::to_string(v) + " does not close");
+      v = it->second;
+    }
+    loops.push_back(std::move(loop));
+  }
+  if (static_cast<int>(loops.size()) != hands)
+    throw ArgumentError("without_hands: cutting the hands off leaves " + std::to_string(loops.size()) +
+                        " openings; expected one per hand (" + std::to_string(hands) + ")");
+  const bool has_input = body.input_vertices.rows() > 0;
+  const Eigen::Index first_new = body.rest_vertices.rows();
+  out.rest_vertices.conservativeResize(first_new + static_cast<Eigen::Index>(loops.size()), 3);
+  if (has_input) out.input_vertices.conservativeResize(first_new + static_cast<Eigen::Index>(loops.size()), 3);
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const std::vector<int>& loop = loops[l];
+    const auto centre = static_cast<int>(first_new + static_cast<Eigen::Index>(l));
+    Eigen::RowVector3d rest = Eigen::RowVector3d::Zero(), input = Eigen::RowVector3d::Zero();
+    std::map<int, double> weights;
+    for (int v : loop) {
+      rest += body.rest_vertices.row(v);
+      if (has_input) input += body.input_vertices.row(v);
+      for (const auto& [joint, w] : body.weights[static_cast<std::size_t>(v)]) weights[joint] += w;
+    }
+    const double n = static_cast<double>(loop.size());
+    out.rest_vertices.row(centre) = rest / n;
+    if (has_input) out.input_vertices.row(centre) = input / n;
+    std::vector<std::pair<int, double>> mean;
+    for (const auto& [joint, w] : weights) mean.emplace_back(joint, w / n);
+    out.weights.push_back(std::move(mean));
+    // The kept triangle has a -> b; the cap's triangle runs b -> a.
+    for (int a : loop) out.triangles.emplace_back(next.at(a), a, centre);
+  }
+  return out;
+}
+
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose) {
   const std::size_t n = skeleton.joints.size();
   if (pose.global.size() != n) {

@@ -87,6 +87,28 @@ std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skel
 /// correction. Garments modelled on the mesh fit the body in this pose.
 Pose mesh_pose(const SkinnedBody& body, const Skeleton& skeleton);
 
+/// Per skeleton joint, 1 for the hands: every joint named LeftHand or
+/// RightHand (CMU's names) and every joint below it (fingers, thumbs, their
+/// End Sites).
+std::vector<char> hand_joints(const Skeleton& skeleton);
+
+/// Per body vertex, 1 where more than half its skin weight is on the hands
+/// (hand_joints).
+std::vector<char> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton);
+
+/// The body with its hands cut off, for collisions: every triangle with a
+/// hand vertex removed, and each wrist's opening closed by a fan of
+/// triangles around a new vertex at the opening's centroid (in the rest and
+/// the input mesh), skinned by the opening's mean weights, so the mesh stays
+/// closed and consistently oriented. Hands are fingers and gaps a few
+/// millimetres wide: cloth caught between them is dragged along and torn
+/// (see README, Known limits); collide with capsules there instead
+/// (hand_mitten_capsules in character_setup.h). Vertices are kept (the
+/// hands' are no longer used by any triangle), the new ones appended.
+/// ArgumentError when the cut does not leave one simple opening per hand
+/// that has vertices (a body without hand vertices comes back unchanged).
+SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton);
+
 /// Collision with a moving triangle mesh: a bounding-volume hierarchy built
 /// once over the triangles and refit when the vertices move; closest point
 /// and inside/outside (angle-weighted pseudo-normals, the mesh must be

@@ -111,15 +111,25 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
 
   if (setup.body == CharacterBodyKind::mesh) {
     character.body_vertices = static_cast<int>(skinned->rest_vertices.rows());
-    CapsuleRig bridges;
+    CapsuleRig capsules;
     if (character.leg_bridges > 0.0) {
       // Sized like default leg capsules; the rig's bones are dropped, the mesh is the body.
-      bridges = make_capsule_rig(skeleton);
-      add_leg_bridges(bridges, skeleton, character.leg_bridges);
-      bridges.bones.clear();
+      capsules = make_capsule_rig(skeleton);
+      add_leg_bridges(capsules, skeleton, character.leg_bridges);
+      capsules.bones.clear();
     }
-    character.body = std::make_unique<SkinnedPosedBody>(std::move(*skinned), skeleton, setup.thickness, setup.friction,
-                                                        std::move(bridges));
+    if (setup.hand_mittens) {
+      capsules.bones = hand_mitten_capsules(skeleton, *skinned);
+      character.hand_mittens = static_cast<int>(capsules.bones.size());
+    }
+    if (character.hand_mittens > 0) {
+      SkinnedBody collided = without_hands(*skinned, skeleton);
+      character.body = std::make_unique<SkinnedPosedBody>(std::move(collided), skeleton, setup.thickness,
+                                                          setup.friction, std::move(capsules), std::move(*skinned));
+    } else {
+      character.body = std::make_unique<SkinnedPosedBody>(std::move(*skinned), skeleton, setup.thickness,
+                                                          setup.friction, std::move(capsules));
+    }
     return character;
   }
   CapsuleRigOptions rig_options;

@@ -51,6 +51,11 @@ struct CharacterSetup {
   /// Arms opened just enough to keep the hands this far (metres) from the
   /// hips and thighs (arm_clearance.h); < 0: the clip's arms as they are.
   double arm_clearance = ArmClearanceOptions{}.clearance;
+  /// Skinned mesh body: the hands leave the collision mesh (without_hands:
+  /// wrists capped) and collide as fitted capsules (hand_mitten_capsules),
+  /// which have no gaps between fingers for cloth to be caught in and torn.
+  /// The body is still drawn with its hands.
+  bool hand_mittens = true;
   /// Automatic: the skin whenever the MakeHuman body is given, else the pelvis.
   WaistFollows waist = WaistFollows::automatic;
   GarmentPlacement place = GarmentPlacement::none;
@@ -71,6 +76,7 @@ struct Character {
   Pose garment_pose;            ///< the pose the garment was modelled on (empty: the rest pose)
   int body_vertices = 0;        ///< skinned mesh vertices (0 for capsules)
   int body_capsules = 0;        ///< capsules (0 for a mesh)
+  int hand_mittens = 0;         ///< capsules standing in for the skinned mesh's hands (0: it collides with its own)
   double leg_bridges = 0.0;     ///< the reach of the bridges between the legs, bones (0: none)
   bool fitted_capsules = false; ///< capsule radii fitted to the MakeHuman body
   int capsules_shrunk = 0;      ///< capsules shrunk so the garment starts outside them

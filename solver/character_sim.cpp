@@ -2,8 +2,11 @@
 
 #include "mesh_ops/errors.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <tuple>
 
 namespace mrcloth {
@@ -60,15 +63,15 @@ class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
 };
 
 SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness, double friction,
-                                   CapsuleRig bridges)
+                                   CapsuleRig capsules, SkinnedBody drawn)
     : body_(std::move(body)),
+      drawn_(std::move(drawn)),
       skeleton_(skeleton),
       mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)) {
-  if (!bridges.bones.empty()) throw ArgumentError("SkinnedPosedBody: the bridge rig must hold bridges only");
-  if (!bridges.bridges.empty()) {
-    bridges.thickness = thickness;
-    bridges.friction = friction;
-    bridges_ = std::make_unique<CapsuleBody>(std::move(bridges), skeleton);
+  if (!capsules.bones.empty() || !capsules.bridges.empty()) {
+    capsules.thickness = thickness;
+    capsules.friction = friction;
+    bridges_ = std::make_unique<CapsuleBody>(std::move(capsules), skeleton);
   }
   scene_ = std::make_unique<MeshAndBridges>(*mesh_, bridges_.get());
 }
@@ -86,13 +89,18 @@ void SkinnedPosedBody::set_pose(const Pose& pose) {
 const CollisionScene& SkinnedPosedBody::scene() const { return *scene_; }
 
 BodySurface SkinnedPosedBody::surface(const Pose& pose) const {
+  const SkinnedBody& shown = drawn_.rest_vertices.rows() > 0 ? drawn_ : body_;
   BodySurface surface;
-  surface.vertices = skin(body_, skeleton_, pose);
-  surface.faces.reserve(body_.triangles.size());
-  for (const Eigen::Vector3i& t : body_.triangles) surface.faces.push_back({t[0], t[1], t[2]});
-  if (bridges_)
-    append_surface(surface, capsule_surface(posed_capsules(bridges_->rig(),
-                                                           proportioned_pose(skeleton_, body_.joint_rest, pose))));
+  surface.vertices = skin(shown, skeleton_, pose);
+  surface.faces.reserve(shown.triangles.size());
+  for (const Eigen::Vector3i& t : shown.triangles) surface.faces.push_back({t[0], t[1], t[2]});
+  if (bridges_ && !bridges_->rig().bridges.empty()) {
+    // The bridges stand for skin between the legs; the mittens stand in for
+    // hands the drawn body has.
+    CapsuleRig bridges = bridges_->rig();
+    bridges.bones.clear();
+    append_surface(surface, capsule_surface(posed_capsules(bridges, proportioned_pose(skeleton_, body_.joint_rest, pose))));
+  }
   return surface;
 }
 
@@ -146,6 +154,70 @@ void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const Skinn
     if (bone.radius_head > 0.0 || bone.radius_tail > 0.0) kept.push_back(bone);
   }
   rig.bones = std::move(kept);
+}
+
+std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const SkinnedBody& body) {
+  const Pose rest = proportioned_pose(skeleton, body.joint_rest, rest_pose(skeleton));
+  const std::vector<char> in_hand = hand_joints(skeleton);
+  const std::vector<char> hand_vertex = hand_vertices(body, skeleton);
+  const auto hand_of = [&](int joint) {  // the hand joint a hand's joint hangs from
+    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
+                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
+      joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
+    return joint;
+  };
+  // Each hand vertex goes to the hand its heaviest hand joint hangs from.
+  std::map<int, std::vector<Eigen::Vector3d>> points;
+  for (std::size_t v = 0; v < hand_vertex.size(); ++v) {
+    if (!hand_vertex[v]) continue;
+    int dominant = -1;
+    double best = -1.0;
+    for (const auto& [joint, w] : body.weights[v])
+      if (in_hand[static_cast<std::size_t>(joint)] && w > best) {
+        best = w;
+        dominant = joint;
+      }
+    points[hand_of(dominant)].push_back(body.rest_vertices.row(static_cast<Eigen::Index>(v)).transpose());
+  }
+  // Per hand, a capsule along the principal axis of its vertices in the
+  // rest pose, from the 5th to the 95th percentile along it, as thick as
+  // the median distance from that axis (about the palm's half-thickness:
+  // the spread fingers and thumb stay partly outside), carried by the hand
+  // joint. (A fit to the whole hand's cross-sections, as fit_capsule_radii
+  // fits limbs, came out 5 cm thick and caught more cloth at the hip than
+  // the hand did.)
+  std::vector<BoneCapsule> mittens;
+  for (const auto& [hand, cloud] : points) {
+    if (hand < 0 || cloud.size() < 4) continue;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : cloud) centre += p;
+    centre /= static_cast<double>(cloud.size());
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d& p : cloud) scatter += (p - centre) * (p - centre).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+    const Eigen::Vector3d axis = eigen.eigenvectors().col(2);  // eigenvalues ascend: the longest direction
+    std::vector<double> along, across;
+    for (const Eigen::Vector3d& p : cloud) {
+      const double t = (p - centre).dot(axis);
+      along.push_back(t);
+      across.push_back((p - centre - t * axis).norm());
+    }
+    const auto quantile = [](std::vector<double> values, double q) {
+      const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(values.size() - 1));
+      std::nth_element(values.begin(), values.begin() + k, values.end());
+      return values[static_cast<std::size_t>(k)];
+    };
+    const double radius = quantile(across, 0.5);
+    const double low = quantile(along, 0.05) + radius, high = std::max(low, quantile(along, 0.95) - radius);
+    const Eigen::Matrix3d to_hand = rest.global[static_cast<std::size_t>(hand)].linear().transpose();
+    BoneCapsule mitten;
+    mitten.joint = mitten.child = hand;
+    mitten.radius_head = mitten.radius_tail = radius;
+    mitten.shift_head = to_hand * (centre + low * axis - rest.position(hand));
+    mitten.shift_tail = to_hand * (centre + high * axis - rest.position(hand));
+    mittens.push_back(mitten);
+  }
+  return mittens;
 }
 
 int clear_capsules_for_garment(CapsuleRig& rig, const Motion& motion, const CharacterRunOptions& options,

@@ -48,12 +48,14 @@ class CapsulePosedBody : public PosedBody {
 };
 
 /// A skinned triangle mesh, re-skinned and refit for every pose, with
-/// optional bridges between the legs (a rig of bridges only, see
-/// add_leg_bridges) posed by the same skeleton.
+/// optional capsules posed by the same skeleton on the body's proportions:
+/// bridges between the legs (add_leg_bridges) and bones (the hands' mittens,
+/// hand_mitten_capsules, for a body cut by without_hands). surface() draws
+/// `drawn` (the whole body; empty: `body`) and the bridges.
 class SkinnedPosedBody : public PosedBody {
  public:
   SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3,
-                   CapsuleRig bridges = {});
+                   CapsuleRig capsules = {}, SkinnedBody drawn = {});
   ~SkinnedPosedBody() override;
   void set_pose(const Pose& pose) override;
   const CollisionScene& scene() const override;
@@ -62,6 +64,7 @@ class SkinnedPosedBody : public PosedBody {
  private:
   class MeshAndBridges;
   SkinnedBody body_;
+  SkinnedBody drawn_;  ///< what surface() draws (empty: body_)
   const Skeleton& skeleton_;
   std::unique_ptr<MeshBody> mesh_;
   std::unique_ptr<CapsuleBody> bridges_;  ///< null without bridges
@@ -132,6 +135,14 @@ void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, c
 /// without radius (0 removes a joint's capsule).
 void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const SkinnedBody& body,
                           const std::map<std::string, std::pair<double, double>>& overrides = {});
+
+/// Capsules around the hands of a skinned body (mittens), for a body whose
+/// hands are cut off its collision mesh (without_hands): per hand (a joint
+/// named LeftHand or RightHand), a capsule from the hand joint to the End
+/// Site below it farthest from it, fitted to the hand's vertices
+/// (hand_vertices) as fit_capsule_radii fits a limb: a flat hand becomes
+/// two capsules side by side. Empty when the skeleton has no hands.
+std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const SkinnedBody& body);
 
 /// Shrinks the capsules a garment starts inside of (clear_capsules_of),
 /// posed as the run starts: the reference pose on `body_joints` (the

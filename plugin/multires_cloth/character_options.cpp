@@ -102,7 +102,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
                                       QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
                                                   QStringLiteral("radii"), QStringLiteral("legBridges"),
-                                                  QStringLiteral("waistFollows"), QStringLiteral("armClearance")});
+                                                  QStringLiteral("waistFollows"), QStringLiteral("armClearance"),
+                                                  QStringLiteral("handMittens")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
   request.setup.body = type == QLatin1String("mesh") ? CharacterBodyKind::mesh : CharacterBodyKind::capsules;
 
@@ -159,6 +160,10 @@ void parseBody(const Fields& top, CharacterRequest& request) {
       request.setup.arm_clearance = metres;
     }
   }
+  request.setup.hand_mittens = fields.boolean(QStringLiteral("handMittens"), request.setup.hand_mittens);
+  if (fields.has(QStringLiteral("handMittens")) && type != QLatin1String("mesh"))
+    fail(QStringLiteral("%1 applies to type \"mesh\" (the capsule body has no hands to replace)")
+             .arg(fields.label(QStringLiteral("handMittens"))));
   if (fields.has(QStringLiteral("waistFollows"))) {
     const QString follows = fields.choice(QStringLiteral("waistFollows"), QStringLiteral("auto"),
                                           {QStringLiteral("auto"), QStringLiteral("pelvis"), QStringLiteral("skin")});
@@ -316,8 +321,12 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
       {QStringLiteral("capsulesShrunk"), character.capsules_shrunk},
       {QStringLiteral("waistFollows"), character.waist_skin ? QStringLiteral("skin") : QStringLiteral("pelvis")},
   };
-  if (request.setup.body == CharacterBodyKind::mesh) map.insert(QStringLiteral("bodyVertices"), character.body_vertices);
-  else map.insert(QStringLiteral("capsules"), character.body_capsules);
+  if (request.setup.body == CharacterBodyKind::mesh) {
+    map.insert(QStringLiteral("bodyVertices"), character.body_vertices);
+    map.insert(QStringLiteral("handMittens"), character.hand_mittens);
+  } else {
+    map.insert(QStringLiteral("capsules"), character.body_capsules);
+  }
   return map;
 }
 

@@ -1388,5 +1388,139 @@ TEST_F(SkinnedBodyTest, FarFromTheSeenSkinTheSideIsTheWholeBodysParity) {
   EXPECT_GE(outside, 100);
 }
 
+
+TEST_F(SkinnedBodyTest, WithoutHandsTheBodyStaysClosedAndSkinsAsBefore) {
+  SKIP_WITHOUT_BODY();
+  const SkinnedBody& body = *body_;
+  const std::vector<char> hand = hand_vertices(body, skeleton());
+  const auto hand_count = std::count(hand.begin(), hand.end(), 1);
+  EXPECT_GT(hand_count, 2000) << "both hands, fingers and thumbs";
+  EXPECT_LT(hand_count, 4000) << "and no forearm";
+  const SkinnedBody cut = without_hands(body, skeleton());
+  ASSERT_EQ(cut.rest_vertices.rows(), body.rest_vertices.rows() + 2) << "one cap vertex per wrist";
+  ASSERT_EQ(cut.input_vertices.rows(), cut.rest_vertices.rows());
+  ASSERT_EQ(cut.weights.size(), static_cast<std::size_t>(cut.rest_vertices.rows()));
+  std::size_t kept = 0;
+  for (const Vector3i& t : body.triangles) kept += !hand[t[0]] && !hand[t[1]] && !hand[t[2]];
+  std::size_t caps = 0;
+  for (const Vector3i& t : cut.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_FALSE(t[k] < static_cast<int>(hand.size()) && hand[static_cast<std::size_t>(t[k])]) << "a hand vertex is left";
+    }
+    caps += t[2] >= static_cast<int>(body.rest_vertices.rows());
+  }
+  EXPECT_EQ(cut.triangles.size(), kept + caps) << "the kept triangles and the caps, nothing else";
+  EXPECT_GT(caps, 20u) << "each wrist's opening goes round the wrist";
+  // Closed and consistently oriented, enclosing a positive volume: MeshBody
+  // refuses anything else.
+  EXPECT_NO_THROW(MeshBody(cut.rest_vertices, cut.triangles));
+  for (Eigen::Index v = body.rest_vertices.rows(); v < cut.rest_vertices.rows(); ++v) {
+    double sum = 0.0;
+    for (const auto& [j, w] : cut.weights[static_cast<std::size_t>(v)]) sum += w;
+    EXPECT_NEAR(sum, 1.0, 1e-12) << "cap vertex " << v;
+  }
+  // The cap vertices skin like every other vertex: in the rest pose to
+  // their rest position, in the mesh's pose to their input position; the
+  // kept vertices exactly as in the whole body.
+  const Eigen::MatrixX3d rest = skin(cut, skeleton(), rest_pose(skeleton()));
+  EXPECT_LE((rest - cut.rest_vertices).cwiseAbs().maxCoeff(), 1e-12);
+  const Eigen::MatrixX3d own = skin(cut, skeleton(), mesh_pose(cut, skeleton()));
+  EXPECT_LE((own - cut.input_vertices).cwiseAbs().maxCoeff(), 1e-12);
+  const Pose walking = pose_at(*motion_, 1.0);
+  const Eigen::MatrixX3d whole = skin(body, skeleton(), walking), without = skin(cut, skeleton(), walking);
+  EXPECT_EQ((whole - without.topRows(whole.rows())).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST_F(SkinnedBodyTest, MittensSitInTheHandsAndTurnWithThem) {
+  SKIP_WITHOUT_BODY();
+  const std::vector<BoneCapsule> mittens = hand_mitten_capsules(skeleton(), *body_);
+  ASSERT_EQ(mittens.size(), 2u);
+  const std::vector<char> hand = hand_vertices(*body_, skeleton());
+  const Pose rest = proportioned_pose(skeleton(), body_->joint_rest, rest_pose(skeleton()));
+  for (const BoneCapsule& mitten : mittens) {
+    const std::string& name = skeleton().joints[static_cast<std::size_t>(mitten.joint)].name;
+    EXPECT_TRUE(name == "LeftHand" || name == "RightHand") << name;
+    EXPECT_GT(mitten.radius_head, 0.01) << name;
+    EXPECT_LT(mitten.radius_head, 0.04) << name << ": about a palm thick";
+    // A third or more of the hand's vertices lie within the capsule in the
+    // rest pose (as thick as their median distance from its axis, over the
+    // middle 90 % of the hand's length).
+    CapsuleRig rig;
+    rig.bones = {mitten};
+    const Collider capsule = posed_capsules(rig, rest)[0];
+    int mine = 0, within = 0;
+    for (std::size_t v = 0; v < hand.size(); ++v) {
+      if (!hand[v]) continue;
+      const Vector3d p = body_->rest_vertices.row(static_cast<Eigen::Index>(v)).transpose();
+      if ((p - rest.position(mitten.joint)).norm() > 0.25) continue;  // the other hand
+      ++mine;
+      within += query_surface(capsule, p).distance <= 1e-9;
+    }
+    EXPECT_GT(mine, 1000) << name;
+    EXPECT_GE(within, mine / 3) << name;  // measured 38 %: the median distance, over the hand's middle 90 %
+    EXPECT_LE(within, mine * 9 / 10) << name << ": the spread fingers stay partly outside";
+  }
+  // Posed, a mitten keeps its place in the hand: its ends stay where the
+  // hand joint's frame carries them.
+  const Pose walking = pose_at(*motion_, 1.0);
+  CapsuleRig rig;
+  rig.bones = mittens;
+  const std::vector<Collider> posed = posed_capsules(rig, walking);
+  for (std::size_t k = 0; k < mittens.size(); ++k) {
+    const auto& c = std::get<CapsuleCollider>(posed[k].shape);
+    const Eigen::Isometry3d& frame = walking.global[static_cast<std::size_t>(mittens[k].joint)];
+    EXPECT_LE((c.a - (frame.translation() + frame.linear() * mittens[k].shift_head)).norm(), 1e-12);
+    EXPECT_LE((c.b - (frame.translation() + frame.linear() * mittens[k].shift_tail)).norm(), 1e-12);
+  }
+}
+
+TEST(WithoutHands, ABodyWithoutHandsIsUnchangedAndATornCutIsRefused) {
+  // A sphere on a skeleton of a root and one hand: with no vertex on the
+  // hand nothing is cut; with two opposite vertices on it the cut leaves
+  // two openings for one hand, which is refused with its count; with one,
+  // its five triangles go and a five-triangle cap closes the opening.
+  Skeleton skeleton;
+  skeleton.joints.resize(2);
+  skeleton.joints[0].name = "Hips";
+  skeleton.joints[1].name = "LeftHand";
+  skeleton.joints[1].parent = 0;
+  const Mesh sphere = icosphere(1);
+  SkinnedBody body;
+  body.rest_vertices = sphere.vertices;
+  body.triangles = sphere.triangles;
+  body.weights.assign(static_cast<std::size_t>(sphere.vertices.rows()), {{0, 1.0}});
+  const SkinnedBody same = without_hands(body, skeleton);
+  EXPECT_EQ(same.triangles, body.triangles);
+  EXPECT_EQ(same.rest_vertices, body.rest_vertices);
+  ASSERT_EQ((body.rest_vertices.row(0) + body.rest_vertices.row(3)).norm(), 0.0) << "vertices 0 and 3 are opposite";
+  body.weights[0] = {{1, 0.75}, {0, 0.25}};
+  body.weights[3] = {{1, 0.6}, {0, 0.4}};
+  try {
+    without_hands(body, skeleton);
+    ADD_FAILURE() << "two openings for one hand were accepted";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("leaves 2 openings; expected one per hand (1)"), std::string::npos) << e.what();
+  }
+  body.weights[3] = {{0, 1.0}};
+  const SkinnedBody cut = without_hands(body, skeleton);
+  const Eigen::Index n = body.rest_vertices.rows();
+  ASSERT_EQ(cut.rest_vertices.rows(), n + 1);
+  EXPECT_EQ(cut.triangles.size(), body.triangles.size()) << "five triangles cut, five in the cap";
+  Eigen::RowVector3d ring = Eigen::RowVector3d::Zero();
+  int neighbours = 0;
+  for (const Vector3i& t : body.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == 0) {
+        ring += body.rest_vertices.row(t[(k + 1) % 3]);
+        ++neighbours;
+      }
+  ASSERT_EQ(neighbours, 5);
+  EXPECT_LE((cut.rest_vertices.row(n) - ring / 5.0).norm(), 1e-15) << "the cap's centre: the opening's centroid";
+  for (const Vector3i& t : cut.triangles) EXPECT_TRUE(t[0] != 0 && t[1] != 0 && t[2] != 0);
+  ASSERT_EQ(cut.weights.size(), static_cast<std::size_t>(n + 1));
+  EXPECT_EQ(cut.weights[static_cast<std::size_t>(n)], (std::vector<std::pair<int, double>>{{0, 1.0}}));
+  EXPECT_NO_THROW(MeshBody(cut.rest_vertices, cut.triangles)) << "closed, consistently oriented, outward";
+}
+
 }  // namespace
 }  // namespace mrcloth

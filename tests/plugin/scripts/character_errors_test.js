@@ -41,6 +41,9 @@ expectThrows(sim({motion: walk, body: {armClearance: 0.5}}), "ArgumentError",
              "option 'body.armClearance' must be \"auto\", false or a clearance from 0 to 0.1 m, got the number 0.5");
 expectThrows(sim({motion: walk, body: {armClearance: -0.01}}), "ArgumentError", "option 'body.armClearance'");
 expectThrows(sim({motion: walk, body: {armClearance: "wide"}}), "ArgumentError", "option 'body.armClearance'");
+expectThrows(sim({motion: walk, body: {handMittens: "yes"}}), "ArgumentError", "option 'body.handMittens'");
+expectThrows(sim({motion: walk, body: {handMittens: false}}), "ArgumentError",
+             "option 'body.handMittens' applies to type \"mesh\" (the capsule body has no hands to replace)");
 
 // The motion.
 expectThrows(sim({motion: missing}), "InputError", "option 'motion': ", "no_such_motion.bvh: no such file");

@@ -29,6 +29,7 @@ expectEqual([report.frames, report.nonFinite, report.cancelled, report.preroll.n
             "run completed");
 expectEqual([report.body, report.motionUnits, report.place, report.preroll.frames, report.legBridges],
             ["mesh", "cmu", "makehuman", 15, 2], "character fields (bridges to the ankles: the skirt reaches below the knees)");
+expectEqual(report.handMittens, 2, "the hands collide as one capsule each (handMittens, the default)");
 if (!(report.pinnedVertices > 0)) throw new Error("no waist pinned");
 if (!(report.maxWaistError <= 1e-9)) throw new Error("maxWaistError " + report.maxWaistError + " > 1e-9 m");
 // The pre-roll starts from the body's A-pose, which base.obj and the skirt
