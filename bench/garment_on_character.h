@@ -22,6 +22,7 @@ struct GarmentRunOptions {
   double preroll = 0.5;                                     ///< seconds, not recorded
   double step_rate = CharacterSetup{}.step_rate;            ///< time steps per second
   double stretch_stiffness = Material{}.stretch_stiffness;  ///< N/m, the cloth's stretch springs (cotton's by default)
+  bool hand_mittens = CharacterSetup{}.hand_mittens;        ///< mesh body: the hands collide as capsules
   SimulationOptions simulation;                             ///< frames and the solver's settings
 };
 
@@ -35,7 +36,7 @@ struct GarmentRun {
 inline constexpr const char* kRunOptionsUsage =
     "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--stretch-stiffness N/M] "
-    "[--self-contact METRES] [--threads N]";
+    "[--self-contact METRES] [--mittens 0|1] [--threads N]";
 
 /// Takes option `key` with `value` into `o` when it is one of
 /// kRunOptionsUsage's; false when it is not.
@@ -54,6 +55,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--stretch-stiffness") o.stretch_stiffness = std::atof(value);
   else if (key == "--self-contact") s.self_contact.thickness = std::atof(value);
   else if (key == "--threads") s.threads = std::atoi(value);
+  else if (key == "--mittens") o.hand_mittens = std::atoi(value) != 0;
   else return false;
   return true;
 }
@@ -126,6 +128,7 @@ inline PreparedGarment prepare_garment_on_character(const QuadMesh& garment, con
   setup.place = GarmentPlacement::makehuman;
   setup.preroll_seconds = o.preroll;
   setup.step_rate = o.step_rate;
+  setup.hand_mittens = o.hand_mittens;
   PreparedGarment g{make_character(clip, setup, garment), {}, {}, {}};
   g.placed = place_garment(g.character, setup, garment);
   DynamicsOptions d;
