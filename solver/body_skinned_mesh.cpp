@@ -612,27 +612,37 @@ std::vector<char> hand_joints(const Skeleton& skeleton) {
   return hand;
 }
 
-std::vector<char> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton) {
+std::vector<int> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton) {
   const std::vector<char> hand = hand_joints(skeleton);
-  std::vector<char> out(body.weights.size(), 0);
+  std::vector<int> out(body.weights.size(), -1);
   for (std::size_t v = 0; v < body.weights.size(); ++v) {
-    double on_hands = 0.0;
-    for (const auto& [joint, w] : body.weights[v])
-      if (joint >= 0 && static_cast<std::size_t>(joint) < hand.size() && hand[static_cast<std::size_t>(joint)])
-        on_hands += w;
-    out[v] = on_hands > 0.5 ? 1 : 0;
+    double on_hands = 0.0, heaviest = -1.0;
+    int joint = -1;
+    for (const auto& [j, w] : body.weights[v]) {
+      if (j < 0 || static_cast<std::size_t>(j) >= hand.size() || !hand[static_cast<std::size_t>(j)]) continue;
+      on_hands += w;
+      if (w > heaviest) {
+        heaviest = w;
+        joint = j;
+      }
+    }
+    if (!(on_hands > 0.5)) continue;
+    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
+                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
+      joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
+    out[v] = joint;
   }
   return out;
 }
 
 SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton) {
   check_body(body, skeleton.joints.size(), "without_hands");
-  const std::vector<char> hand = hand_vertices(body, skeleton);
+  const std::vector<int> hand = hand_vertices(body, skeleton);
   SkinnedBody out = body;
   out.triangles.clear();
   for (const Eigen::Vector3i& t : body.triangles)
-    if (!hand[static_cast<std::size_t>(t[0])] && !hand[static_cast<std::size_t>(t[1])] &&
-        !hand[static_cast<std::size_t>(t[2])])
+    if (hand[static_cast<std::size_t>(t[0])] < 0 && hand[static_cast<std::size_t>(t[1])] < 0 &&
+        hand[static_cast<std::size_t>(t[2])] < 0)
       out.triangles.push_back(t);
   // The openings: directed edges of the kept triangles whose reverse no
   // kept triangle has, chained head to tail.
@@ -646,24 +656,9 @@ SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton) {
       throw ArgumentError("without_hands: vertex " + std::to_string(edge.first) +
                           " starts two edges of the cut's openings; expected one simple opening per hand");
   }
-  // The hands that hold vertices: a hand vertex belongs to the hand its
-  // heaviest hand joint hangs from.
-  const std::vector<char> in_hand = hand_joints(skeleton);
-  std::set<int> hands_with_vertices;
-  for (std::size_t v = 0; v < hand.size(); ++v) {
-    if (!hand[v]) continue;
-    int joint = -1;
-    double best = -1.0;
-    for (const auto& [j, w] : body.weights[v])
-      if (in_hand[static_cast<std::size_t>(j)] && w > best) {
-        best = w;
-        joint = j;
-      }
-    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
-                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
-      joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
-    hands_with_vertices.insert(joint);
-  }
+  // One opening for each hand that holds vertices.
+  std::set<int> hands_with_vertices(hand.begin(), hand.end());
+  hands_with_vertices.erase(-1);
   const int hands = static_cast<int>(hands_with_vertices.size());
   std::vector<std::vector<int>> loops;
   std::set<int> seen;

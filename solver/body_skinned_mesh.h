@@ -92,9 +92,10 @@ Pose mesh_pose(const SkinnedBody& body, const Skeleton& skeleton);
 /// End Sites).
 std::vector<char> hand_joints(const Skeleton& skeleton);
 
-/// Per body vertex, 1 where more than half its skin weight is on the hands
-/// (hand_joints).
-std::vector<char> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton);
+/// Per body vertex, the hand it belongs to: where more than half its skin
+/// weight is on the hands (hand_joints), the joint named LeftHand or
+/// RightHand that its heaviest hand joint hangs from; elsewhere -1.
+std::vector<int> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton);
 
 /// The body with its hands cut off, for collisions: every triangle with a
 /// hand vertex removed, and each wrist's opening closed by a fan of

@@ -158,27 +158,10 @@ void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const Skinn
 
 std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const SkinnedBody& body) {
   const Pose rest = proportioned_pose(skeleton, body.joint_rest, rest_pose(skeleton));
-  const std::vector<char> in_hand = hand_joints(skeleton);
-  const std::vector<char> hand_vertex = hand_vertices(body, skeleton);
-  const auto hand_of = [&](int joint) {  // the hand joint a hand's joint hangs from
-    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
-                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
-      joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
-    return joint;
-  };
-  // Each hand vertex goes to the hand its heaviest hand joint hangs from.
-  std::map<int, std::vector<Eigen::Vector3d>> points;
-  for (std::size_t v = 0; v < hand_vertex.size(); ++v) {
-    if (!hand_vertex[v]) continue;
-    int dominant = -1;
-    double best = -1.0;
-    for (const auto& [joint, w] : body.weights[v])
-      if (in_hand[static_cast<std::size_t>(joint)] && w > best) {
-        best = w;
-        dominant = joint;
-      }
-    points[hand_of(dominant)].push_back(body.rest_vertices.row(static_cast<Eigen::Index>(v)).transpose());
-  }
+  const std::vector<int> hand_of = hand_vertices(body, skeleton);
+  std::map<int, std::vector<Eigen::Vector3d>> points;  // per hand joint, its vertices in the rest pose
+  for (std::size_t v = 0; v < hand_of.size(); ++v)
+    if (hand_of[v] >= 0) points[hand_of[v]].push_back(body.rest_vertices.row(static_cast<Eigen::Index>(v)).transpose());
   // Per hand, a capsule along the principal axis of its vertices in the
   // rest pose, from the 5th to the 95th percentile along it, as thick as
   // the median distance from that axis (about the palm's half-thickness:
