@@ -67,7 +67,7 @@ class SkinnedPosedBody : public PosedBody {
   SkinnedBody drawn_;  ///< what surface() draws (empty: body_)
   const Skeleton& skeleton_;
   std::unique_ptr<MeshBody> mesh_;
-  std::unique_ptr<CapsuleBody> bridges_;  ///< null without bridges
+  std::unique_ptr<CapsuleBody> bridges_;  ///< the bridges and mittens; null without any
   std::unique_ptr<MeshAndBridges> scene_;
 };
 
@@ -137,11 +137,12 @@ void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const Skinn
                           const std::map<std::string, std::pair<double, double>>& overrides = {});
 
 /// Capsules around the hands of a skinned body (mittens), for a body whose
-/// hands are cut off its collision mesh (without_hands): per hand (a joint
-/// named LeftHand or RightHand), a capsule from the hand joint to the End
-/// Site below it farthest from it, fitted to the hand's vertices
-/// (hand_vertices) as fit_capsule_radii fits a limb: a flat hand becomes
-/// two capsules side by side. Empty when the skeleton has no hands.
+/// hands are cut off its collision mesh (without_hands): per hand that
+/// holds vertices (hand_vertices), one capsule carried by the hand joint,
+/// along the principal axis of the hand's vertices in the rest pose from
+/// their 5th to their 95th percentile along it, as thick as their median
+/// distance from it (metres; about a palm's half-width). Empty when the
+/// body has no hands.
 std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const SkinnedBody& body);
 
 /// Shrinks the capsules a garment starts inside of (clear_capsules_of),
