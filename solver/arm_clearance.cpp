@@ -136,6 +136,16 @@ ArmClearance make_arm_clearance(const Skeleton& skeleton, const ArmClearanceOpti
   return check;
 }
 
+void add_arm_capsules(ArmClearance& check, const std::vector<BoneCapsule>& capsules) {
+  for (const BoneCapsule& capsule : capsules)
+    for (ArmClearance::Side& side : check.sides) {
+      if (std::find(side.subtree.begin(), side.subtree.end(), capsule.joint) == side.subtree.end()) continue;
+      side.arm_capsules.push_back(static_cast<int>(check.rig.bones.size()));
+      check.rig.bones.push_back(capsule);
+      break;
+    }
+}
+
 std::vector<double> arm_gaps(const ArmClearance& check, const Skeleton& skeleton, const Pose& pose) {
   std::vector<double> gaps;
   if (check.sides.empty()) return gaps;

@@ -55,6 +55,12 @@ ArmClearance make_arm_clearance(const Skeleton& skeleton, const ArmClearanceOpti
                                 const std::vector<std::vector<std::pair<int, double>>>& weights = {},
                                 const std::vector<Eigen::Vector3d>& joint_rest = {}, double hand_radius = 0.03);
 
+/// Adds capsules that hang from the arms (the skinned body's hand mittens,
+/// hand_mitten_capsules) to the check: each joins the side whose subtree
+/// holds its joint, so the arms open to keep it clear as well. Capsules of
+/// no side are left out.
+void add_arm_capsules(ArmClearance& check, const std::vector<BoneCapsule>& capsules);
+
 /// Surface-to-surface distance of the two sides' arm capsules to the body
 /// capsules in `pose` (metres, negative when they overlap): [left, right]
 /// in ArmClearance::sides order.

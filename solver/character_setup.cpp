@@ -99,12 +99,19 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
                               ? setup.leg_bridges
                               : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()), placed,
                                                       skeleton);
+  // The skinned body's hands collide as capsules (below): the arms open to
+  // keep those clear of the hips too, or cloth is pinched between them.
+  const std::vector<BoneCapsule> mittens = setup.body == CharacterBodyKind::mesh && setup.hand_mittens && skinned
+                                               ? hand_mitten_capsules(skeleton, *skinned)
+                                               : std::vector<BoneCapsule>{};
   if (setup.arm_clearance >= 0.0) {
     ArmClearanceOptions arms;
     arms.clearance = setup.arm_clearance;
-    character.arm_clearance = std::make_shared<const ArmClearance>(
+    ArmClearance check =
         skinned ? make_arm_clearance(skeleton, arms, skinned->rest_vertices, skinned->weights, skinned->joint_rest)
-                : make_arm_clearance(skeleton, arms));
+                : make_arm_clearance(skeleton, arms);
+    add_arm_capsules(check, mittens);
+    character.arm_clearance = std::make_shared<const ArmClearance>(std::move(check));
   }
   const bool waist_on_skin = setup.waist == WaistFollows::skin || (setup.waist == WaistFollows::automatic && skinned);
   if (waist_on_skin) character.waist_skin = std::make_shared<const SkinnedBody>(*skinned);
@@ -118,10 +125,8 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
       add_leg_bridges(capsules, skeleton, character.leg_bridges);
       capsules.bones.clear();
     }
-    if (setup.hand_mittens) {
-      capsules.bones = hand_mitten_capsules(skeleton, *skinned);
-      character.hand_mittens = static_cast<int>(capsules.bones.size());
-    }
+    capsules.bones = mittens;
+    character.hand_mittens = static_cast<int>(mittens.size());
     if (character.hand_mittens > 0) {
       SkinnedBody collided = without_hands(*skinned, skeleton);
       character.body = std::make_unique<SkinnedPosedBody>(std::move(collided), skeleton, setup.thickness,

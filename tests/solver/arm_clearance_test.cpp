@@ -120,6 +120,41 @@ TEST(ArmClearance, ClearPosesAreUntouchedAndTheAngleIsContinuous) {
   EXPECT_GT(previous, 0.0) << "a 30 degree push should bring the hands into the hips";
 }
 
+TEST(ArmClearance, AddedCapsulesJoinTheirArmAndAreKeptClearToo) {
+  // A fat capsule in the left hand (as a skinned body's mitten): it joins
+  // the left arm, so the left gap becomes its own, never larger, and
+  // clearing the arms keeps it clear; a capsule on the hips joins no arm.
+  const Motion walk = embedded_walk();
+  const Skeleton& skeleton = walk.skeleton;
+  ArmClearance check = make_arm_clearance(skeleton);
+  ASSERT_EQ(check.sides.size(), 2u);
+  const ArmClearance before = check;
+  BoneCapsule mitten;
+  mitten.joint = mitten.child = skeleton.find("LeftHand");
+  mitten.radius_head = mitten.radius_tail = 0.08;
+  BoneCapsule elsewhere = mitten;
+  elsewhere.joint = elsewhere.child = skeleton.find("Hips");
+  add_arm_capsules(check, {mitten, elsewhere});
+  ASSERT_EQ(check.rig.bones.size(), before.rig.bones.size() + 1) << "the hips' capsule joins no arm";
+  const int left = check.sides[0].shoulder == skeleton.find("LeftArm") ? 0 : 1;
+  EXPECT_EQ(check.sides[static_cast<std::size_t>(left)].arm_capsules.size(),
+            before.sides[static_cast<std::size_t>(left)].arm_capsules.size() + 1);
+  EXPECT_EQ(check.sides[static_cast<std::size_t>(1 - left)].arm_capsules,
+            before.sides[static_cast<std::size_t>(1 - left)].arm_capsules);
+  int fatter = 0;
+  for (int frame = 1; frame < walk.frames.rows(); frame += 11) {
+    Pose pose = arms_in(skeleton, frame_pose(walk, frame), 10.0);
+    const std::vector<double> thin = arm_gaps(before, skeleton, pose), fat = arm_gaps(check, skeleton, pose);
+    EXPECT_LE(fat[static_cast<std::size_t>(left)], thin[static_cast<std::size_t>(left)] + 1e-15) << "frame " << frame;
+    EXPECT_EQ(fat[static_cast<std::size_t>(1 - left)], thin[static_cast<std::size_t>(1 - left)]) << "frame " << frame;
+    fatter += fat[static_cast<std::size_t>(left)] < thin[static_cast<std::size_t>(left)] - 0.01;
+    clear_arms(check, skeleton, pose);
+    EXPECT_GE(arm_gaps(check, skeleton, pose)[static_cast<std::size_t>(left)], check.options.clearance - 1e-4)
+        << "frame " << frame;
+  }
+  EXPECT_GT(fatter, 0) << "the fat capsule never came nearer the hips than the hand's own; the test proves nothing";
+}
+
 TEST(ArmClearance, SkeletonsWithoutCmuArmsAreLeftAlone) {
   Skeleton skeleton;
   Joint root;
