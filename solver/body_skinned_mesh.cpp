@@ -600,14 +600,20 @@ std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skel
   return turned;
 }
 
+namespace {
+
+/// Whether `joint` is a hand itself (CMU's names), not a finger below one.
+bool is_hand(const Joint& joint) { return joint.name == "LeftHand" || joint.name == "RightHand"; }
+
+}  // namespace
+
 std::vector<char> hand_joints(const Skeleton& skeleton) {
   std::vector<char> hand(skeleton.joints.size(), 0);
   // Parents precede their children, so one pass carries the flag down.
   for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
     const Joint& joint = skeleton.joints[j];
-    const bool named = joint.name == "LeftHand" || joint.name == "RightHand";
     const bool below = joint.parent >= 0 && hand[static_cast<std::size_t>(joint.parent)];
-    hand[j] = named || below ? 1 : 0;
+    hand[j] = is_hand(joint) || below ? 1 : 0;
   }
   return hand;
 }
@@ -627,8 +633,7 @@ std::vector<int> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton
       }
     }
     if (!(on_hands > 0.5)) continue;
-    while (joint >= 0 && !(skeleton.joints[static_cast<std::size_t>(joint)].name == "LeftHand" ||
-                           skeleton.joints[static_cast<std::size_t>(joint)].name == "RightHand"))
+    while (joint >= 0 && !is_hand(skeleton.joints[static_cast<std::size_t>(joint)]))
       joint = skeleton.joints[static_cast<std::size_t>(joint)].parent;
     out[v] = joint;
   }

@@ -164,14 +164,14 @@ std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const Sk
     if (hand_of[v] >= 0) points[hand_of[v]].push_back(body.rest_vertices.row(static_cast<Eigen::Index>(v)).transpose());
   // Per hand, a capsule along the principal axis of its vertices in the
   // rest pose, from the 5th to the 95th percentile along it, as thick as
-  // the median distance from that axis (about the palm's half-thickness:
-  // the spread fingers and thumb stay partly outside), carried by the hand
-  // joint. (A fit to the whole hand's cross-sections, as fit_capsule_radii
+  // the median distance from that axis (about half a palm's width, so
+  // thicker than the palm; the spread fingers and thumb stay partly
+  // outside), carried by the hand joint. (A fit to the whole hand's cross-sections, as fit_capsule_radii
   // fits limbs, came out 5 cm thick and caught more cloth at the hip than
   // the hand did.)
   std::vector<BoneCapsule> mittens;
   for (const auto& [hand, cloud] : points) {
-    if (hand < 0 || cloud.size() < 4) continue;
+    if (cloud.size() < 4) continue;  // too few points for an axis
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : cloud) centre += p;
     centre /= static_cast<double>(cloud.size());

@@ -17,7 +17,7 @@ struct SimulationOptions {
   int substeps = 4;                           ///< time steps per output frame (h = 1 / (fps * substeps)), >= 1
   int iterations = 2;                         ///< local/global iterations per step
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
-  double limiter_acceleration = 0.97;         ///< see IntegratorOptions: rho in [0, 1), 0 plain sweeps
+  double limiter_acceleration = IntegratorOptions{}.limiter_acceleration;  ///< see IntegratorOptions: rho in [0, 1), 0 plain sweeps
   int collision_rounds = 8;                   ///< see IntegratorOptions
   double contact_slack = 0.002;               ///< metres, see IntegratorOptions
   double round_tolerance = 0.01;              ///< see IntegratorOptions

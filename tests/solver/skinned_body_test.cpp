@@ -1441,7 +1441,7 @@ TEST_F(SkinnedBodyTest, MittensSitInTheHandsAndTurnWithThem) {
     const std::string& name = skeleton().joints[static_cast<std::size_t>(mitten.joint)].name;
     EXPECT_TRUE(name == "LeftHand" || name == "RightHand") << name;
     EXPECT_GT(mitten.radius_head, 0.01) << name;
-    EXPECT_LT(mitten.radius_head, 0.04) << name << ": about a palm thick";
+    EXPECT_LT(mitten.radius_head, 0.04) << name << ": about half a palm wide";
     // A third or more of the hand's vertices lie within the capsule in the
     // rest pose (as thick as their median distance from its axis, over the
     // middle 90 % of the hand's length).
