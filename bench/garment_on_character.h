@@ -34,7 +34,8 @@ struct GarmentRun {
 
 /// The command-line options both benchmarks take for a run, after their own.
 inline constexpr const char* kRunOptionsUsage =
-    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--slack METRES] "
+    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--mass-exponent E] "
+    "[--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--stretch-stiffness N/M] "
     "[--self-contact METRES] [--mittens 0|1] [--threads N]";
 
@@ -48,6 +49,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--rounds") s.collision_rounds = std::atoi(value);
   else if (key == "--sweeps") s.strain_limit_sweeps = std::atoi(value);
   else if (key == "--acceleration") s.limiter_acceleration = std::atof(value);
+  else if (key == "--mass-exponent") s.limiter_mass_exponent = std::atof(value);
   else if (key == "--slack") s.contact_slack = std::atof(value);
   else if (key == "--round-tolerance") s.round_tolerance = std::atof(value);
   else if (key == "--tethers") s.tethers = std::atoi(value) != 0;

@@ -190,6 +190,8 @@ void check(const IntegratorOptions& o) {
   if (o.strain_limit_sweeps < 0) throw ArgumentError("strain limit sweeps must be >= 0");
   if (!(o.limiter_acceleration >= 0.0 && o.limiter_acceleration < 1.0))
     throw ArgumentError("the limiter acceleration (a spectral radius estimate) must be >= 0 and < 1");
+  if (!(o.limiter_mass_exponent >= 0.0 && o.limiter_mass_exponent <= 1.0))
+    throw ArgumentError("the limiter mass exponent must be >= 0 and <= 1");
   if (o.collision_rounds < 1) throw ArgumentError("collision rounds must be >= 1");
   if (!(o.round_tolerance >= 0.0)) throw ArgumentError("the round tolerance must be >= 0");
   if (!(o.contact_slack >= 0.0) || !std::isfinite(o.contact_slack))
@@ -241,7 +243,16 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     const auto& st = model.stencil[v];
     if (st.size() == 1 && st[0].weight == 1.0 && !has_pinned_part[v]) direct_free_[v] = st[0].free;
   }
-  inverse_mass_ = model.free_mass.cwiseInverse();
+  // The limiter's weights. Mass-weighted projections (exponent 1) conserve
+  // momentum, but on a multi-resolution mesh a coarse vertex is up to 16
+  // times as heavy as a finest one, takes a sixteenth of each correction,
+  // and the sweeps then converge so slowly that the finest cloth between
+  // coarse vertices tears (the shared skirt's adaptive meshes on the real
+  // walks: see README, Limiter weights); on a uniform mesh the masses,
+  // and so the weights, are nearly equal whatever the exponent.
+  projection_weight_.resize(model.free_mass.size());
+  for (Eigen::Index f = 0; f < projection_weight_.size(); ++f)
+    projection_weight_[f] = 1.0 / std::pow(model.free_mass[f], options.limiter_mass_exponent);
   const double limit = 1.0 + model.material.stretch_limit;
   sweep_.clear();
   for (int k : wavefront_order(model)) {
@@ -289,7 +300,7 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     for (const auto& [free, weight] : merged) {
       if (weight == 0.0) continue;
       general_terms_.push_back({free, weight});
-      g.denominator += weight * weight / model.free_mass[free];
+      g.denominator += weight * weight * projection_weight_[free];
     }
     g.count = static_cast<int>(general_terms_.size()) - g.first;
     general_of_[k] = static_cast<int>(general_.size());
@@ -374,7 +385,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     const double lambda = excess / g.denominator;
     const GeneralTerm* terms = general_terms_.data() + g.first;
     for (int t = 0; t < g.count; ++t) {
-      q.row(terms[t].free) -= (lambda * terms[t].weight / m.free_mass[terms[t].free]) * n.transpose();
+      q.row(terms[t].free) -= (lambda * terms[t].weight * projection_weight_[terms[t].free]) * n.transpose();
       keep_in_front(terms[t].free, q);
     }
     return true;
@@ -391,7 +402,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     if (length2 <= max_length * max_length) return false;
     const double length = std::sqrt(length2);
     sweep_largest = std::max(sweep_largest, (length - max_length) / s.rest);
-    const double wi = inverse_mass_[fi], wj = inverse_mass_[fj];
+    const double wi = projection_weight_[fi], wj = projection_weight_[fj];
     const double lambda = (length - max_length) / ((wi + wj) * length);
     for (int c = 0; c < 3; ++c) {
       q(fi, c) -= lambda * wi * e[c];

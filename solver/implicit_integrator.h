@@ -59,6 +59,7 @@ struct IntegratorOptions {
   int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
   double limiter_acceleration = 0.97;           ///< spectral radius estimate rho in [0, 1) for Chebyshev acceleration of a round's sweeps (see limit_strain); 0: plain sweeps
+  double limiter_mass_exponent = 0.5;           ///< the limiter moves a vertex in proportion to mass^-exponent, in [0, 1]: 1 mass-weighted (momentum-conserving), 0 equal; 0.5 converges on multi-resolution meshes, whose masses differ up to 16-fold (see precompute; README, Limiter weights)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collision checks) per step, >= 1
   double round_tolerance = 0.01;                ///< another round also while a spring starts it this much strain beyond the limit (0.01 = 1 %)
@@ -224,7 +225,7 @@ class ImplicitIntegrator {
   std::vector<int> general_of_;                // per spring: its index in general_, or -1 (both ends free vertices)
   std::vector<GeneralSpring> general_;
   std::vector<GeneralTerm> general_terms_;
-  Eigen::VectorXd inverse_mass_;       // per free vertex, 1/kg
+  Eigen::VectorXd projection_weight_;  // per free vertex, the limiter's: mass^-limiter_mass_exponent (1/kg when 1)
 };
 
 }  // namespace mrcloth

@@ -88,6 +88,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.iterations = options.iterations;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.limiter_acceleration = options.limiter_acceleration;
+  io.limiter_mass_exponent = options.limiter_mass_exponent;
   io.collision_rounds = options.collision_rounds;
   io.contact_slack = options.contact_slack;
   io.round_tolerance = options.round_tolerance;

@@ -783,6 +783,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "iterations: int >= 1 = 2 (per step), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
             "limiterAcceleration: number in [0, 1) = 0.97 (Chebyshev acceleration of those sweeps, a spectral radius "
             "estimate; 0: plain Gauss-Seidel sweeps), "
+            "limiterMassExponent: number in [0, 1] = 0.5 (the limiter moves a vertex in proportion to "
+            "mass^-exponent; 1: mass-weighted, 0: equal), "
             "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
             "before the point is checked against the body again), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "

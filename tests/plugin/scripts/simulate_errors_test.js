@@ -14,7 +14,7 @@ const sim = options => () => multirescloth.simulate(grid, options);
 expectThrows(() => multirescloth.simulate(99), "ArgumentError", "multirescloth.simulate: no object with id 99");
 expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options must be an object, got the number 5");
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
-             "accepted: frames, fps, substeps, iterations, limiterSweeps, limiterAcceleration, collisionRounds, contactSlack, material, alpha, alphaBend, " +
+             "accepted: frames, fps, substeps, iterations, limiterSweeps, limiterAcceleration, limiterMassExponent, collisionRounds, contactSlack, material, alpha, alphaBend, " +
              "gravity, pins, colliders, " +
              "output, objSequence, updateObject, selfContact, threads");
 
@@ -29,6 +29,8 @@ expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must b
 expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
 expectThrows(sim({limiterAcceleration: -0.1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0, got the number -0.1");
 expectThrows(sim({limiterAcceleration: 1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0 and < 1 (0: plain limiter sweeps), got 1");
+expectThrows(sim({limiterMassExponent: -0.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0, got the number -0.5");
+expectThrows(sim({limiterMassExponent: 1.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0 and <= 1 (1: mass-weighted limiter projections), got 1.5");
 expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer >= 1");
 expectThrows(sim({collisionRounds: 1.5}), "ArgumentError", "option 'collisionRounds' must be an integer, got the number 1.5");
 expectThrows(sim({contactSlack: -0.001}), "ArgumentError", "option 'contactSlack' must be a number >= 0, got the number -0.001");
