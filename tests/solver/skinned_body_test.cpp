@@ -608,6 +608,35 @@ TEST(MeshBody, AMemoNearIgnoredTrianglesNeverChangesAnAnswer) {
   EXPECT_GT(differing_sides, 100) << "most walks should reach what the tree calls inside";
 }
 
+TEST(MeshBody, AboveAHoleLeftByIgnoredTrianglesThePointIsOutside) {
+  // Ignored (turned) triangles leave a hole in the seen surface. A 10 cm
+  // cube, its top's 1 cm cells next to the +x edge ignored at 0 < z < 1
+  // cm: a point 2 mm above the hole, 4 mm in from that edge, is outside,
+  // but its nearest seen triangle is the side face's, under the edge,
+  // whose side calls it 4.5 mm inside (what the groin's fold did on a
+  // walk). The whole mesh decides there: outside, not pushed, and inside
+  // just under the hole.
+  Mesh cube = subdivided_cube(10);
+  cube.vertices *= 0.05;
+  std::vector<char> ignored(cube.triangles.size(), 0);
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t) {
+    const Vector3d c = (cube.vertex(cube.triangles[t](0)) + cube.vertex(cube.triangles[t](1)) + cube.vertex(cube.triangles[t](2))) / 3.0;
+    if (c.y() > 0.0499 && c.x() > 0.04 && c.z() > 0.0 && c.z() < 0.01) ignored[t] = 1;
+  }
+  ASSERT_EQ(std::count(ignored.begin(), ignored.end(), 1), 2);
+  MeshBody body(cube.vertices, cube.triangles, 0.001, 0.0), whole(cube.vertices, cube.triangles, 0.001, 0.0);
+  body.update(cube.vertices, ignored);
+  const Vector3d above(0.046, 0.052, 0.005);
+  EXPECT_EQ(whole.depth(above), 0.0);
+  EXPECT_EQ(body.depth(above), 0.0) << "above the top: outside";
+  EXPECT_NEAR(body.query(above).distance, std::hypot(0.004, 0.002), 1e-12) << "the side face's edge is nearest, outside";
+  Vector3d p = above;
+  EXPECT_EQ(body.resolve(p, p, false), 0.0);
+  EXPECT_EQ(p, above);
+  const Vector3d under(0.046, 0.049, 0.005);  // inside, 1 mm under the hole
+  EXPECT_GT(body.depth(under), 0.0009);
+}
+
 TEST(MeshBody, AMemoNearIgnoredTrianglesHandsOnNoSide) {
   // Near ignored triangles the nearest seen one can give the wrong side
   // (the seen surface is open there), so such a memo must not hand its side
