@@ -1,6 +1,7 @@
 // The same simulation twice gives the same bytes: no hidden state between
 // calls, no dependence on timing or the thread count. On a mesh with T-nodes, with colliders and
-// pins; a different option gives a different cache. Arguments: <tests/data> <shared data> <tmp>.
+// pins; a different option gives a different cache (limiterMassExponent's
+// default given explicitly, the same). Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 
@@ -73,4 +74,15 @@ delete options.collisionRounds;
 options.limiterSweeps = 0;
 multirescloth.simulate(refined, options);
 if (core.filesEqual(paths[0], options.output)) throw new Error("no limiter sweeps wrote the same cache");
+// The limiter's mass exponent reaches the solver: its default (0.5) given
+// explicitly writes the same bytes, mass-weighted projections (1) others.
+delete options.limiterSweeps;
+options.output = tmpDir + "/run_exponent_default.pc2";
+options.limiterMassExponent = 0.5;
+multirescloth.simulate(refined, options);
+if (!core.filesEqual(paths[0], options.output)) throw new Error("limiterMassExponent 0.5 is not the default");
+options.output = tmpDir + "/run_mass_weighted.pc2";
+options.limiterMassExponent = 1;
+multirescloth.simulate(refined, options);
+if (core.filesEqual(paths[0], options.output)) throw new Error("mass-weighted limiter projections wrote the same cache");
 print("simulate determinism: ok");
