@@ -363,14 +363,15 @@ void ImplicitIntegrator::gradient(const Positions& q, const Positions& y, Positi
 
 // Moves free positions so no stretch spring exceeds (1 + limit) rest length,
 // treating each spring as a constraint on its ends' free stencils (weights
-// from S), mass-weighted, in spring order (deterministic).
+// from S), each free vertex moving in proportion to its projection weight
+// (mass^-limiter_mass_exponent), in spring order (deterministic).
 double ImplicitIntegrator::limit_strain(Positions& q) const {
   const DynamicsModel& m = *model_;
   const double limit = 1.0 + m.material.stretch_limit;
   double largest = 0.0;        // the largest strain beyond the limit met
   double sweep_largest = 0.0;  // the same in the current sweep
   // Ends that are T-nodes or pinned: the constraint acts on their free
-  // stencils, mass-weighted (general, slower path).
+  // stencils, by their projection weights (general, slower path).
   // (The arithmetic is position_of's and the per-term update's, so a spring
   // without shared terms, a pinned end's, projects to the same bits as
   // before the terms were merged.)
@@ -390,7 +391,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     }
     return true;
   };
-  // Both ends free vertices: plain mass-weighted projection.
+  // Both ends free vertices: plain weighted projection.
   const auto limit_direct = [&](const LimitedSpring& s) {
     const int fi = s.fi, fj = s.fj;
     double e[3], length2 = 0.0;

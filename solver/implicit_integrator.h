@@ -213,7 +213,7 @@ class ImplicitIntegrator {
   /// A spring with a T-node or pinned end, as the constraint sees it: the
   /// free vertices its length depends on, each once (a T-node's spring to
   /// its own parent shares a free vertex between both ends), and the
-  /// mass-weighted denominator of its projection.
+  /// denominator of its projection, weighted as the limiter weighs (projection_weight_).
   struct GeneralTerm {
     int free;
     double weight;  // d(spring vector) / d(free vertex position)
