@@ -886,7 +886,8 @@ struct MeshBody::Impl {
   std::vector<std::array<int, 3>> neighbours;  ///< triangle across edge k
   std::vector<int> ring_start;                 ///< per vertex, its first entry in ring (one past the end: the next vertex's)
   std::vector<std::pair<int, int>> ring;       ///< (triangle, corner) around each vertex
-  std::vector<Vector3d> x, x_previous;         ///< vertex positions now and at the previous update
+  std::vector<Vector3d> x, x_previous;         ///< vertex positions now and at the previous update (in number_vertices_by_leaf's order)
+  std::vector<int> input_vertex;               ///< per vertex, its row in the input (empty: the input's order)
   Vector3d root_lo{0, 0, 0}, root_hi{0, 0, 0};  ///< the whole mesh's box
   double thickness = 0.0, friction = 0.0;
   unsigned long long serial = 0;  ///< counts update() calls: a memo is only good for the pose it was made in
@@ -901,7 +902,31 @@ struct MeshBody::Impl {
 
   void set_positions(const Eigen::MatrixX3d& vertices) {
     x.resize(static_cast<std::size_t>(vertices.rows()));
-    for (Eigen::Index v = 0; v < vertices.rows(); ++v) x[static_cast<std::size_t>(v)] = vertices.row(v).transpose();
+    for (std::size_t v = 0; v < x.size(); ++v)
+      x[v] = vertices.row(input_vertex.empty() ? static_cast<Eigen::Index>(v) : input_vertex[v]).transpose();
+  }
+
+  /// Renumbers the vertices in the order the triangles (in leaf order)
+  /// first use them, the unused ones last: a leaf's corners then lie
+  /// together in x, not scattered over the input's order.
+  void number_vertices_by_leaf() {
+    std::vector<int> internal(x.size(), -1);
+    input_vertex.clear();
+    input_vertex.reserve(x.size());
+    for (Eigen::Vector3i& tri : triangles)
+      for (int k = 0; k < 3; ++k) {
+        int& to = internal[static_cast<std::size_t>(tri(k))];
+        if (to < 0) {
+          to = static_cast<int>(input_vertex.size());
+          input_vertex.push_back(tri(k));
+        }
+        tri(k) = to;
+      }
+    for (std::size_t v = 0; v < internal.size(); ++v)
+      if (internal[v] < 0) input_vertex.push_back(static_cast<int>(v));
+    std::vector<Vector3d> reordered(x.size());
+    for (std::size_t v = 0; v < x.size(); ++v) reordered[v] = x[static_cast<std::size_t>(input_vertex[v])];
+    x = std::move(reordered);
   }
 
   /// Builds the subtree of order[begin, end) and returns it as a child
@@ -1768,6 +1793,7 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
       m.neighbours[t][static_cast<std::size_t>(k)] = found->second / 3;
     }
   }
+  m.number_vertices_by_leaf();  // after the checks above, whose messages name the input's vertices
 
   m.ring_start.assign(m.x.size() + 1, 0);
   for (const Eigen::Vector3i& tri : m.triangles)
