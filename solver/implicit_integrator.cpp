@@ -267,6 +267,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   }
   tethers_ = options.tethers ? tethers_to_pins(model, direct_free_) : std::vector<Tether>{};
   check_order_ = spatial_order(free_rows(model, model.rest));
+  memo_slot_.assign(check_order_.size(), 0);
+  for (std::size_t k = 0; k < check_order_.size(); ++k) memo_slot_[static_cast<std::size_t>(check_order_[k])] = static_cast<int>(k);
   const Eigen::Index plane_rows = static_cast<Eigen::Index>(model.free_vertices.size() + model.hanging_vertices.size());
   plane_point_.resize(plane_rows, 3);
   plane_normal_.resize(plane_rows, 3);
@@ -590,7 +592,7 @@ int ImplicitIntegrator::check_contacts(const Positions& q_previous, Positions& q
     Eigen::Vector3d x = before;
     SurfaceNearby nearby;
     const double correction = scene.resolve(q_previous.row(f).transpose(), x, first && !forced,
-                                            &memos_[static_cast<std::size_t>(f)], &nearby);
+                                            &memos_[static_cast<std::size_t>(memo_slot_[static_cast<std::size_t>(f)])], &nearby);
     q.row(f) = x.transpose();
     anchor_.row(f) = x.transpose();
     set_plane(f, before, x, nearby);

@@ -202,6 +202,7 @@ class ImplicitIntegrator {
   std::vector<LimitedSpring> sweep_;   // stretch springs in strain-limiting order
   std::vector<Tether> tethers_;
   std::vector<int> check_order_;       // free vertices in the order they are checked (near each other in space)
+  std::vector<int> memo_slot_;         // per free vertex, its memo's index in memos_: its place in check_order_, so a check reads the memos in sequence
   // The limiter's active set (see limit_strain): per free vertex, moved
   // since its springs were last evaluated / moved in the current sweep; q
   // as the last pass left it; whether the next pass is the step's first.
