@@ -1089,7 +1089,9 @@ struct MeshBody::Impl {
   static float round_up(double v) { return static_cast<float>(v + (std::abs(v) * 4e-7 + 1e-30)); }
 
   /// Children after parents in `nodes`, so one backward pass refits: O(n).
-  void refit() {
+  /// `first`: no earlier pose (x_previous is x), so the swept boxes are
+  /// the boxes.
+  void refit(bool first = false) {
     swept.resize(nodes.size());
     triangle_boxes.resize(triangles.size());
     for (std::size_t i = nodes.size(); i-- > 0;) {
@@ -1105,17 +1107,13 @@ struct MeshBody::Impl {
           continue;
         }
         Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        Vector3d swept_lo = lo, swept_hi = hi;
         if (node.count[k] > 0) {
           for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) {
             Vector3d triangle_lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), triangle_hi = -triangle_lo;
             for (int c = 0; c < 3; ++c) {
               const Vector3d& q = corner(t, c);
-              const Vector3d& before = x_previous[static_cast<std::size_t>(triangles[static_cast<std::size_t>(t)](c))];
               triangle_lo = triangle_lo.cwiseMin(q);
               triangle_hi = triangle_hi.cwiseMax(q);
-              swept_lo = swept_lo.cwiseMin(before);
-              swept_hi = swept_hi.cwiseMax(before);
             }
             std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
             for (int a = 0; a < 3; ++a) {
@@ -1125,25 +1123,23 @@ struct MeshBody::Impl {
             lo = lo.cwiseMin(triangle_lo);
             hi = hi.cwiseMax(triangle_hi);
           }
-          swept_lo = swept_lo.cwiseMin(lo);
-          swept_hi = swept_hi.cwiseMax(hi);
         } else {
-          const auto c = static_cast<std::size_t>(node.index[k]);
-          const Node& child = nodes[c];
-          const SweptBoxes& child_sweep = swept[c];
+          const Node& child = nodes[static_cast<std::size_t>(node.index[k])];
           for (int a = 0; a < 3; ++a) {
             // Float to double is exact: the union of the child's boxes.
             lo(a) = std::min(child.lo[0][a], child.lo[1][a]);
             hi(a) = std::max(child.hi[0][a], child.hi[1][a]);
-            swept_lo(a) = std::min(child_sweep.lo[0][a], child_sweep.lo[1][a]);
-            swept_hi(a) = std::max(child_sweep.hi[0][a], child_sweep.hi[1][a]);
           }
         }
+        // The box over both poses is the union of this box and the last:
+        // rounding outwards is monotonic, so rounding the union of the
+        // corners (of the children's swept boxes) gives the same floats.
         for (int a = 0; a < 3; ++a) {
-          node.lo[k][a] = round_down(lo(a));
-          node.hi[k][a] = round_up(hi(a));
-          sweep.lo[k][a] = round_down(swept_lo(a));
-          sweep.hi[k][a] = round_up(swept_hi(a));
+          const float new_lo = round_down(lo(a)), new_hi = round_up(hi(a));
+          sweep.lo[k][a] = first ? new_lo : std::min(node.lo[k][a], new_lo);
+          sweep.hi[k][a] = first ? new_hi : std::max(node.hi[k][a], new_hi);
+          node.lo[k][a] = new_lo;
+          node.hi[k][a] = new_hi;
         }
       }
     }
@@ -1808,7 +1804,7 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
   m.nodes4.reserve(m.nodes.size());
   m.build4(0);
   m.x_previous = m.x;
-  m.refit();
+  m.refit(/*first=*/true);
   double volume = 0.0;
   for (const Eigen::Vector3i& tri : m.triangles)
     volume += m.x[static_cast<std::size_t>(tri(0))].dot(m.x[static_cast<std::size_t>(tri(1))].cross(m.x[static_cast<std::size_t>(tri(2))]));
