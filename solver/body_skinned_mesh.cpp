@@ -572,32 +572,51 @@ std::vector<Matrix3d> joint_turns(const SkinnedBody& body, const Skeleton& skele
 
 std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose,
                                    const Eigen::MatrixX3d& posed) {
+  TurnedTriangles turned(body);
+  return turned(skeleton, pose, posed);
+}
+
+namespace {
+const Eigen::MatrixX3d& source_vertices(const SkinnedBody& body) {
+  return body.input_vertices.rows() > 0 ? body.input_vertices : body.rest_vertices;
+}
+}  // namespace
+
+TurnedTriangles::TurnedTriangles(const SkinnedBody& body) : body_(body) {
+  const Eigen::MatrixX3d& source = source_vertices(body);
+  source_normal_.reserve(body.triangles.size());
+  const auto row = [&](int v) { return Vector3d(source.row(v).transpose()); };
+  for (const Eigen::Vector3i& tri : body.triangles)
+    source_normal_.push_back((row(tri[1]) - row(tri[0])).cross(row(tri[2]) - row(tri[0])));
+}
+
+const std::vector<char>& TurnedTriangles::operator()(const Skeleton& skeleton, const Pose& pose,
+                                                     const Eigen::MatrixX3d& posed) {
+  const SkinnedBody& body = body_;
   const std::size_t n = skeleton.joints.size();
   if (pose.global.size() != n)
     throw ArgumentError("turned_triangles: the pose has " + std::to_string(pose.global.size()) + " joints; expected " +
                         std::to_string(n) + " (the skeleton's)");
   check_body(body, n, "turned_triangles");
-  const Eigen::MatrixX3d& source = body.input_vertices.rows() > 0 ? body.input_vertices : body.rest_vertices;
+  const Eigen::MatrixX3d& source = source_vertices(body);
   if (posed.rows() != source.rows())
     throw ArgumentError("turned_triangles: " + std::to_string(posed.rows()) + " posed vertices; expected " +
                         std::to_string(source.rows()));
   const std::vector<Matrix3d> turn = joint_turns(body, skeleton, pose);
   // Per vertex, the linear part of its blend.
-  std::vector<Matrix3d> blend(static_cast<std::size_t>(source.rows()), Matrix3d::Zero());
-  for (std::size_t v = 0; v < blend.size(); ++v)
-    for (const auto& [joint, w] : body.weights[v]) blend[v] += w * turn[static_cast<std::size_t>(joint)];
-  std::vector<char> turned(body.triangles.size(), 0);
+  blend_.assign(static_cast<std::size_t>(source.rows()), Matrix3d::Zero());
+  for (std::size_t v = 0; v < blend_.size(); ++v)
+    for (const auto& [joint, w] : body.weights[v]) blend_[v] += w * turn[static_cast<std::size_t>(joint)];
+  turned_.assign(body.triangles.size(), 0);
   for (std::size_t t = 0; t < body.triangles.size(); ++t) {
     const Eigen::Vector3i& tri = body.triangles[t];
-    const auto row = [](const Eigen::MatrixX3d& m, int v) { return Vector3d(m.row(v).transpose()); };
-    const Vector3d source_normal =
-        (row(source, tri[1]) - row(source, tri[0])).cross(row(source, tri[2]) - row(source, tri[0]));
-    const Vector3d carried = (blend[static_cast<std::size_t>(tri[0])] + blend[static_cast<std::size_t>(tri[1])] +
-                              blend[static_cast<std::size_t>(tri[2])]) * source_normal;
-    const Vector3d normal = (row(posed, tri[1]) - row(posed, tri[0])).cross(row(posed, tri[2]) - row(posed, tri[0]));
-    turned[t] = normal.dot(carried) < 0.0 ? 1 : 0;
+    const auto row = [&](int v) { return Vector3d(posed.row(v).transpose()); };
+    const Vector3d carried = (blend_[static_cast<std::size_t>(tri[0])] + blend_[static_cast<std::size_t>(tri[1])] +
+                              blend_[static_cast<std::size_t>(tri[2])]) * source_normal_[t];
+    const Vector3d normal = (row(tri[1]) - row(tri[0])).cross(row(tri[2]) - row(tri[0]));
+    turned_[t] = normal.dot(carried) < 0.0 ? 1 : 0;
   }
-  return turned;
+  return turned_;
 }
 
 namespace {

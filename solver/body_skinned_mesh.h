@@ -80,6 +80,23 @@ Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const P
 std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose,
                                    const Eigen::MatrixX3d& posed);
 
+/// turned_triangles for one body pose after pose (a posed body's every
+/// step): the source normals formed once, the per-vertex blends in a
+/// buffer kept between calls. The same flags, to the bit.
+class TurnedTriangles {
+ public:
+  /// The body must outlive this; each call checks it against the skeleton.
+  explicit TurnedTriangles(const SkinnedBody& body);
+  /// turned_triangles(body, skeleton, pose, posed); valid until the next call.
+  const std::vector<char>& operator()(const Skeleton& skeleton, const Pose& pose, const Eigen::MatrixX3d& posed);
+
+ private:
+  const SkinnedBody& body_;
+  std::vector<Eigen::Vector3d> source_normal_;  ///< per triangle, its (unnormalised) normal in the source mesh
+  std::vector<Eigen::Matrix3d> blend_;          ///< per vertex, the linear part of its blend in the last pose
+  std::vector<char> turned_;
+};
+
 /// The skeleton posed as the body's input mesh was modelled (MakeHuman's
 /// A-pose): every joint's rest rotation undone by its rest correction, the
 /// root where the rest pose has it, positions by forward kinematics with the

@@ -67,7 +67,8 @@ SkinnedPosedBody::SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, d
     : body_(std::move(body)),
       drawn_(std::move(drawn)),
       skeleton_(skeleton),
-      mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)) {
+      mesh_(std::make_unique<MeshBody>(body_.rest_vertices, body_.triangles, thickness, friction)),
+      turned_(body_) {
   if (!capsules.bones.empty() || !capsules.bridges.empty()) {
     capsules.thickness = thickness;
     capsules.friction = friction;
@@ -81,7 +82,7 @@ SkinnedPosedBody::~SkinnedPosedBody() = default;
 void SkinnedPosedBody::set_pose(const Pose& pose) {
   const Eigen::MatrixX3d vertices = skin(body_, skeleton_, pose);
   // Skin the blend has folded over (behind a bent knee) is not the outside.
-  mesh_->update(vertices, turned_triangles(body_, skeleton_, pose, vertices));
+  mesh_->update(vertices, turned_(skeleton_, pose, vertices));
   // The bridges sit between the body's own legs, not the capture subject's.
   if (bridges_) bridges_->pose(proportioned_pose(skeleton_, body_.joint_rest, pose));
 }

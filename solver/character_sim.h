@@ -57,6 +57,8 @@ class SkinnedPosedBody : public PosedBody {
   SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3,
                    CapsuleRig capsules = {}, SkinnedBody drawn = {});
   ~SkinnedPosedBody() override;
+  SkinnedPosedBody(const SkinnedPosedBody&) = delete;  // its scene and turned-triangle test refer to its own members
+  SkinnedPosedBody& operator=(const SkinnedPosedBody&) = delete;
   void set_pose(const Pose& pose) override;
   const CollisionScene& scene() const override;
   BodySurface surface(const Pose& pose) const override;  ///< the skinned mesh, then the bridges
@@ -67,6 +69,7 @@ class SkinnedPosedBody : public PosedBody {
   SkinnedBody drawn_;  ///< what surface() draws (empty: body_)
   const Skeleton& skeleton_;
   std::unique_ptr<MeshBody> mesh_;
+  TurnedTriangles turned_;  ///< over body_, so declared after it
   std::unique_ptr<CapsuleBody> bridges_;  ///< the bridges and mittens; null without any
   std::unique_ptr<MeshAndBridges> scene_;
 };

@@ -1375,6 +1375,26 @@ TEST_F(SkinnedBodyTest, TurnedTrianglesAreTheSkinFoldedBehindBentJoints) {
   EXPECT_GE(agree_with, points * 85 / 100);
 }
 
+// A posed body keeps one TurnedTriangles from step to step: its flags in
+// each pose of a walk are the one-shot function's (the kept buffers carry
+// nothing from one pose to the next), folds included.
+TEST_F(SkinnedBodyTest, TurnedTrianglesKeptAcrossPosesFlagWhatTheOneShotTestFlags) {
+  SKIP_WITHOUT_BODY();
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  TurnedTriangles kept(*body_);
+  long folded = 0;
+  for (int frame = 0; frame < walk.frames.rows(); frame += 7) {
+    const Pose pose = frame_pose(walk, frame);
+    const Eigen::MatrixX3d posed = skin(*body_, skeleton(), pose);
+    const std::vector<char> fresh = turned_triangles(*body_, skeleton(), pose, posed);
+    ASSERT_EQ(kept(skeleton(), pose, posed), fresh) << "frame " << frame;
+    folded += std::count(fresh.begin(), fresh.end(), 1);
+  }
+  EXPECT_GT(folded, 0) << "no pose of the walk folds any skin; the comparison proves little";
+  const Pose bad = frame_pose(walk, 0);
+  EXPECT_THROW(kept(skeleton(), bad, Eigen::MatrixX3d::Zero(3, 3)), ArgumentError);
+}
+
 // More than 1 cm from the seen skin, with folded triangles left out, a
 // point's side is the parity of the whole surface's crossings along a ray
 // (MeshBody takes the shortest way out of the body's box). On the walking
