@@ -1151,8 +1151,9 @@ struct MeshBody::Impl {
           }
         }
         // The box over both poses is the union of this box and the last:
-        // rounding outwards is monotonic, so rounding the union of the
-        // corners (of the children's swept boxes) gives the same floats.
+        // rounding outwards is monotonic, so these are the floats that
+        // rounding the union of both poses' corners (or of the children's
+        // swept boxes) gives.
         for (int a = 0; a < 3; ++a) {
           const float new_lo = round_down(lo(a)), new_hi = round_up(hi(a));
           sweep.lo[k][a] = first ? new_lo : std::min(node.lo[k][a], new_lo);

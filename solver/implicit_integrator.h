@@ -172,7 +172,7 @@ class ImplicitIntegrator {
   SelfContact self_contact_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
-  mutable std::vector<ContactMemo> memos_;  // per free vertex, then per T-node: what the scene remembers between checks
+  mutable std::vector<ContactMemo> memos_;  // per free vertex (at memo_slot_), then per T-node: what the scene remembers between checks
   // Per free vertex, then per T-node: where its last check left it, and
   // how far it may move from there before it needs another.
   mutable Positions anchor_;
