@@ -167,9 +167,9 @@ std::vector<BoneCapsule> hand_mitten_capsules(const Skeleton& skeleton, const Sk
   // rest pose, from the 5th to the 95th percentile along it, as thick as
   // the median distance from that axis (about half a palm's width, so
   // thicker than the palm; the spread fingers and thumb stay partly
-  // outside), carried by the hand joint. (A fit to the whole hand's cross-sections, as fit_capsule_radii
-  // fits limbs, came out 5 cm thick and caught more cloth at the hip than
-  // the hand did.)
+  // outside), carried by the hand joint. (A fit to the whole hand's
+  // cross-sections, as fit_capsule_radii fits limbs, came out 5 cm thick
+  // and caught more cloth at the hip than the hand did.)
   std::vector<BoneCapsule> mittens;
   for (const auto& [hand, cloud] : points) {
     if (cloud.size() < 4) continue;  // too few points for an axis
