@@ -521,7 +521,26 @@ CapsuleBody::CapsuleBody(CapsuleRig rig, const Skeleton& skeleton) : rig_(std::m
   check_skeleton(skeleton, "CapsuleBody");
   check_rig(rig_, static_cast<int>(skeleton.joints.size()), "CapsuleBody");
   colliders_ = posed_capsules(rig_, rest_pose(skeleton));
+  update_boxes();
   previous_ = colliders_;
+}
+
+void CapsuleBody::update_boxes() {
+  boxes_.resize(colliders_.size());
+  for (std::size_t i = 0; i < colliders_.size(); ++i) {
+    const auto* capsule = std::get_if<CapsuleCollider>(&colliders_[i].shape);
+    std::array<double, 6>& box = boxes_[i];
+    if (!capsule) {  // not a capsule (the rig makes none such): never beyond
+      box.fill(std::numeric_limits<double>::infinity());
+      for (int c = 0; c < 3; ++c) box[static_cast<std::size_t>(c)] = -box[static_cast<std::size_t>(c)];
+      continue;
+    }
+    const double grow = std::max(capsule->radius_a, capsule->radius_b) + colliders_[i].thickness;
+    for (int c = 0; c < 3; ++c) {
+      box[static_cast<std::size_t>(c)] = std::min(capsule->a(c), capsule->b(c)) - grow;
+      box[static_cast<std::size_t>(c + 3)] = std::max(capsule->a(c), capsule->b(c)) + grow;
+    }
+  }
 }
 
 void CapsuleBody::pose(const Pose& pose) {
@@ -546,6 +565,7 @@ void CapsuleBody::pose(const Pose& pose) {
     if (posed_) previous_[i].shape = colliders_[i].shape;
     colliders_[i] = bridge_collider(rig_, rig_.bridges[k], pose);
   }
+  update_boxes();
   // The first pose may be far from the construction pose (the rest pose at
   // the origin): that jump is not a motion the cloth took part in.
   if (!posed_) previous_ = colliders_;
@@ -582,6 +602,23 @@ double CapsuleBody::resolve_with_memo(const Eigen::Vector3d& start, Eigen::Vecto
   if ((position - memo->centre).squaredNorm() < trusted2) return largest;
   position = input;  // pushed beyond what the memo vouches for: every capsule answers
   return resolve_point(previous_, colliders_, start, position, friction);
+}
+
+bool CapsuleBody::beyond(const Eigen::Vector3d& p, double reach) const {
+  // A tapered capsule lies inside the round one of its larger radius, which
+  // lies inside its segment's box grown by that radius: a point that far
+  // outside the box along one axis is that far from the capsule. A
+  // micrometre more keeps the exact tests' rounding (surely_clear's and
+  // nearest_surface's bound) on the same side.
+  constexpr double kRoundingMargin = 1e-6;  // metres
+  const double r = reach + kRoundingMargin;
+  for (const std::array<double, 6>& box : boxes_) {
+    bool outside = false;
+    for (int c = 0; c < 3 && !outside; ++c)
+      outside = p(c) < box[static_cast<std::size_t>(c)] - r || p(c) > box[static_cast<std::size_t>(c + 3)] + r;
+    if (!outside) return false;
+  }
+  return true;
 }
 
 double CapsuleBody::penetration(const Eigen::Vector3d& p) const { return mrcloth::penetration(colliders_, p); }

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <array>
 #include <vector>
 
 namespace mrcloth {
@@ -116,13 +117,23 @@ class CapsuleBody : public CollisionScene {
   bool empty() const override { return colliders_.empty(); }
   const std::vector<Collider>& colliders() const { return colliders_; }
   const CapsuleRig& rig() const { return rig_; }
+  /// True when p is certainly more than `reach` (metres, >= 0) outside
+  /// every thickened capsule of the current pose: resolve then moves
+  /// nothing, and nearest_surface(colliders(), p, reach) finds no surface
+  /// within reach. One box test per capsule, no square root.
+  bool beyond(const Eigen::Vector3d& p, double reach) const;
 
  private:
   double resolve_with_memo(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
                            ContactMemo* memo) const;
+  void update_boxes();
   CapsuleRig rig_;
   std::vector<Collider> colliders_;
   std::vector<Collider> previous_;  ///< the capsules before the last pose()
+  /// Per collider, the box of its thickened capsule in the current pose
+  /// (lo x y z, hi x y z); a collider that is not a capsule gets an
+  /// infinite box and is never beyond.
+  std::vector<std::array<double, 6>> boxes_;
   bool posed_ = false;              ///< false until the first pose(): no motion to carry yet
   unsigned long long serial_ = 0;   ///< counts pose() calls: a memo is good for the pose it was made in
 };

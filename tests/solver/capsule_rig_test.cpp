@@ -389,6 +389,59 @@ TEST(CapsuleBody, AMemoNeverChangesAnAnswer) {
   EXPECT_EQ(foreign.items, std::vector<int>{12345});
 }
 
+TEST(CapsuleBody, BeyondMeansNothingMovesAndNothingIsWithinReach) {
+  // Random points about a posed rig with leg bridges (the capsules a
+  // skinned body adds): wherever beyond(p, reach) says so, a resolve must
+  // leave p exactly where it was and push nothing, and the nearest surface
+  // must lie no nearer than reach. Points on a capsule's thickened surface
+  // and just outside it are never beyond.
+  const Skeleton skeleton = cmu_like();
+  CapsuleRigOptions options;
+  options.thickness = 0.004;
+  CapsuleRig rig = make_capsule_rig(skeleton, options);
+  add_leg_bridges(rig, skeleton, 1.0);
+  CapsuleBody body(rig, skeleton);
+  const Motion motion = random_motion(skeleton, 2, 5);
+  body.pose(frame_pose(motion, 0));
+  body.pose(frame_pose(motion, 1));
+  constexpr double kReach = 0.01;
+  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Collider& c : body.colliders()) {
+    const auto& capsule = std::get<CapsuleCollider>(c.shape);
+    lo = lo.cwiseMin(capsule.a).cwiseMin(capsule.b);
+    hi = hi.cwiseMax(capsule.a).cwiseMax(capsule.b);
+  }
+  lo.array() -= 0.3;
+  hi.array() += 0.3;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int beyond = 0, near = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vector3d p = lo + (hi - lo).cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng)));
+    if (!body.beyond(p, kReach)) {
+      ++near;
+      continue;
+    }
+    ++beyond;
+    Vector3d moved = p;
+    ASSERT_EQ(body.resolve(p + Vector3d(0.01, 0.0, 0.0), moved, true), 0.0) << k;
+    ASSERT_EQ(moved, p) << k;
+    const SurfaceNearby nearby = nearest_surface(body.colliders(), p, kReach);
+    ASSERT_FALSE(nearby.has_plane) << k;
+    ASSERT_GE(nearby.clearance, kReach) << k;
+  }
+  EXPECT_GT(beyond, 5000) << "the samples must probe points the boxes exclude";
+  EXPECT_GT(near, 1000) << "and points they do not";
+  // On each capsule's thickened surface, and reach outside it: not beyond.
+  for (const Collider& c : body.colliders()) {
+    const auto& capsule = std::get<CapsuleCollider>(c.shape);
+    const Vector3d side = (capsule.b - capsule.a).unitOrthogonal();
+    const Vector3d on = 0.5 * (capsule.a + capsule.b) + (0.5 * (capsule.radius_a + capsule.radius_b) + c.thickness) * side;
+    EXPECT_FALSE(body.beyond(on, 0.0));
+    EXPECT_FALSE(body.beyond(on + kReach * side, kReach));
+  }
+}
+
 TEST(CapsuleBody, HandComputedDistancesOfOneTaperedCapsule) {
   // One bone from (0, 0, 0) to (0, 1, 0) with radii 0.1 -> 0.05 (overridden).
   const Skeleton skeleton = one_bone();
