@@ -49,6 +49,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -195,7 +196,7 @@ class ImplicitIntegrator {
   /// on an 11088-vertex skirt).
   struct LimitedSpring {
     int fi = -1;              // free index of end i if both ends are free vertices; -1: a general spring
-    int fj = -1;              // free index of end j; for a general spring, its index in model.springs
+    int fj = -1;              // free index of end j; for a general spring, its index in general_
     double max_length = 0.0;  // (1 + stretch limit) * rest, metres
     double rest = 0.0;        // metres
   };
@@ -207,6 +208,11 @@ class ImplicitIntegrator {
   // since its springs were last evaluated / moved in the current sweep; q
   // as the last pass left it; whether the next pass is the step's first.
   mutable std::vector<char> dirty_, swept_;
+  // Per free vertex, the sweep_ slots of the springs it moves (the limiter's
+  // dependents: both ends of a direct spring, a general one's terms), in
+  // CSR form; and the slots measured every sweep (both ends pinned).
+  std::vector<int> dependent_start_, dependent_slots_, always_slots_;
+  mutable std::vector<std::uint64_t> due_;  // per sweep_ slot, one bit: a vertex it depends on is dirty
   mutable Positions limited_;
   mutable Positions older_, previous_;  // the limiter's iterates two sweeps and one sweep back (Chebyshev acceleration)
   mutable bool fresh_pass_ = true;
@@ -222,10 +228,16 @@ class ImplicitIntegrator {
   struct GeneralSpring {
     int first = 0, count = 0;  // its terms in general_terms_
     double denominator = 0.0;  // sum of weight^2 / mass; 0 when both ends are pinned
+    // Its ends as position_of reads them, in one place: vertices i and j
+    // (their pinned parts), then their stencils in general_ends_ (i's
+    // count_i terms, then j's count_j).
+    int i = -1, j = -1;
+    int ends_first = 0, count_i = 0, count_j = 0;
+    double rest = 0.0;  // metres
   };
-  std::vector<int> general_of_;                // per spring: its index in general_, or -1 (both ends free vertices)
   std::vector<GeneralSpring> general_;
   std::vector<GeneralTerm> general_terms_;
+  std::vector<StencilTerm> general_ends_;
   Eigen::VectorXd projection_weight_;  // per free vertex, the limiter's: mass^-limiter_mass_exponent (1/kg when 1)
 };
 
