@@ -603,10 +603,20 @@ const std::vector<char>& TurnedTriangles::operator()(const Skeleton& skeleton, c
     throw ArgumentError("turned_triangles: " + std::to_string(posed.rows()) + " posed vertices; expected " +
                         std::to_string(source.rows()));
   const std::vector<Matrix3d> turn = joint_turns(body, skeleton, pose);
-  // Per vertex, the linear part of its blend.
-  blend_.assign(static_cast<std::size_t>(source.rows()), Matrix3d::Zero());
-  for (std::size_t v = 0; v < blend_.size(); ++v)
-    for (const auto& [joint, w] : body.weights[v]) blend_[v] += w * turn[static_cast<std::size_t>(joint)];
+  // Per vertex, the linear part of its blend (its first weight's term
+  // written, not added to zeros: the same values, one pass fewer over the
+  // buffer; a zero's sign may differ, which no sign test below can see).
+  blend_.resize(static_cast<std::size_t>(source.rows()));
+  for (std::size_t v = 0; v < blend_.size(); ++v) {
+    const auto& weights = body.weights[v];
+    if (weights.empty()) {
+      blend_[v].setZero();
+      continue;
+    }
+    blend_[v] = weights[0].second * turn[static_cast<std::size_t>(weights[0].first)];
+    for (std::size_t k = 1; k < weights.size(); ++k)
+      blend_[v] += weights[k].second * turn[static_cast<std::size_t>(weights[k].first)];
+  }
   turned_.assign(body.triangles.size(), 0);
   for (std::size_t t = 0; t < body.triangles.size(); ++t) {
     const Eigen::Vector3i& tri = body.triangles[t];
