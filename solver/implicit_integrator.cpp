@@ -565,13 +565,9 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
   // the walk table at three pre-rolls, 108 runs, tethers first tore 6 runs
   // against 11 with tethers last, which stretch springs to keep the reach
   // exact, and 9 without tethers.)
-  // A tether whose vertex has not moved since its last pull (not dirty) is
-  // within reach as it was then: its target moves only between steps, and
-  // each step's first pass marks every vertex dirty.
   const auto pull_tethers = [&] {
     bool any = false;
     for (const Tether& t : tethers_) {
-      if (!dirty[static_cast<std::size_t>(t.free)]) continue;
       const auto f = static_cast<Eigen::Index>(t.free);
       double d[3], length2 = 0.0;
       for (int c = 0; c < 3; ++c) {
