@@ -3,10 +3,10 @@
 #include "collision_scene.h"
 #include "skeleton.h"
 
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
-#include <array>
 #include <vector>
 
 namespace mrcloth {

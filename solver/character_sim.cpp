@@ -40,20 +40,21 @@ class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
                  SurfaceNearby* nearby) const override {
     SurfaceNearby on_mesh, on_bridges;
     double largest = mesh_.resolve(start, position, friction, memo, nearby ? &on_mesh : nullptr);
-    // Far from every bridge (most of a garment, most of the time) they move
-    // nothing, and what they find near is no nearer than the mesh's, which
-    // is within reach: the mesh's answer stands, to the bit.
+    // Beyond every bridge and mitten (about half the resolves of an
+    // adaptive skirt) they move nothing, and what they find near is no
+    // nearer than the mesh's, which is within reach: the mesh's answer
+    // stands, to the bit.
     if (!bridges_ || bridges_->beyond(position, kNearbyReach)) {
       if (nearby) *nearby = on_mesh;
       return largest;
     }
-    const double bridged = bridges_ ? bridges_->resolve(start, position, friction, nullptr, nearby ? &on_bridges : nullptr) : 0.0;
+    const double bridged = bridges_->resolve(start, position, friction, nullptr, nearby ? &on_bridges : nullptr);
     if (bridged > 0.0) {
       largest = std::max({largest, bridged, mesh_.resolve(start, position, false, memo, nearby ? &on_mesh : nullptr)});
       // The mesh may have moved the point off where the bridges left it.
       if (nearby) on_bridges = nearest_surface(bridges_->colliders(), position, kNearbyReach);
     }
-    if (nearby) *nearby = bridges_ ? nearer(on_mesh, on_bridges) : on_mesh;
+    if (nearby) *nearby = nearer(on_mesh, on_bridges);
     return largest;
   }
   double penetration(const Eigen::Vector3d& p) const override {
