@@ -887,17 +887,28 @@ struct MeshBody::Impl {
     float lo[2][3], hi[2][3];
   };
   std::vector<SweptBoxes> swept;
+  /// Four boxes, per axis (an empty one: lo +inf, hi -inf, never near).
+  struct Boxes4 {
+    float lo[3][4], hi[3][4];
+  };
   /// The same tree with every other level skipped, for the proximity
   /// searches: a node holds its grandchildren's boxes (or a child's, where
   /// that child is a leaf), axis by axis, so one pass over four lanes
   /// measures all of them: half the levels and a quarter of the branches.
   /// Segment walks use the binary tree (with its swept boxes).
   struct alignas(64) Node4 {
-    float lo[3][4], hi[3][4];  ///< per axis, each child's box (an empty child: lo +inf, hi -inf, never near)
-    int index[4];              ///< child k: Node4 index if internal, first triangle if a leaf, -1 if none
-    int count[4];              ///< child k: triangles in the leaf, 0 if internal (or none)
+    Boxes4 boxes;  ///< each child's box
+    int index[4];  ///< child k: Node4 index if internal, first triangle if a leaf, -1 if none
+    int count[4];  ///< child k: triangles in the leaf, 0 if internal (or none)
   };
   std::vector<Node4> nodes4;
+  /// Per leaf, its triangles' boxes as triangle_boxes holds them, four
+  /// side by side, so a visited leaf tests them together (one pass over
+  /// four lanes, as a node's children) instead of one after another;
+  /// indexed through leaf_block (per triangle: the block of the leaf it
+  /// starts, else -1).
+  std::vector<Boxes4> leaf_boxes;
+  std::vector<int> leaf_block;
   /// Per Node4 child, the binary node and side whose child box it copies
   /// at each refit ({-1, 0}: none).
   std::vector<std::array<std::pair<int, int>, 4>> source4;
@@ -1070,7 +1081,10 @@ struct MeshBody::Impl {
       nodes4[static_cast<std::size_t>(index)].count[slot] = n.count[k];
       nodes4[static_cast<std::size_t>(index)].index[slot] = n.index[k];
       const int at = slot++;
-      if (n.count[k] == 0) {
+      if (n.count[k] > 0) {
+        leaf_block[static_cast<std::size_t>(n.index[k])] = static_cast<int>(leaf_boxes.size());
+        leaf_boxes.push_back(empty_boxes4());
+      } else {
         const int child = build4(n.index[k]);  // after this nodes4 may have moved
         nodes4[static_cast<std::size_t>(index)].index[at] = child;
       }
@@ -1097,6 +1111,16 @@ struct MeshBody::Impl {
     return index;
   }
 
+  static Boxes4 empty_boxes4() {
+    Boxes4 b;
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 4; ++c) {
+        b.lo[a][c] = std::numeric_limits<float>::infinity();
+        b.hi[a][c] = -std::numeric_limits<float>::infinity();
+      }
+    return b;
+  }
+
   /// Copies the binary tree's refit boxes into nodes4.
   void refit4() {
     for (std::size_t i = 0; i < nodes4.size(); ++i) {
@@ -1104,8 +1128,8 @@ struct MeshBody::Impl {
       for (int slot = 0; slot < 4; ++slot) {
         const auto [b, k] = source4[i][static_cast<std::size_t>(slot)];
         for (int a = 0; a < 3; ++a) {
-          node.lo[a][slot] = b < 0 ? std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].lo[k][a];
-          node.hi[a][slot] = b < 0 ? -std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].hi[k][a];
+          node.boxes.lo[a][slot] = b < 0 ? std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].lo[k][a];
+          node.boxes.hi[a][slot] = b < 0 ? -std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].hi[k][a];
         }
       }
     }
@@ -1145,9 +1169,11 @@ struct MeshBody::Impl {
               triangle_hi = triangle_hi.cwiseMax(q);
             }
             std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
+            Boxes4& block = leaf_boxes[static_cast<std::size_t>(leaf_block[static_cast<std::size_t>(node.index[k])])];
+            const int lane = t - node.index[k];
             for (int a = 0; a < 3; ++a) {
-              box[static_cast<std::size_t>(a)] = round_down(triangle_lo(a));
-              box[static_cast<std::size_t>(a) + 3] = round_up(triangle_hi(a));
+              box[static_cast<std::size_t>(a)] = block.lo[a][lane] = round_down(triangle_lo(a));
+              box[static_cast<std::size_t>(a) + 3] = block.hi[a][lane] = round_up(triangle_hi(a));
             }
             lo = lo.cwiseMin(triangle_lo);
             hi = hi.cwiseMax(triangle_hi);
@@ -1206,7 +1232,11 @@ struct MeshBody::Impl {
   /// Tests seen triangle t against the closest so far (`best`, its squared
   /// distance, and `out`); its own box first, which rejects most.
   void consider(const Vector3d& p, int t, double& best, Closest& out) const {
-    if (!(triangle_box_distance2(p, t) < best)) return;
+    consider(p, t, triangle_box_distance2(p, t), best, out);
+  }
+  /// The same with t's box distance `box2` already known.
+  void consider(const Vector3d& p, int t, double box2, double& best, Closest& out) const {
+    if (!(box2 < best)) return;
     const TrianglePoint at = closest_on_triangle(p, corner(t, 0), corner(t, 1), corner(t, 2));
     const double d2 = (p - at.point).squaredNorm();
     if (d2 < best) {
@@ -1220,7 +1250,7 @@ struct MeshBody::Impl {
   /// The four children's squared distances from p (0 inside), in double
   /// (the boxes' floats are exact in it): per axis the gap below or above
   /// the box, squared and summed in axis order, two lanes at a time.
-  static void box_distances4(const Node4& node, const Vector3d& p, double d[4]) {
+  static void box_distances4(const Boxes4& node, const Vector3d& p, double d[4]) {
 #if defined(__SSE2__)
     const __m128d zero = _mm_setzero_pd();
     for (int h = 0; h < 4; h += 2) {
@@ -1244,6 +1274,12 @@ struct MeshBody::Impl {
         d[c] += e * e;
       }
 #endif
+  }
+
+  /// triangle_box_distance2(p, t) of the leaf's triangles, t from `first`
+  /// (the leaf's first triangle) on, together.
+  void leaf_box_distances(int first, const Vector3d& p, double d[4]) const {
+    box_distances4(leaf_boxes[static_cast<std::size_t>(leaf_block[static_cast<std::size_t>(first)])], p, d);
   }
 
   /// Visits the leaves whose box lies nearer to p than sqrt(limit()) (a
@@ -1270,7 +1306,7 @@ struct MeshBody::Impl {
       if (!(item.d2 < limit())) continue;
       const Node4& node = nodes4[static_cast<std::size_t>(item.node)];
       double d[4];
-      box_distances4(node, p, d);
+      box_distances4(node.boxes, p, d);
       // The children within the bound, nearest first (insertion: few are):
       // leaves visited in that order (the bound may shrink as they are),
       // inner nodes pushed farthest first.
@@ -1297,8 +1333,10 @@ struct MeshBody::Impl {
   bool closest(const Vector3d& p, double max_d2, Closest& out) const {
     double best = max_d2;
     leaves_near(p, [&] { return best; }, [&](int first, int count) {
+      double box2[4];
+      leaf_box_distances(first, p, box2);
       for (int t = first; t < first + count; ++t)
-        if (!(any_ignored && ignored[static_cast<std::size_t>(t)])) consider(p, t, best, out);
+        if (!(any_ignored && ignored[static_cast<std::size_t>(t)])) consider(p, t, box2[t - first], best, out);
     });
     return out.triangle >= 0;
   }
@@ -1327,9 +1365,8 @@ struct MeshBody::Impl {
     double limit2 = limit_of(best);
     bool overflow = false;
     if (candidates) candidates->count = 0;
-    const auto visit = [&](int t) {
+    const auto visit = [&](int t, double box2) {
       if (any_ignored && ignored[static_cast<std::size_t>(t)]) return;
-      const double box2 = triangle_box_distance2(p, t);
       if (!(box2 < limit2)) return;
       if (candidates) {
         if (candidates->count < Candidates::kCapacity) candidates->items[candidates->count++] = t;
@@ -1357,7 +1394,9 @@ struct MeshBody::Impl {
       }
     };
     leaves_near(p, [&] { return limit2; }, [&](int leaf, int count) {
-      for (int t = leaf; t < leaf + count; ++t) visit(t);
+      double box2[4];
+      leaf_box_distances(leaf, p, box2);
+      for (int t = leaf; t < leaf + count; ++t) visit(t, box2[t - leaf]);
     });
     if (candidates) {
       // Everything pruned lay beyond the limit when it was pruned, and the
@@ -1832,6 +1871,7 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
       m.ring[static_cast<std::size_t>(fill[static_cast<std::size_t>(m.triangles[t](k))]++)] = {static_cast<int>(t), k};
 
   m.nodes4.reserve(m.nodes.size());
+  m.leaf_block.assign(m.triangles.size(), -1);
   m.build4(0);
   m.x_previous = m.x;
   m.refit(/*first=*/true);
