@@ -3,7 +3,8 @@
 # writes every file its report names; `mrcloth -b pipeline.js` with the same
 # options, on two threads, gives the same numbers; --resume runs nothing again and reports the
 # same; Ctrl-C stops it with 130 and leaves only complete files, and a resume
-# then finishes the run; bench/distance_floor.js reproduces its distances.
+# then finishes the run; bench/distance_floor.js reproduces its distances;
+# bench/still_drape.js measures every model on the walk held still.
 #
 # pipeline_test.sh <mrcloth> <resources> <test scripts> <tmp folder>
 set -u
@@ -75,6 +76,16 @@ grep -Eq ", [1-9][0-9]* resumed\)" "$tmp/int_resume.out" || fail "nothing was re
   { fail "distance_floor.js exit code $?"; cat "$tmp/floor.err"; }
 grep -q "every re-run reproduces the pipeline's distances" "$tmp/floor.out" || fail "distance floor: $(cat "$tmp/floor.out")"
 grep -Eq "^\| walk_new \| 0\.0 \| coarse " "$tmp/floor.out" || fail "distance floor table: $(cat "$tmp/floor.out")"
+
+# 7. bench/still_drape.js runs every compared model on the test walk held
+# at its first frame and measures each against the high-resolution mesh.
+"$host" -q -b "$resources/../bench/still_drape.js" -- "$tmp/command" > "$tmp/still.out" 2> "$tmp/still.err" ||
+  { fail "still_drape.js exit code $?"; cat "$tmp/still.err"; }
+[ -s "$tmp/command/still/walk_new_still.bvh" ] || fail "still_drape.js wrote no held motion"
+for model in coarse multires_d6 multires_d8; do
+  grep -Eq "^\| $model \| [0-9]+ \| [0-9]+\.[0-9] \| [0-9]+\.[0-9] \| [0-9]+ % \| [0-9]+\.[0-9] \|$" "$tmp/still.out" ||
+    fail "still drape: no row for $model: $(cat "$tmp/still.out")"
+done
 
 [ "$failed" -eq 0 ] && echo "pipeline: ok"
 exit "$failed"
