@@ -2023,6 +2023,22 @@ double MeshBody::depth(const Eigen::Vector3d& p) const {
   return std::max(0.0, -c.distance);
 }
 
+MeshBody::SurfacePoint MeshBody::nearest_point(const Eigen::Vector3d& p) const {
+  const Impl& m = *impl_;
+  Impl::Closest c;
+  m.closest(p, std::numeric_limits<double>::infinity(), c);
+  SurfacePoint out;
+  if (c.triangle < 0) return out;
+  const double b[3] = {c.at.b0, c.at.b1, c.at.b2};
+  for (int k = 0; k < 3; ++k) {
+    const int v = m.triangles[static_cast<std::size_t>(c.triangle)](k);
+    out.vertices[static_cast<std::size_t>(k)] = m.input_vertex.empty() ? v : m.input_vertex[static_cast<std::size_t>(v)];
+    out.weights[static_cast<std::size_t>(k)] = b[k];
+  }
+  out.distance = std::sqrt(c.d2);
+  return out;
+}
+
 SurfaceQuery MeshBody::query(const Eigen::Vector3d& p) const {
   Impl::Closest c;
   impl_->closest(p, std::numeric_limits<double>::infinity(), c);

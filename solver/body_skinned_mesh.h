@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -165,6 +166,13 @@ class MeshBody : public CollisionScene {
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.
   SurfaceQuery query(const Eigen::Vector3d& p) const;
+  /// The point of the surface nearest to p (metres).
+  struct SurfacePoint {
+    std::array<int, 3> vertices{-1, -1, -1};  ///< its triangle's corners, rows of the constructor's `vertices`
+    std::array<double, 3> weights{0, 0, 0};    ///< its barycentric coordinates on them (>= 0, summing to 1)
+    double distance = 0.0;                     ///< from p, metres (unsigned)
+  };
+  SurfacePoint nearest_point(const Eigen::Vector3d& p) const;
 
  private:
   struct Impl;

@@ -135,12 +135,25 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
   if (body_vertices.rows() == 0 || body_vertices.rows() != static_cast<Eigen::Index>(body.weights.size()))
     throw ArgumentError("waist_skin_weights: " + std::to_string(body_vertices.rows()) + " body vertices for " +
                         std::to_string(body.weights.size()) + " weight lists; expected one list per vertex");
+  // The weights blended over the nearest point's triangle vary continuously
+  // along the skin. The nearest vertex's jump from one vertex's to the
+  // next's between neighbouring points: where they differ (a thigh's share
+  // against the pelvis's), two pins millimetres apart turn about different
+  // joints, and the waistband's short edges between them stretched with
+  // the skin's motion (the shared trousers' d5 mesh: 89 % on 3.9 mm edges).
+  const MeshBody surface(body_vertices, body.triangles);
   std::vector<std::vector<std::pair<int, double>>> out;
   out.reserve(static_cast<std::size_t>(points.rows()));
   for (Eigen::Index p = 0; p < points.rows(); ++p) {
-    Eigen::Index nearest = 0;
-    (body_vertices.rowwise() - points.row(p)).rowwise().squaredNorm().minCoeff(&nearest);
-    out.push_back(body.weights[static_cast<std::size_t>(nearest)]);
+    const MeshBody::SurfacePoint nearest = surface.nearest_point(points.row(p).transpose());
+    std::map<int, double> blended;
+    for (std::size_t k = 0; k < 3; ++k)
+      for (const auto& [joint, weight] : body.weights[static_cast<std::size_t>(nearest.vertices[k])])
+        blended[joint] += nearest.weights[k] * weight;
+    std::vector<std::pair<int, double>> list;
+    for (const auto& [joint, weight] : blended)
+      if (weight > 0.0) list.emplace_back(joint, weight);
+    out.push_back(std::move(list));
   }
   return out;
 }

@@ -244,6 +244,34 @@ TEST(MeshBody, SignedDistanceMatchesBruteForceOnSphereAndCube) {
   }
 }
 
+TEST(MeshBody, NearestPointNamesTheInputVerticesAndItsBarycentrics) {
+  // The tree renumbers triangles and vertices: the answer must come back in
+  // the input's rows, and rebuild the nearest point at the brute-force
+  // distance.
+  std::mt19937 rng(5);
+  for (const auto& [name, mesh] : {std::pair<std::string, Mesh>{"icosphere", icosphere(3)}, {"cube", subdivided_cube(5)}}) {
+    const MeshBody body(mesh.vertices, mesh.triangles);
+    for (const Vector3d& p : sample_points(mesh, rng, 600, 0.5)) {
+      const MeshBody::SurfacePoint at = body.nearest_point(p);
+      Vector3d rebuilt = Vector3d::Zero();
+      double sum = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_GE(at.weights[static_cast<std::size_t>(k)], -1e-12) << name;
+        sum += at.weights[static_cast<std::size_t>(k)];
+        rebuilt += at.weights[static_cast<std::size_t>(k)] * mesh.vertex(at.vertices[static_cast<std::size_t>(k)]);
+      }
+      ASSERT_NEAR(sum, 1.0, 1e-12) << name;
+      const double expected = brute_distance(mesh, p);
+      ASSERT_NEAR(at.distance, expected, 1e-12) << name << " at (" << p.transpose() << ")";
+      ASSERT_NEAR((p - rebuilt).norm(), expected, 1e-12) << name << " at (" << p.transpose() << ")";
+      // The three are one of the input's triangles.
+      ASSERT_TRUE(std::any_of(mesh.triangles.begin(), mesh.triangles.end(), [&](const Eigen::Vector3i& t) {
+        return t(0) == at.vertices[0] && t(1) == at.vertices[1] && t(2) == at.vertices[2];
+      })) << name;
+    }
+  }
+}
+
 TEST(MeshBody, StaysExactAfterUpdate) {
   std::mt19937 rng(11);
   Mesh sphere = icosphere(3);
@@ -1247,11 +1275,62 @@ TEST_F(SkinnedBodyTest, SkinnedWaistMovesAsTheSkinUnderIt) {
       EXPECT_LT((frames[f].row(band.model.pinned_vertices[k]) - expected.row(static_cast<Eigen::Index>(k))).norm(), 1e-12)
           << "frame " << f << " pinned " << k;
   }
-  // The weights are those of the nearest body vertex.
+  // The weights are the body's blended over the nearest point of its
+  // surface by that point's barycentric coordinates (brute force: every
+  // triangle, its plane or its edges).
   const Eigen::MatrixX3d placed = skin(*body_, walk.skeleton, band.reference);
-  Eigen::Index nearest = 0;
-  (placed.rowwise() - rest_pinned.row(3)).rowwise().squaredNorm().minCoeff(&nearest);
-  EXPECT_EQ(band.options.waist_weights[3], body_->weights[static_cast<std::size_t>(nearest)]);
+  for (const int pin : {0, 3, 9}) {
+    const Vector3d p = rest_pinned.row(pin).transpose();
+    double best = std::numeric_limits<double>::infinity();
+    std::map<int, double> expected;
+    for (const Eigen::Vector3i& t : body_->triangles) {
+      const Vector3d a = placed.row(t(0)).transpose(), b = placed.row(t(1)).transpose(), c = placed.row(t(2)).transpose();
+      // Barycentrics of p's projection onto the plane; outside the triangle
+      // the nearest point is on an edge.
+      const Vector3d n = (b - a).cross(c - a);
+      const Vector3d q = p - n.dot(p - a) / n.squaredNorm() * n;
+      std::array<double, 3> w = {(c - b).cross(q - b).dot(n), (a - c).cross(q - c).dot(n), (b - a).cross(q - a).dot(n)};
+      const double sum = w[0] + w[1] + w[2];
+      for (double& x : w) x /= sum;
+      Vector3d at = q;
+      if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0) {
+        double edge_best = std::numeric_limits<double>::infinity();
+        const Vector3d corner[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) {
+          const Vector3d& u = corner[k];
+          const Vector3d& v = corner[(k + 1) % 3];
+          const double s = std::clamp((p - u).dot(v - u) / (v - u).squaredNorm(), 0.0, 1.0);
+          const Vector3d e = u + s * (v - u);
+          if ((p - e).squaredNorm() < edge_best) {
+            edge_best = (p - e).squaredNorm();
+            at = e;
+            w = {0.0, 0.0, 0.0};
+            w[static_cast<std::size_t>(k)] = 1.0 - s;
+            w[static_cast<std::size_t>((k + 1) % 3)] = s;
+          }
+        }
+      }
+      const double d = (p - at).norm();
+      if (d >= best) continue;
+      best = d;
+      expected.clear();
+      for (int k = 0; k < 3; ++k)
+        for (const auto& [joint, weight] : body_->weights[static_cast<std::size_t>(t(k))])
+          expected[joint] += w[static_cast<std::size_t>(k)] * weight;
+    }
+    double total = 0.0;
+    for (const auto& [joint, weight] : band.options.waist_weights[static_cast<std::size_t>(pin)]) {
+      EXPECT_NEAR(weight, expected[joint], 1e-9) << "pin " << pin << " joint " << joint;
+      total += weight;
+    }
+    EXPECT_NEAR(total, 1.0, 1e-12) << "pin " << pin;
+    for (const auto& [joint, weight] : expected)
+      if (weight > 1e-9)
+        EXPECT_TRUE(std::any_of(band.options.waist_weights[static_cast<std::size_t>(pin)].begin(),
+                                band.options.waist_weights[static_cast<std::size_t>(pin)].end(),
+                                [&](const auto& jw) { return jw.first == joint; }))
+            << "pin " << pin << " lacks joint " << joint;
+  }
 
   band.options.waist_weights.pop_back();
   ClothState again = rest_state(band.model);
