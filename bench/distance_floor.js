@@ -21,14 +21,8 @@ const perturbation = args.length > 1 ? Number(args[1]) : 0.001;
 if (!(perturbation >= 0)) throw new Error("the perturbation must be a number of seconds >= 0, got " + args[1]);
 const differences = [];  // with perturbation 0: what did not reproduce
 
-// The pipeline's report says what each test run was given and which mesh
-// each model is, so the re-runs are its own runs, not a copy of its rules.
-const reportPath = out + "/report.json";
-if (!core.fileReadable(reportPath)) throw new Error(reportPath + " is not readable: expected a finished pipeline run");
-const report = JSON.parse(core.readTextFile(reportPath));
-if (!report.testSettings || !report.table3.every((row) => row.modelFile))
-  throw new Error(reportPath + " has no testSettings or modelFile: expected a report from a pipeline that records " +
-                  "them (re-run the pipeline)");
+core.include("pipeline_report.js");
+const report = readPipelineReport(out);
 const ms = (x) => (1000 * x).toFixed(1);
 const name = (path) => path.split("/").pop().replace(/\.bvh$/i, "");
 

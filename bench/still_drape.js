@@ -24,12 +24,8 @@ if (args.length > 2) stiffness.alpha = Number(args[2]);
 for (const key of Object.keys(stiffness))
   if (!Number.isFinite(stiffness[key])) throw new Error(key + " must be a number, got " + args[key === "alphaBend" ? 1 : 2]);
 
-const reportPath = out + "/report.json";
-if (!core.fileReadable(reportPath)) throw new Error(reportPath + " is not readable: expected a finished pipeline run");
-const report = JSON.parse(core.readTextFile(reportPath));
-if (!report.testSettings || !report.table3.every((row) => row.modelFile))
-  throw new Error(reportPath + " has no testSettings or modelFile: expected a report from a pipeline that records " +
-                  "them (re-run the pipeline)");
+core.include("pipeline_report.js");
+const report = readPipelineReport(out);
 const motionPath = report.options.test[0];
 const motion = motionPath.split("/").pop().replace(/\.bvh$/i, "");
 
@@ -52,7 +48,7 @@ const settings = Object.assign({}, report.testSettings, stiffness,
                                {motion: {path: stillPath, units: report.options.motionUnits}});
 const rows = report.table3.filter((row) => row.motion === motion);
 const high = rows.find((row) => row.model === "high");
-if (!high) throw new Error(reportPath + ": no high-resolution run on " + motion);
+if (!high) throw new Error(out + "/report.json: no high-resolution run on " + motion);
 const simulate = (row) => {
   const id = core.loadObject(out + "/" + row.modelFile);
   const cache = out + "/still/" + row.model + ".pc2";
