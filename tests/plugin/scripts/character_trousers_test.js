@@ -34,13 +34,14 @@ for (const type of ["mesh", "capsules", "mesh+self"]) {
   // (their waistband was modelled 2 mm inside). Depth inside the body
   // (issue 4: 2 mm): 0.0 mm on both (14 / 17.5 mm while the hands went
   // into the hips; 3.0 mm on the mesh before the waistband was cleared and
-  // skin folded over behind the knees stopped counting as the outside). The
-  // waistband's edges next to the pins, where skinning stretches the body's
-  // own skin most, stretch most (57 / 88 %; 116 / 149 % before the contact
-  // planes).
+  // skin folded over behind the knees stopped counting as the outside).
+  // Stretch: 28 % on both since the pins' skin weights are blended over the
+  // nearest surface point; 57 / 88 % before, on the waistband's edges next
+  // to pins that took neighbouring body vertices' unlike weights (116 / 149
+  // % before the contact planes).
   expectAtMost(report.preroll.initialPenetration, type === "mesh" ? 1e-9 : 0.007, type + ": initial penetration");
   expectAtMost(report.maxDepth, 0.002, type + ": depth inside the body");
-  expectAtMost(report.maxStretch, 1.0, type + ": stretch");
+  expectAtMost(report.maxStretch, 0.5, type + ": stretch");
 }
 // Cloth-cloth contact (README, Cloth-cloth contact): the legs' inner faces
 // pass through each other without it (442 edge-triangle crossings at the
