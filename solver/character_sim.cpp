@@ -135,6 +135,8 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
   if (body_vertices.rows() == 0 || body_vertices.rows() != static_cast<Eigen::Index>(body.weights.size()))
     throw ArgumentError("waist_skin_weights: " + std::to_string(body_vertices.rows()) + " body vertices for " +
                         std::to_string(body.weights.size()) + " weight lists; expected one list per vertex");
+  if (body.triangles.empty())
+    throw ArgumentError("waist_skin_weights: the body has no triangles; expected its surface");
   // The weights blended over the nearest point's triangle vary continuously
   // along the skin. The nearest vertex's jump from one vertex's to the
   // next's between neighbouring points: where they differ (a thigh's share

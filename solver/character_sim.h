@@ -116,10 +116,13 @@ struct CharacterRunReport {
 /// its place relative to the pelvis as posed here.
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
 
-/// Per point, the skin weights of the body vertex nearest to it: `points`
-/// (#P x 3, metres) and `body_vertices` (the body's vertices in the same
-/// pose and space, #V x 3). For CharacterRunOptions::waist_weights, with
-/// the pinned waist and the body both in the reference pose.
+/// Per point, the skin weights at the nearest point of the body's surface
+/// (body.triangles): its triangle's vertices' weights blended by its
+/// barycentric coordinates, so they vary continuously along the skin.
+/// `points` (#P x 3, metres) and `body_vertices` (the body's vertices in the
+/// same pose and space, #V x 3). For CharacterRunOptions::waist_weights,
+/// with the pinned waist and the body both in the reference pose. Throws
+/// ArgumentError for a vertex count other than the weights' or no triangles.
 std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const SkinnedBody& body,
                                                                     const Eigen::MatrixX3d& body_vertices,
                                                                     const Eigen::MatrixX3d& points);
