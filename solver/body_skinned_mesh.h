@@ -166,7 +166,8 @@ class MeshBody : public CollisionScene {
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.
   SurfaceQuery query(const Eigen::Vector3d& p) const;
-  /// The point of the surface nearest to p (metres).
+  /// The point of the surface nearest to p (metres), among the triangles
+  /// this pose sees (all of them unless update() left some out).
   struct SurfacePoint {
     std::array<int, 3> vertices{-1, -1, -1};  ///< its triangle's corners, rows of the constructor's `vertices`
     std::array<double, 3> weights{0, 0, 0};    ///< its barycentric coordinates on them (>= 0, summing to 1)

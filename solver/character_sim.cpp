@@ -137,12 +137,12 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
                         std::to_string(body.weights.size()) + " weight lists; expected one list per vertex");
   if (body.triangles.empty())
     throw ArgumentError("waist_skin_weights: the body has no triangles; expected its surface");
-  // The weights blended over the nearest point's triangle vary continuously
-  // along the skin. The nearest vertex's jump from one vertex's to the
-  // next's between neighbouring points: where they differ (a thigh's share
-  // against the pelvis's), two pins millimetres apart turn about different
-  // joints, and the waistband's short edges between them stretched with
-  // the skin's motion (the shared trousers' d5 mesh: 89 % on 3.9 mm edges).
+  // Weights blended over the nearest point's triangle vary continuously
+  // along the skin. The nearest vertex's weights jump between neighbouring
+  // points: where two body vertices' differ (a thigh's share against the
+  // pelvis's), two pins millimetres apart turned about different joints,
+  // and the waistband's short edges between them stretched with the skin's
+  // motion (the shared trousers' d5 mesh: 89 % on 3.9 mm edges).
   const MeshBody surface(body_vertices, body.triangles);
   std::vector<std::vector<std::pair<int, double>>> out;
   out.reserve(static_cast<std::size_t>(points.rows()));
