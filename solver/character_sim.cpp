@@ -143,7 +143,13 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
   // pelvis's), two pins millimetres apart turned about different joints,
   // and the waistband's short edges between them stretched with the skin's
   // motion (the shared trousers' d5 mesh: 89 % on 3.9 mm edges).
-  const MeshBody surface(body_vertices, body.triangles);
+  const MeshBody surface = [&] {
+    try {
+      return MeshBody(body_vertices, body.triangles);
+    } catch (const ArgumentError& error) {  // say whose surface it was
+      throw ArgumentError(std::string("waist_skin_weights: the body's surface: ") + error.what());
+    }
+  }();
   std::vector<std::vector<std::pair<int, double>>> out;
   out.reserve(static_cast<std::size_t>(points.rows()));
   for (Eigen::Index p = 0; p < points.rows(); ++p) {

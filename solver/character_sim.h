@@ -122,7 +122,9 @@ Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
 /// `points` (#P x 3, metres) and `body_vertices` (the body's vertices in the
 /// same pose and space, #V x 3). For CharacterRunOptions::waist_weights,
 /// with the pinned waist and the body both in the reference pose. Throws
-/// ArgumentError for a vertex count other than the weights' or no triangles.
+/// ArgumentError for a vertex count other than the weights', no triangles,
+/// or a surface MeshBody refuses (it must be closed and consistently
+/// oriented, as the skinned collision body must).
 std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const SkinnedBody& body,
                                                                     const Eigen::MatrixX3d& body_vertices,
                                                                     const Eigen::MatrixX3d& points);

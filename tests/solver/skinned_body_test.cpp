@@ -272,6 +272,44 @@ TEST(MeshBody, NearestPointNamesTheInputVerticesAndItsBarycentrics) {
   }
 }
 
+TEST(WaistSkinWeights, RefusesBodiesItCannotSearchByName) {
+  SkinnedBody open;  // one triangle: not a closed surface
+  open.rest_vertices = (Eigen::MatrixX3d(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished();
+  open.triangles = {Eigen::Vector3i(0, 1, 2)};
+  open.weights.assign(3, {{0, 1.0}});
+  const Eigen::MatrixX3d pins = (Eigen::MatrixX3d(1, 3) << 0.2, 0.2, 0.1).finished();
+  const auto message_of = [&](const SkinnedBody& body) {
+    try {
+      waist_skin_weights(body, body.rest_vertices, pins);
+    } catch (const ArgumentError& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message_of(open).rfind("waist_skin_weights: the body's surface: MeshBody: edge", 0), 0u) << message_of(open);
+  SkinnedBody none = open;
+  none.triangles.clear();
+  EXPECT_EQ(message_of(none), "waist_skin_weights: the body has no triangles; expected its surface");
+  // A closed one: a tetrahedron, every pin's weights blended from its corners.
+  Mesh tetra;
+  tetra.vertices = (Eigen::MatrixX3d(4, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1).finished();
+  tetra.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)};
+  SkinnedBody closed;
+  closed.rest_vertices = tetra.vertices;
+  closed.triangles = tetra.triangles;
+  closed.weights = {{{0, 1.0}}, {{1, 1.0}}, {{2, 1.0}}, {{3, 1.0}}};
+  // Below the face z = 0, over the point (0.2, 0.3): barycentrics 0.5 / 0.2 / 0.3 on vertices 0 / 1 / 2.
+  const Eigen::MatrixX3d below = (Eigen::MatrixX3d(1, 3) << 0.2, 0.3, -0.05).finished();
+  const auto weights = waist_skin_weights(closed, closed.rest_vertices, below);
+  ASSERT_EQ(weights.size(), 1u);
+  ASSERT_EQ(weights[0].size(), 3u);
+  const double expected[3] = {0.5, 0.2, 0.3};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(weights[0][static_cast<std::size_t>(k)].first, k);
+    EXPECT_NEAR(weights[0][static_cast<std::size_t>(k)].second, expected[k], 1e-12);
+  }
+}
+
 TEST(MeshBody, StaysExactAfterUpdate) {
   std::mt19937 rng(11);
   Mesh sphere = icosphere(3);
