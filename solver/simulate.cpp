@@ -62,6 +62,11 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
   };
   if (pool) pool->run(static_cast<std::size_t>(x.rows()), measure);
   else measure(0, 0, static_cast<std::size_t>(x.rows()));
+  for (const auto& face : model.corners) {
+    const Eigen::Vector3d centre =
+        0.25 * (x.row(face[0]) + x.row(face[1]) + x.row(face[2]) + x.row(face[3])).transpose();
+    if (scene.penetration(centre) > 0.0) report.max_face_depth = std::max(report.max_face_depth, scene.depth(centre));
+  }
   for (const Worst& worst : parts) {
     report.max_depth = std::max(report.max_depth, worst.depth);
     if (worst.vertex >= 0 && worst.penetration > report.max_penetration) {

@@ -65,6 +65,11 @@ struct SimulationReport {
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
   double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres
+  /// Deepest face centre (the mean of an active face's four corners) below
+  /// a collider's surface itself at any output frame, metres: only vertices
+  /// collide, so a large face resting on a curved body sinks into it
+  /// between its corners (the body shows through the cloth).
+  double max_face_depth = 0.0;
   int max_self_crossings = 0;          ///< most edge-triangle crossings of the cloth with itself at any output frame (count_self_crossings)
   int deepest_vertex = -1;             ///< where max_penetration was met: full vertex id (-1: never within thickness)
   int deepest_frame = -1;              ///< and output frame (0-based)

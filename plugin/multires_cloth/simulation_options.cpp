@@ -318,6 +318,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("maxDepth"), report.max_depth},
+      {QStringLiteral("maxFaceDepth"), report.max_face_depth},
       {QStringLiteral("maxSelfCrossings"), report.max_self_crossings},
       {QStringLiteral("deepest"), QVariantMap{{QStringLiteral("vertex"), report.deepest_vertex},
                                               {QStringLiteral("frame"), report.deepest_frame}}},

@@ -297,7 +297,7 @@ function runPipeline(options) {
   const simulationNumbers = (report) => ({
     vertices: report.vertices, frames: report.frames, msPerFrame: report.msPerFrame,
     perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxTearOpening: report.maxTearOpening,
-    maxPenetration: report.maxPenetration,
+    maxPenetration: report.maxPenetration, maxFaceDepth: report.maxFaceDepth,
     meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
     nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
   });
@@ -478,7 +478,7 @@ function runPipeline(options) {
                                 dynamicsMs: run.numbers.msPerFrame.dynamics,
                                 collisionMs: run.numbers.msPerFrame.collision, totalMs: run.numbers.msPerFrame.total,
                                 maxStretch: run.numbers.maxStretch, maxTearOpening: run.numbers.maxTearOpening,
-                                maxPenetration: run.numbers.maxPenetration,
+                                maxPenetration: run.numbers.maxPenetration, maxFaceDepth: run.numbers.maxFaceDepth,
                                 meanRounds: run.numbers.meanRounds, cache: run.cache, modelFile: run.modelFile})),
     // What every test run was given besides its motion and output (for
     // re-running one, as bench/distance_floor.js does).

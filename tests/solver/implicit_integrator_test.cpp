@@ -192,6 +192,34 @@ TEST(ImplicitIntegrator, SimulateMeasuresTheSameWorstOnAnyThreadCount) {
   }
 }
 
+TEST(ImplicitIntegrator, SimulateMeasuresHowDeepFaceCentresSinkBetweenTheirCorners) {
+  // A coarse 0.5 m sheet (5 x 5 vertices, 12.5 cm faces) falls onto a
+  // sphere of 10 cm radius: only vertices collide, so the faces resting on
+  // it sink into it between their corners. The report's face depth is the
+  // deepest face centre below the sphere over the output frames, checked
+  // against the sphere's own distance at every recorded frame.
+  const DynamicsModel m = build_dynamics(test::make_sheet(5, 0.5), DynamicsOptions{});
+  SimulationOptions s;
+  s.frames = 20;
+  s.colliders.resize(1);
+  const Eigen::Vector3d centre(0.0, -0.15, 0.0);
+  const double radius = 0.1;
+  s.colliders[0].shape = SphereCollider{centre, radius};
+  ClothState state = rest_state(m);
+  std::vector<Positions> frames;
+  const SimulationReport report = simulate(m, state, s, {}, {}, &frames);
+  ASSERT_EQ(frames.size(), 20u);
+  double expected = 0.0;
+  for (const Positions& x : frames)
+    for (const auto& face : m.corners) {
+      const Eigen::Vector3d c = 0.25 * (x.row(face[0]) + x.row(face[1]) + x.row(face[2]) + x.row(face[3])).transpose();
+      expected = std::max(expected, radius - (c - centre).norm());
+    }
+  EXPECT_GT(expected, 0.01) << "the faces should sink in: the test means nothing otherwise";
+  EXPECT_NEAR(report.max_face_depth, expected, 1e-12);
+  EXPECT_LT(report.max_depth, 1e-3) << "the vertices stay outside";
+}
+
 TEST(ImplicitIntegrator, TheLimiterHoldsStretchSpringsAtTheMaterialsLimit) {
   // Springs so soft that only the limiter holds the cloth: a corner of a
   // resting 4 x 4 sheet pulled 0.2 m out, one step without gravity and
