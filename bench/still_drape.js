@@ -5,9 +5,9 @@
 // held at its first frame (the same body, pre-roll and settings as the
 // pipeline's test runs), and each one's distance to the high-resolution
 // result is measured as the pipeline measures it, with how deep its faces'
-// centres sink into the body between their corners (only vertices collide). A still body takes the
-// motion's chaos out of "closer to the high-resolution result": what is
-// left is how differently the meshes hang.
+// centres sink into the body between their corners (only vertices
+// collide). A still body takes the motion's chaos out of "closer to the
+// high-resolution result": what is left is how differently the meshes hang.
 //
 // Usage (from where the pipeline ran, as its report holds paths as given):
 //   build/bin/mrcloth -b bench/still_drape.js -- <pipeline output folder> [alphaBend [alpha]]
