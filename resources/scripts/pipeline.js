@@ -618,12 +618,13 @@ function reportMarkdown(report) {
   const motions = report.table3.map((row) => row.motion).filter((m, k, all) => all.indexOf(m) === k);
   for (const motion of motions) {
     lines.push("### " + motion, "");
-    lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | tear opening | max penetration |",
-               "|---|---:|---:|---:|---:|---:|---:|---:|");
+    lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | tear opening | max penetration | faces sunk in |",
+               "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (const row of report.table3.filter((r) => r.motion === motion))
       lines.push("| " + row.model + " | " + row.vertices + " | " + fixed(row.dynamicsMs, 2) + " | " +
                  fixed(row.collisionMs, 2) + " | " + fixed(row.totalMs, 2) + " | " + fixed(100 * row.maxStretch, 1) +
-                 " % | " + fixed(1000 * row.maxTearOpening, 1) + " mm | " + fixed(1000 * row.maxPenetration, 2) + " mm |");
+                 " % | " + fixed(1000 * row.maxTearOpening, 1) + " mm | " + fixed(1000 * row.maxPenetration, 2) + " mm | " +
+                 (row.maxFaceDepth === undefined ? "-" : fixed(1000 * row.maxFaceDepth, 1) + " mm") + " |");
     lines.push("");
   }
   lines.push("## Detail against the high-resolution result", "");
