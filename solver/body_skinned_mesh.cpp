@@ -902,20 +902,15 @@ struct MeshBody::Impl {
     int count[4];  ///< child k: triangles in the leaf, 0 if internal (or none)
   };
   std::vector<Node4> nodes4;
-  /// Per leaf, its triangles' boxes as triangle_boxes holds them, four
-  /// side by side, so a visited leaf tests them together (one pass over
-  /// four lanes, as a node's children) instead of one after another;
-  /// indexed through leaf_block (per triangle: the block of the leaf it
-  /// starts, else -1).
+  /// Per leaf, its triangles' boxes in the current pose, rounded outwards,
+  /// four side by side, so a visited leaf tests them together (one pass
+  /// over four lanes, as a node's children) instead of one after another;
+  /// per triangle (leaf order), its box's place there: 4 * block + lane.
   std::vector<Boxes4> leaf_boxes;
-  std::vector<int> leaf_block;
+  std::vector<int> box_slot;
   /// Per Node4 child, the binary node and side whose child box it copies
   /// at each refit ({-1, 0}: none).
   std::vector<std::array<std::pair<int, int>, 4>> source4;
-  /// Per triangle (leaf order), its box in the current pose, rounded
-  /// outwards (lo x y z, hi x y z): one contiguous read where the corners
-  /// are three scattered ones, for the test that rejects most triangles.
-  std::vector<std::array<float, 6>> triangle_boxes;
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
   std::vector<int> leaf_of_input;              ///< per triangle in construction order, its leaf-order index
   std::vector<char> ignored;                   ///< per triangle (leaf order): unseen in this pose (turned over)
@@ -1082,7 +1077,8 @@ struct MeshBody::Impl {
       nodes4[static_cast<std::size_t>(index)].index[slot] = n.index[k];
       const int at = slot++;
       if (n.count[k] > 0) {
-        leaf_block[static_cast<std::size_t>(n.index[k])] = static_cast<int>(leaf_boxes.size());
+        for (int lane = 0; lane < n.count[k]; ++lane)
+          box_slot[static_cast<std::size_t>(n.index[k] + lane)] = 4 * static_cast<int>(leaf_boxes.size()) + lane;
         leaf_boxes.push_back(empty_boxes4());
       } else {
         const int child = build4(n.index[k]);  // after this nodes4 may have moved
@@ -1146,7 +1142,6 @@ struct MeshBody::Impl {
   /// the boxes.
   void refit(bool first = false) {
     swept.resize(nodes.size());
-    triangle_boxes.resize(triangles.size());
     for (std::size_t i = nodes.size(); i-- > 0;) {
       Node& node = nodes[i];
       SweptBoxes& sweep = swept[i];
@@ -1168,12 +1163,11 @@ struct MeshBody::Impl {
               triangle_lo = triangle_lo.cwiseMin(q);
               triangle_hi = triangle_hi.cwiseMax(q);
             }
-            std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
-            Boxes4& block = leaf_boxes[static_cast<std::size_t>(leaf_block[static_cast<std::size_t>(node.index[k])])];
-            const int lane = t - node.index[k];
+            const int slot = box_slot[static_cast<std::size_t>(t)];
+            Boxes4& block = leaf_boxes[static_cast<std::size_t>(slot >> 2)];
             for (int a = 0; a < 3; ++a) {
-              box[static_cast<std::size_t>(a)] = block.lo[a][lane] = round_down(triangle_lo(a));
-              box[static_cast<std::size_t>(a) + 3] = block.hi[a][lane] = round_up(triangle_hi(a));
+              block.lo[a][slot & 3] = round_down(triangle_lo(a));
+              block.hi[a][slot & 3] = round_up(triangle_hi(a));
             }
             lo = lo.cwiseMin(triangle_lo);
             hi = hi.cwiseMax(triangle_hi);
@@ -1279,7 +1273,7 @@ struct MeshBody::Impl {
   /// triangle_box_distance2(p, t) of the leaf's triangles, t from `first`
   /// (the leaf's first triangle) on, together.
   void leaf_box_distances(int first, const Vector3d& p, double d[4]) const {
-    box_distances4(leaf_boxes[static_cast<std::size_t>(leaf_block[static_cast<std::size_t>(first)])], p, d);
+    box_distances4(leaf_boxes[static_cast<std::size_t>(box_slot[static_cast<std::size_t>(first)] >> 2)], p, d);
   }
 
   /// Visits the leaves whose box lies nearer to p than sqrt(limit()) (a
@@ -1492,11 +1486,12 @@ struct MeshBody::Impl {
   /// Squared distance from p to the bounding box of triangle t (0 inside):
   /// branch-free, and a fraction of the exact test's cost.
   double triangle_box_distance2(const Vector3d& p, int t) const {
-    const std::array<float, 6>& box = triangle_boxes[static_cast<std::size_t>(t)];
+    const int slot = box_slot[static_cast<std::size_t>(t)];
+    const Boxes4& block = leaf_boxes[static_cast<std::size_t>(slot >> 2)];
     double box2 = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const double below = static_cast<double>(box[static_cast<std::size_t>(k)]) - p(k);
-      const double above = p(k) - static_cast<double>(box[static_cast<std::size_t>(k) + 3]);
+      const double below = static_cast<double>(block.lo[k][slot & 3]) - p(k);
+      const double above = p(k) - static_cast<double>(block.hi[k][slot & 3]);
       const double e = std::max(0.0, std::max(below, above));
       box2 += e * e;
     }
@@ -1871,7 +1866,7 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
       m.ring[static_cast<std::size_t>(fill[static_cast<std::size_t>(m.triangles[t](k))]++)] = {static_cast<int>(t), k};
 
   m.nodes4.reserve(m.nodes.size());
-  m.leaf_block.assign(m.triangles.size(), -1);
+  m.box_slot.assign(m.triangles.size(), -1);
   m.build4(0);
   m.x_previous = m.x;
   m.refit(/*first=*/true);
