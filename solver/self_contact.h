@@ -57,6 +57,8 @@ struct ContactSurface {
   /// Per full vertex: the sorted full ids of the free or pinned vertices its
   /// position depends on (itself, or a T-node's ancestors).
   std::vector<std::vector<int>> support;
+  /// Per edge: the sorted union of its two ends' supports.
+  std::vector<std::vector<int>> edge_support;
 };
 
 /// The active records' triangles of a model (a record with corners c0..c3

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <random>
+#include <set>
 
 namespace mrcloth {
 namespace {
@@ -91,6 +92,13 @@ TEST(ContactSurface, ATNodeIsSupportedByItsParents) {
         EXPECT_TRUE(std::binary_search(s.support[h].begin(), s.support[h].end(), u)) << "T-node " << h;
     }
     EXPECT_FALSE(std::binary_search(s.support[h].begin(), s.support[h].end(), h));
+  }
+  // An edge rests on what either end rests on, each vertex once, sorted.
+  ASSERT_EQ(s.edge_support.size(), s.edges.size());
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    std::set<int> both(s.support[s.edges[e][0]].begin(), s.support[s.edges[e][0]].end());
+    both.insert(s.support[s.edges[e][1]].begin(), s.support[s.edges[e][1]].end());
+    EXPECT_EQ(s.edge_support[e], std::vector<int>(both.begin(), both.end())) << "edge " << e;
   }
   // Triangles use corners only: no T-node lies inside a triangle's edge
   // list twice, and the area equals the sheet's.
