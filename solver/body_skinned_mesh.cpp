@@ -588,6 +588,28 @@ TurnedTriangles::TurnedTriangles(const SkinnedBody& body) : body_(body) {
   const auto row = [&](int v) { return Vector3d(source.row(v).transpose()); };
   for (const Eigen::Vector3i& tri : body.triangles)
     source_normal_.push_back((row(tri[1]) - row(tri[0])).cross(row(tri[2]) - row(tri[0])));
+  // A triangle whose corners all follow one joint alone, each by a positive
+  // weight w, moves as that joint turns it, scaled by w: its normal and the
+  // carried one are the same rotation of its source normal times w^2 and
+  // 3 w, so it never turns over. (On MakeHuman's body with the CMU rig 58 %
+  // of the triangles.) Only the others are tested, and only their corners'
+  // blends are formed.
+  const auto sole_joint = [&](int v) {
+    if (v < 0 || static_cast<std::size_t>(v) >= body.weights.size()) return -1;  // check_body's to refuse
+    const auto& weights = body.weights[static_cast<std::size_t>(v)];
+    return weights.size() == 1 && weights[0].second > 0.0 ? weights[0].first : -1;
+  };
+  std::vector<char> needed(body.weights.size(), 0);
+  for (std::size_t t = 0; t < body.triangles.size(); ++t) {
+    const Eigen::Vector3i& tri = body.triangles[t];
+    const int joint = sole_joint(tri[0]);
+    if (joint >= 0 && sole_joint(tri[1]) == joint && sole_joint(tri[2]) == joint) continue;
+    may_turn_.push_back(static_cast<int>(t));
+    for (int k = 0; k < 3; ++k)
+      if (tri[k] >= 0 && static_cast<std::size_t>(tri[k]) < needed.size()) needed[static_cast<std::size_t>(tri[k])] = 1;
+  }
+  for (std::size_t v = 0; v < needed.size(); ++v)
+    if (needed[v]) blended_.push_back(static_cast<int>(v));
 }
 
 const std::vector<char>& TurnedTriangles::operator()(const Skeleton& skeleton, const Pose& pose,
@@ -607,7 +629,8 @@ const std::vector<char>& TurnedTriangles::operator()(const Skeleton& skeleton, c
   // written, not added to zeros: the same values, one pass fewer over the
   // buffer; a zero's sign may differ, which no sign test below can see).
   blend_.resize(static_cast<std::size_t>(source.rows()));
-  for (std::size_t v = 0; v < blend_.size(); ++v) {
+  for (const int corner : blended_) {
+    const auto v = static_cast<std::size_t>(corner);
     const auto& weights = body.weights[v];
     if (weights.empty()) {
       blend_[v].setZero();
@@ -618,7 +641,8 @@ const std::vector<char>& TurnedTriangles::operator()(const Skeleton& skeleton, c
       blend_[v] += weights[k].second * turn[static_cast<std::size_t>(weights[k].first)];
   }
   turned_.assign(body.triangles.size(), 0);
-  for (std::size_t t = 0; t < body.triangles.size(); ++t) {
+  for (const int may_turn : may_turn_) {
+    const auto t = static_cast<std::size_t>(may_turn);
     const Eigen::Vector3i& tri = body.triangles[t];
     const auto row = [&](int v) { return Vector3d(posed.row(v).transpose()); };
     const Vector3d carried = (blend_[static_cast<std::size_t>(tri[0])] + blend_[static_cast<std::size_t>(tri[1])] +

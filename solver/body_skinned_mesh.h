@@ -94,7 +94,9 @@ class TurnedTriangles {
  private:
   const SkinnedBody& body_;
   std::vector<Eigen::Vector3d> source_normal_;  ///< per triangle, its (unnormalised) normal in the source mesh
-  std::vector<Eigen::Matrix3d> blend_;          ///< per vertex, the linear part of its blend in the last pose
+  std::vector<int> may_turn_;                   ///< the triangles not moved by one joint alone, ascending
+  std::vector<int> blended_;                    ///< their corners, ascending
+  std::vector<Eigen::Matrix3d> blend_;          ///< per vertex, the linear part of its blend in the last pose (corners in blended_)
   std::vector<char> turned_;
 };
 
