@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <iterator>
 #include <cstdint>
@@ -113,6 +114,60 @@ std::vector<int> wavefront_order(const DynamicsModel& model) {
   return stretch;
 }
 
+// For t_node_sag: a stretch spring from a T-node h (halfway between its
+// parents a and b) to a free vertex c on the finer side, and c's
+// neighbours ca and cb along the row beside the coarse edge (each a free
+// vertex joined by stretch springs to c and to a or b): the row whose
+// bulge says where the fine cloth would put h.
+class SagRows {
+ public:
+  struct Row {
+    int t_node = -1;                  // full id; -1: the spring has none
+    int c = -1, ca = -1, cb = -1;     // free ids
+  };
+  explicit SagRows(const DynamicsModel& model) : model_(model), neighbours_(static_cast<std::size_t>(model.num_vertices)),
+                                                 free_of_(static_cast<std::size_t>(model.num_vertices), -1) {
+    for (const Spring& s : model.springs)
+      if (s.kind == SpringKind::stretch) {
+        neighbours_[static_cast<std::size_t>(s.i)].push_back(s.j);
+        neighbours_[static_cast<std::size_t>(s.j)].push_back(s.i);
+      }
+    for (std::size_t f = 0; f < model.free_vertices.size(); ++f)
+      free_of_[static_cast<std::size_t>(model.free_vertices[f])] = static_cast<int>(f);
+  }
+  Row find(const Spring& s) const {
+    for (const auto& [h, c] : {std::make_pair(s.i, s.j), std::make_pair(s.j, s.i)}) {
+      const std::vector<StencilTerm>& parents = model_.stencil[static_cast<std::size_t>(h)];
+      if (parents.size() != 2 || !plain_free(c)) continue;
+      const int a = model_.free_vertices[static_cast<std::size_t>(parents[0].free)];
+      const int b = model_.free_vertices[static_cast<std::size_t>(parents[1].free)];
+      if (c == a || c == b) continue;  // along the coarse edge: its own spring's constraint
+      int ca = -1, cb = -1;
+      for (const int w : neighbours_[static_cast<std::size_t>(c)]) {
+        if (w == h || !plain_free(w)) continue;
+        if (joined(w, a)) ca = w;
+        if (joined(w, b)) cb = w;
+      }
+      if (ca >= 0 && cb >= 0)
+        return {h, free_of_[static_cast<std::size_t>(c)], free_of_[static_cast<std::size_t>(ca)], free_of_[static_cast<std::size_t>(cb)]};
+    }
+    return {};
+  }
+
+ private:
+  bool plain_free(int v) const {
+    const std::vector<StencilTerm>& terms = model_.stencil[static_cast<std::size_t>(v)];
+    return terms.size() == 1 && terms[0].weight == 1.0;
+  }
+  bool joined(int u, int v) const {
+    const std::vector<int>& n = neighbours_[static_cast<std::size_t>(u)];
+    return std::find(n.begin(), n.end(), v) != n.end();
+  }
+  const DynamicsModel& model_;
+  std::vector<std::vector<int>> neighbours_;  // per full vertex, along stretch springs
+  std::vector<int> free_of_;                  // full id -> free id (-1: pinned or a T-node)
+};
+
 // Each free vertex's tether to its nearest pinned vertex over the cloth
 // (Dijkstra along the stretch and shear springs' rest lengths, which is at
 // least the geodesic distance, so the tether never binds cloth that is
@@ -203,6 +258,13 @@ void check(const IntegratorOptions& o) {
 
 }  // namespace
 
+Eigen::Vector3d fine_row_bulge(const Eigen::Vector3d& c, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb, double cap) {
+  Eigen::Vector3d bulge = c - 0.5 * (ca + cb);
+  const double length = bulge.norm();
+  if (length > cap) bulge *= cap / length;
+  return bulge;
+}
+
 double chebyshev_weight(int iteration, double rho, double previous) {
   if (iteration <= 0) return 1.0;
   if (iteration == 1) return 2.0 / (2.0 - rho * rho);
@@ -283,6 +345,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   general_.clear();
   general_terms_.clear();
   general_ends_.clear();
+  std::optional<SagRows> sag_rows;
+  if (options.t_node_sag) sag_rows.emplace(model);
   for (LimitedSpring& l : sweep_) {
     if (l.fi >= 0) continue;
     const Spring& s = model.springs[static_cast<std::size_t>(l.fj)];
@@ -316,6 +380,13 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     general_ends_.insert(general_ends_.end(), model.stencil[s.j].begin(), model.stencil[s.j].end());
     g.count_i = static_cast<int>(model.stencil[s.i].size());
     g.count_j = static_cast<int>(model.stencil[s.j].size());
+    if (options.t_node_sag) {
+      const SagRows::Row row = sag_rows->find(s);
+      g.sag_t = row.t_node;
+      g.sag_c = row.c;
+      g.sag_ca = row.ca;
+      g.sag_cb = row.cb;
+    }
     l.fj = static_cast<int>(general_.size());
     general_.push_back(g);
   }
@@ -334,6 +405,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     if (g.count == 0) always_slots_.push_back(static_cast<int>(k));
     for (int t = 0; t < g.count; ++t)
       dependents[static_cast<std::size_t>(general_terms_[static_cast<std::size_t>(g.first + t)].free)].push_back(static_cast<int>(k));
+    if (g.sag_t >= 0)  // the row's neighbours move the T-node as the limiter reads it
+      for (const int row : {g.sag_ca, g.sag_cb}) dependents[static_cast<std::size_t>(row)].push_back(static_cast<int>(k));
   }
   dependent_start_.assign(1, 0);
   dependent_slots_.clear();
@@ -419,6 +492,14 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     for (int t = 0; t < g.count_i; ++t) xi += end[t].weight * q.row(end[t].free).transpose();
     end += g.count_i;
     for (int t = 0; t < g.count_j; ++t) xj += end[t].weight * q.row(end[t].free).transpose();
+    if (g.sag_t >= 0) {
+      // The T-node as the fine cloth beside it would place its vertex: off
+      // the chord by the fine row's bulge (at most 30 % of the spring's
+      // rest length, so a row thrown about in a step cannot unlimit it).
+      const Eigen::Vector3d bulge = fine_row_bulge(q.row(g.sag_c).transpose(), q.row(g.sag_ca).transpose(),
+                                                   q.row(g.sag_cb).transpose(), 0.3 * g.rest);
+      (g.sag_t == g.i ? xi : xj) += bulge;
+    }
     const Eigen::Vector3d e = xi - xj;
     const double length = e.norm();
     const double excess = length - limit * g.rest;

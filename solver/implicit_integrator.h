@@ -69,6 +69,7 @@ struct IntegratorOptions {
   bool tethers = true;                          ///< the strain limiter also keeps each free vertex within the cloth's reach of its nearest pinned vertex
   SelfContactOptions self_contact;              ///< cloth-cloth contact (self_contact.h), projected in every round before the body collisions; thickness 0: off
   bool active_set = true;                       ///< the limiter evaluates only springs whose vertices moved since their last evaluation (same bits, less work); false: every spring every sweep
+  bool t_node_sag = false;                      ///< experimental: the limiter reads a spring from a T-node into the finer side from the T-node moved by the bulge of the fine row beside it (fine_row_bulge), as the fine cloth would measure it, not from its coarse edge's chord (README, The drape on a still body)
   int threads = 1;                              ///< threads resolving the vertices' collisions, >= 1; the same bits for any count (each vertex's resolve is its own)
 };
 
@@ -87,6 +88,13 @@ struct ClothState {
 /// 2 / (1 + sqrt(1 - rho^2)). The accelerated iterate is
 /// older + weight (new - older), older the iterate two iterations back.
 double chebyshev_weight(int iteration, double rho, double previous);
+
+/// How far the middle `c` of a fine row bulges off the chord of its two
+/// neighbours `ca`, `cb` (metres): c - (ca + cb) / 2, shortened to at most
+/// `cap` metres. Added to a T-node on the coarse edge beside that row it
+/// puts the T-node where the fine cloth would have its vertex: on a
+/// cylinder curved along the edge, exactly on the cylinder.
+Eigen::Vector3d fine_row_bulge(const Eigen::Vector3d& c, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb, double cap);
 
 /// The rest state of a model at rest velocity 0, pinned at their rest positions.
 ClothState rest_state(const DynamicsModel& model);
@@ -234,6 +242,10 @@ class ImplicitIntegrator {
     int i = -1, j = -1;
     int ends_first = 0, count_i = 0, count_j = 0;
     double rest = 0.0;  // metres
+    // With t_node_sag, for a spring from a T-node (full id sag_t) into the
+    // finer side: its fine end and that end's neighbours along the row
+    // beside the coarse edge (free ids); sag_t < 0: none.
+    int sag_t = -1, sag_c = -1, sag_ca = -1, sag_cb = -1;
   };
   std::vector<GeneralSpring> general_;
   std::vector<GeneralTerm> general_terms_;

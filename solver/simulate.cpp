@@ -94,6 +94,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.limiter_acceleration = options.limiter_acceleration;
   io.limiter_mass_exponent = options.limiter_mass_exponent;
+  io.t_node_sag = options.t_node_sag;
   io.collision_rounds = options.collision_rounds;
   io.contact_slack = options.contact_slack;
   io.round_tolerance = options.round_tolerance;

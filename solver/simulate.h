@@ -19,6 +19,7 @@ struct SimulationOptions {
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   double limiter_acceleration = IntegratorOptions{}.limiter_acceleration;  ///< see IntegratorOptions: rho in [0, 1), 0 plain sweeps
   double limiter_mass_exponent = IntegratorOptions{}.limiter_mass_exponent;  ///< see IntegratorOptions: in [0, 1], 1 mass-weighted projections
+  bool t_node_sag = IntegratorOptions{}.t_node_sag;  ///< see IntegratorOptions (experimental, off)
   int collision_rounds = 8;                   ///< see IntegratorOptions
   double contact_slack = 0.002;               ///< metres, see IntegratorOptions
   double round_tolerance = 0.01;              ///< see IntegratorOptions

@@ -786,6 +786,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "estimate; 0: plain Gauss-Seidel sweeps), "
             "limiterMassExponent: number in [0, 1] = 0.5 (the limiter moves a vertex in proportion to "
             "mass^-exponent; 1: mass-weighted, 0: equal), "
+            "tNodeSag: bool = false (experimental: the limiter reads a spring from a T-node into the finer side from "
+            "where the fine row beside it would put the T-node, not from the coarse edge's chord), "
             "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
             "before the point is checked against the body again), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "

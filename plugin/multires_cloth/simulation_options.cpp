@@ -187,7 +187,7 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
                      QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
-                     QStringLiteral("limiterMassExponent"), QStringLiteral("collisionRounds"),
+                     QStringLiteral("limiterMassExponent"), QStringLiteral("tNodeSag"), QStringLiteral("collisionRounds"),
                      QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
@@ -232,6 +232,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
     fail(QStringLiteral("%1 must be a number >= 0 and <= 1 (1: mass-weighted limiter projections), got %2")
              .arg(fields.label(QStringLiteral("limiterMassExponent")))
              .arg(sim.limiter_mass_exponent));
+  sim.t_node_sag = fields.boolean(QStringLiteral("tNodeSag"), sim.t_node_sag);
   sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));

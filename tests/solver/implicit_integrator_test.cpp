@@ -529,15 +529,19 @@ TEST(ImplicitIntegrator, RejectsALimiterAccelerationOutsideZeroToOne) {
 TEST(ImplicitIntegrator, TheLimitersActiveSetGivesTheSameBitsAsEverySpring) {
   // A refined sheet (T-node springs), pinned at two corners, falling onto a
   // sphere: the limiter projects many springs every step and collisions
-  // move vertices between its passes.
+  // move vertices between its passes. With t_node_sag a T-node spring also
+  // depends on the fine row beside it.
   DynamicsOptions d;
   d.pinned = {0, 10};
   const DynamicsModel m = build_dynamics(refined_sheet(), d);
   std::vector<Collider> sphere(1);
   sphere[0].shape = SphereCollider{{0.1, -0.25, 0.0}, 0.15};
+  for (const bool sag : {false, true}) {
+  SCOPED_TRACE(sag ? "t_node_sag" : "plain");
   const auto run = [&](bool active_set) {
     IntegratorOptions o = options(1.0 / 60);
     o.active_set = active_set;
+    o.t_node_sag = sag;
     ImplicitIntegrator integrator;
     integrator.precompute(m, o);
     ClothState s = rest_state(m);
@@ -549,6 +553,59 @@ TEST(ImplicitIntegrator, TheLimitersActiveSetGivesTheSameBitsAsEverySpring) {
   const ClothState a = run(true), b = run(false);
   EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), sizeof(double) * a.positions.size()), 0);
   EXPECT_EQ(std::memcmp(a.velocities.data(), b.velocities.data(), sizeof(double) * a.velocities.size()), 0);
+  }
+}
+
+// On a cylinder curved along a coarse edge the chord's midpoint lies
+// inside, R (1 - cos theta) off the surface; the fine row beside the edge
+// bulges by the same amount, so the T-node moved by it lands on the
+// cylinder and a spring from it across the interface reads its rest length.
+TEST(ImplicitIntegrator, AFineRowsBulgePutsATNodeOnTheCylinder) {
+  const double radius = 0.05, spacing = 0.02;  // fine spacing; the coarse edge is twice that
+  const auto on_cylinder = [&](double u, double v) {  // isometric: arc length u around, v along the axis
+    return Eigen::Vector3d(radius * std::sin(u / radius), v, radius * (1.0 - std::cos(u / radius)));
+  };
+  const Eigen::Vector3d a = on_cylinder(-spacing, 0.0), b = on_cylinder(spacing, 0.0);
+  const Eigen::Vector3d chord_middle = 0.5 * (a + b);
+  const Eigen::Vector3d c = on_cylinder(0.0, spacing), ca = on_cylinder(-spacing, spacing), cb = on_cylinder(spacing, spacing);
+  const Eigen::Vector3d t_node = chord_middle + fine_row_bulge(c, ca, cb, 1.0);
+  EXPECT_NEAR((t_node - on_cylinder(0.0, 0.0)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((t_node - c).norm(), spacing, 1e-15);
+  // From the chord the spring reads longer than the cloth is: by sag^2 / 2.
+  const double sag = radius * (1.0 - std::cos(spacing / radius));
+  EXPECT_NEAR((chord_middle - c).norm(), std::sqrt(spacing * spacing + sag * sag), 1e-15);
+  EXPECT_GT((chord_middle - c).norm() - spacing, 1e-5);
+  // The cap shortens the bulge, keeping its direction.
+  const Eigen::Vector3d capped = fine_row_bulge(c, ca, cb, 0.5 * sag);
+  EXPECT_NEAR(capped.norm(), 0.5 * sag, 1e-15);
+  EXPECT_NEAR(capped.normalized().dot(fine_row_bulge(c, ca, cb, 1.0).normalized()), 1.0, 1e-15);
+}
+
+// t_node_sag reads only springs that hang from T-nodes: a mesh without
+// T-nodes gives the same bits with it, a refined one does not.
+TEST(ImplicitIntegrator, TNodeSagChangesOnlyMeshesWithTNodes) {
+  std::vector<Collider> sphere(1);
+  sphere[0].shape = SphereCollider{{0.1, -0.25, 0.0}, 0.15};
+  const auto run = [&](const DynamicsModel& m, bool sag) {
+    IntegratorOptions o = options(1.0 / 60);
+    o.t_node_sag = sag;
+    ImplicitIntegrator integrator;
+    integrator.precompute(m, o);
+    ClothState s = rest_state(m);
+    for (int k = 0; k < 60; ++k) integrator.step(s, s.pinned, sphere);
+    return s.positions;
+  };
+  DynamicsOptions d;
+  d.pinned = {0, 10};
+  const DynamicsModel uniform = build_dynamics(test::make_sheet(11, 0.5), d);
+  ASSERT_TRUE(uniform.hanging_vertices.empty());
+  const Positions u0 = run(uniform, false), u1 = run(uniform, true);
+  EXPECT_EQ(std::memcmp(u0.data(), u1.data(), sizeof(double) * u0.size()), 0);
+  const DynamicsModel refined = build_dynamics(refined_sheet(), d);
+  ASSERT_FALSE(refined.hanging_vertices.empty());
+  const Positions r0 = run(refined, false), r1 = run(refined, true);
+  EXPECT_TRUE(r0.allFinite() && r1.allFinite());
+  EXPECT_GT((r0 - r1).cwiseAbs().maxCoeff(), 1e-9) << "no spring from a T-node found its fine row";
 }
 
 TEST(ImplicitIntegrator, TwoRunsGiveIdenticalBits) {
