@@ -138,7 +138,8 @@ class SagRows {
   Row find(const Spring& s) const {
     for (const auto& [h, c] : {std::make_pair(s.i, s.j), std::make_pair(s.j, s.i)}) {
       const std::vector<StencilTerm>& parents = model_.stencil[static_cast<std::size_t>(h)];
-      if (parents.size() != 2 || !plain_free(c)) continue;
+      // Halfway between two free parents (not a T-node on a T-node's edge).
+      if (parents.size() != 2 || parents[0].weight != 0.5 || parents[1].weight != 0.5 || !plain_free(c)) continue;
       const int a = model_.free_vertices[static_cast<std::size_t>(parents[0].free)];
       const int b = model_.free_vertices[static_cast<std::size_t>(parents[1].free)];
       if (c == a || c == b) continue;  // along the coarse edge: its own spring's constraint
