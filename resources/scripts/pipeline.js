@@ -42,6 +42,8 @@ const USAGE = [
   "                         (index: coarse vertex i takes high vertex i's, the paper's rule; highest /",
   "                         frequent: the highest / most frequent mode in its cell) [index]",
   "  --material M           cotton | denim | silk [cotton]",
+  "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
+  "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
   "  --test-frames N        frames per test motion, >= 1 [60]",
@@ -73,9 +75,10 @@ const DEFAULTS = {
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
+  tNodeSag: false,
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
-               "-h": "help"};
+               "-h": "help", "--t-node-sag": "tNodeSag"};
 const VALUED = {
   "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
@@ -288,7 +291,7 @@ function runPipeline(options) {
   // What a run on the character is given besides its motion and files.
   const characterSettings = (frames) => ({body: body, place: options.place, frames: frames, fps: options.fps,
                                           preroll: options.preroll, material: options.material,
-                                          threads: options.threads});
+                                          tNodeSag: options.tNodeSag, threads: options.threads});
   const onCharacter = (frames, output, bodyOutput) => {
     const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
@@ -587,7 +590,8 @@ function reportMarkdown(report) {
   lines.push("Garment `" + report.garment.file.split("/").pop() + "`: " + report.garment.vertices + " vertices, " +
              report.garment.faces + " faces, " + fixed(report.garment.area, 3) + " m^2. Body: " +
              report.options.body + (report.options.makehuman ? " (MakeHuman)" : " (the mannequin)") +
-             "; material " + report.options.material + "; " + report.options.fps + " fps.", "");
+             "; material " + report.options.material + (report.options.tNodeSag ? " (T-node sag read, tNodeSag)" : "") +
+             "; " + report.options.fps + " fps.", "");
   lines.push("## Instance (Table 1)", "");
   const t1 = report.table1Instance;
   lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | tear opening | max penetration |",
