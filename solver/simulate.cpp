@@ -65,7 +65,7 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
   for (const auto& face : model.corners) {
     const Eigen::Vector3d centre =
         0.25 * (x.row(face[0]) + x.row(face[1]) + x.row(face[2]) + x.row(face[3])).transpose();
-    if (scene.penetration(centre) > 0.0) report.max_face_depth = std::max(report.max_face_depth, scene.depth(centre));
+    report.max_face_depth = std::max(report.max_face_depth, scene.depth(centre));  // 0 outside
   }
   for (const Worst& worst : parts) {
     report.max_depth = std::max(report.max_depth, worst.depth);
