@@ -125,15 +125,12 @@ class SagRows {
     int t_node = -1;                  // full id; -1: the spring has none
     int c = -1, ca = -1, cb = -1;     // free ids
   };
-  explicit SagRows(const DynamicsModel& model) : model_(model), neighbours_(static_cast<std::size_t>(model.num_vertices)),
-                                                 free_of_(static_cast<std::size_t>(model.num_vertices), -1) {
+  explicit SagRows(const DynamicsModel& model) : model_(model), neighbours_(static_cast<std::size_t>(model.num_vertices)) {
     for (const Spring& s : model.springs)
       if (s.kind == SpringKind::stretch) {
         neighbours_[static_cast<std::size_t>(s.i)].push_back(s.j);
         neighbours_[static_cast<std::size_t>(s.j)].push_back(s.i);
       }
-    for (std::size_t f = 0; f < model.free_vertices.size(); ++f)
-      free_of_[static_cast<std::size_t>(model.free_vertices[f])] = static_cast<int>(f);
   }
   Row find(const Spring& s) const {
     for (const auto& [h, c] : {std::make_pair(s.i, s.j), std::make_pair(s.j, s.i)}) {
@@ -150,7 +147,7 @@ class SagRows {
         if (joined(w, b)) cb = w;
       }
       if (ca >= 0 && cb >= 0)
-        return {h, free_of_[static_cast<std::size_t>(c)], free_of_[static_cast<std::size_t>(ca)], free_of_[static_cast<std::size_t>(cb)]};
+        return {h, free_index(c), free_index(ca), free_index(cb)};
     }
     return {};
   }
@@ -160,13 +157,13 @@ class SagRows {
     const std::vector<StencilTerm>& terms = model_.stencil[static_cast<std::size_t>(v)];
     return terms.size() == 1 && terms[0].weight == 1.0;
   }
+  int free_index(int plain) const { return model_.stencil[static_cast<std::size_t>(plain)][0].free; }  // a plain free vertex's own
   bool joined(int u, int v) const {
     const std::vector<int>& n = neighbours_[static_cast<std::size_t>(u)];
     return std::find(n.begin(), n.end(), v) != n.end();
   }
   const DynamicsModel& model_;
   std::vector<std::vector<int>> neighbours_;  // per full vertex, along stretch springs
-  std::vector<int> free_of_;                  // full id -> free id (-1: pinned or a T-node)
 };
 
 // Each free vertex's tether to its nearest pinned vertex over the cloth
