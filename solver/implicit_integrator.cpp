@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <algorithm>
-#include <optional>
 #include <cmath>
 #include <iterator>
 #include <cstdint>
@@ -114,57 +113,53 @@ std::vector<int> wavefront_order(const DynamicsModel& model) {
   return stretch;
 }
 
-// For t_node_sag: a stretch spring from a T-node h (halfway between its
-// parents a and b) to a free vertex c on the finer side, and c's
-// neighbours ca and cb along the row beside the coarse edge (each a free
-// vertex joined by stretch springs to c and to a or b): the row whose
-// bulge says where the fine cloth would put h.
-class SagRows {
- public:
-  struct Row {
-    int t_node = -1;                  // full id; -1: the spring has none
-    int c = -1, ca = -1, cb = -1;     // free ids
+}  // namespace
+
+// A spring from T-node h (halfway between parents a and b) to c on the
+// finer side, and c's neighbours ca and cb along the row beside the coarse
+// edge (joined by stretch springs to c and to a or b): the row whose bulge
+// says where the fine cloth would put h.
+std::vector<FineRow> t_node_fine_rows(const DynamicsModel& model) {
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(model.num_vertices));  // along stretch springs
+  for (const Spring& s : model.springs)
+    if (s.kind == SpringKind::stretch) {
+      neighbours[static_cast<std::size_t>(s.i)].push_back(s.j);
+      neighbours[static_cast<std::size_t>(s.j)].push_back(s.i);
+    }
+  const auto joined = [&](int u, int v) {
+    const std::vector<int>& n = neighbours[static_cast<std::size_t>(u)];
+    return std::find(n.begin(), n.end(), v) != n.end();
   };
-  explicit SagRows(const DynamicsModel& model) : model_(model), neighbours_(static_cast<std::size_t>(model.num_vertices)) {
-    for (const Spring& s : model.springs)
-      if (s.kind == SpringKind::stretch) {
-        neighbours_[static_cast<std::size_t>(s.i)].push_back(s.j);
-        neighbours_[static_cast<std::size_t>(s.j)].push_back(s.i);
-      }
-  }
-  Row find(const Spring& s) const {
+  std::vector<FineRow> rows;
+  for (std::size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    if (s.kind != SpringKind::stretch) continue;
     for (const auto& [h, c] : {std::make_pair(s.i, s.j), std::make_pair(s.j, s.i)}) {
-      const std::vector<StencilTerm>& parents = model_.stencil[static_cast<std::size_t>(h)];
+      const std::vector<StencilTerm>& parents = model.stencil[static_cast<std::size_t>(h)];
       // Halfway between two free parents (not a T-node on a T-node's edge).
-      if (parents.size() != 2 || parents[0].weight != 0.5 || parents[1].weight != 0.5 || !plain_free(c)) continue;
-      const int a = model_.free_vertices[static_cast<std::size_t>(parents[0].free)];
-      const int b = model_.free_vertices[static_cast<std::size_t>(parents[1].free)];
+      if (parents.size() != 2 || parents[0].weight != 0.5 || parents[1].weight != 0.5) continue;
+      const int a = model.free_vertices[static_cast<std::size_t>(parents[0].free)];
+      const int b = model.free_vertices[static_cast<std::size_t>(parents[1].free)];
       if (c == a || c == b) continue;  // along the coarse edge: its own spring's constraint
+      // The row's ends: c's neighbours joined to a and to b. Where the fine
+      // side turns a corner they are T-nodes on the next coarse edge (two
+      // thirds of the shared skirt's across springs).
       int ca = -1, cb = -1;
-      for (const int w : neighbours_[static_cast<std::size_t>(c)]) {
-        if (w == h || !plain_free(w)) continue;
+      for (const int w : neighbours[static_cast<std::size_t>(c)]) {
+        if (w == h || w == a || w == b) continue;
         if (joined(w, a)) ca = w;
         if (joined(w, b)) cb = w;
       }
-      if (ca >= 0 && cb >= 0)
-        return {h, free_index(c), free_index(ca), free_index(cb)};
+      if (ca >= 0 && cb >= 0 && ca != cb) {
+        rows.push_back({static_cast<int>(k), h, c, ca, cb});
+        break;
+      }
     }
-    return {};
   }
+  return rows;
+}
 
- private:
-  bool plain_free(int v) const {
-    const std::vector<StencilTerm>& terms = model_.stencil[static_cast<std::size_t>(v)];
-    return terms.size() == 1 && terms[0].weight == 1.0;
-  }
-  int free_index(int plain) const { return model_.stencil[static_cast<std::size_t>(plain)][0].free; }  // a plain free vertex's own
-  bool joined(int u, int v) const {
-    const std::vector<int>& n = neighbours_[static_cast<std::size_t>(u)];
-    return std::find(n.begin(), n.end(), v) != n.end();
-  }
-  const DynamicsModel& model_;
-  std::vector<std::vector<int>> neighbours_;  // per full vertex, along stretch springs
-};
+namespace {
 
 // Each free vertex's tether to its nearest pinned vertex over the cloth
 // (Dijkstra along the stretch and shear springs' rest lengths, which is at
@@ -343,8 +338,12 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   general_.clear();
   general_terms_.clear();
   general_ends_.clear();
-  std::optional<SagRows> sag_rows;
-  if (options.t_node_sag) sag_rows.emplace(model);
+  std::vector<const FineRow*> row_of_spring;  // per spring, its fine row (t_node_sag)
+  const std::vector<FineRow> rows = options.t_node_sag ? t_node_fine_rows(model) : std::vector<FineRow>{};
+  if (options.t_node_sag) {
+    row_of_spring.assign(model.springs.size(), nullptr);
+    for (const FineRow& row : rows) row_of_spring[static_cast<std::size_t>(row.spring)] = &row;
+  }
   for (LimitedSpring& l : sweep_) {
     if (l.fi >= 0) continue;
     const Spring& s = model.springs[static_cast<std::size_t>(l.fj)];
@@ -378,12 +377,11 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     general_ends_.insert(general_ends_.end(), model.stencil[s.j].begin(), model.stencil[s.j].end());
     g.count_i = static_cast<int>(model.stencil[s.i].size());
     g.count_j = static_cast<int>(model.stencil[s.j].size());
-    if (options.t_node_sag) {
-      const SagRows::Row row = sag_rows->find(s);
-      g.sag_t = row.t_node;
-      g.sag_c = row.c;
-      g.sag_ca = row.ca;
-      g.sag_cb = row.cb;
+    if (const FineRow* row = options.t_node_sag ? row_of_spring[static_cast<std::size_t>(l.fj)] : nullptr) {
+      g.sag_t = row->t_node;
+      g.sag_c = row->c;
+      g.sag_ca = row->ca;
+      g.sag_cb = row->cb;
     }
     l.fj = static_cast<int>(general_.size());
     general_.push_back(g);
@@ -403,8 +401,12 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     if (g.count == 0) always_slots_.push_back(static_cast<int>(k));
     for (int t = 0; t < g.count; ++t)
       dependents[static_cast<std::size_t>(general_terms_[static_cast<std::size_t>(g.first + t)].free)].push_back(static_cast<int>(k));
-    if (g.sag_t >= 0)  // the row's neighbours move the T-node as the limiter reads it
-      for (const int row : {g.sag_ca, g.sag_cb}) dependents[static_cast<std::size_t>(row)].push_back(static_cast<int>(k));
+    if (g.sag_t >= 0)  // the row moves the T-node as the limiter reads it
+      for (const int row : {g.sag_c, g.sag_ca, g.sag_cb})
+        for (const StencilTerm& t : model.stencil[static_cast<std::size_t>(row)]) {
+          std::vector<int>& list = dependents[static_cast<std::size_t>(t.free)];
+          if (list.empty() || list.back() != static_cast<int>(k)) list.push_back(static_cast<int>(k));
+        }
   }
   dependent_start_.assign(1, 0);
   dependent_slots_.clear();
@@ -494,8 +496,8 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       // The T-node as the fine cloth beside it would place its vertex: off
       // the chord by the fine row's bulge (at most 30 % of the spring's
       // rest length, so a row thrown about in a step cannot unlimit it).
-      const Eigen::Vector3d bulge = fine_row_bulge(q.row(g.sag_c).transpose(), q.row(g.sag_ca).transpose(),
-                                                   q.row(g.sag_cb).transpose(), 0.3 * g.rest);
+      const Eigen::Vector3d bulge =
+          fine_row_bulge(position_of(g.sag_c, q), position_of(g.sag_ca, q), position_of(g.sag_cb, q), 0.3 * g.rest);
       (g.sag_t == g.i ? xi : xj) += bulge;
     }
     const Eigen::Vector3d e = xi - xj;

@@ -96,6 +96,20 @@ double chebyshev_weight(int iteration, double rho, double previous);
 /// cylinder curved along the edge, exactly on the cylinder.
 Eigen::Vector3d fine_row_bulge(const Eigen::Vector3d& c, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb, double cap);
 
+/// A spring from a T-node into the finer side, with the fine row beside
+/// the T-node's coarse edge that t_node_sag reads it by (full vertex ids).
+struct FineRow {
+  int spring = -1;          ///< index in DynamicsModel::springs (a stretch spring)
+  int t_node = -1;          ///< its end on the coarse edge, halfway between two free parents a and b
+  int c = -1;               ///< its other end, off the coarse edge
+  int ca = -1, cb = -1;     ///< c's neighbours joined to a and to b (free, pinned or T-nodes)
+};
+
+/// Every stretch spring of `model` from a T-node halfway between two free
+/// parents to a vertex off their edge whose fine row is found (c has
+/// neighbours joined to both parents), in spring order.
+std::vector<FineRow> t_node_fine_rows(const DynamicsModel& model);
+
 /// The rest state of a model at rest velocity 0, pinned at their rest positions.
 ClothState rest_state(const DynamicsModel& model);
 
@@ -244,7 +258,8 @@ class ImplicitIntegrator {
     double rest = 0.0;  // metres
     // With t_node_sag, for a spring from a T-node (full id sag_t) into the
     // finer side: its fine end and that end's neighbours along the row
-    // beside the coarse edge (free ids); sag_t < 0: none.
+    // beside the coarse edge (full ids, read as position_of reads them: a
+    // neighbour may be a T-node or pinned); sag_t < 0: none.
     int sag_t = -1, sag_c = -1, sag_ca = -1, sag_cb = -1;
   };
   std::vector<GeneralSpring> general_;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <random>
 
 namespace mrcloth {
@@ -579,6 +580,52 @@ TEST(ImplicitIntegrator, AFineRowsBulgePutsATNodeOnTheCylinder) {
   const Eigen::Vector3d capped = fine_row_bulge(c, ca, cb, 0.5 * sag);
   EXPECT_NEAR(capped.norm(), 0.5 * sag, 1e-15);
   EXPECT_NEAR(capped.normalized().dot(fine_row_bulge(c, ca, cb, 1.0).normalized()), 1.0, 1e-15);
+}
+
+// The fine rows against a brute-force oracle on the flat rest sheet: for a
+// spring from T-node t (between a and b) to c off their edge, the row's
+// ends lie at c + (a - t) and c + (b - t). Every across spring whose two
+// places hold vertices must get its row, and only those; where the fine
+// side turns a corner those vertices are T-nodes themselves.
+TEST(ImplicitIntegrator, TNodeFineRowsAreTheRowsBesideTheCoarseEdge) {
+  const DynamicsModel m = build_dynamics(refined_sheet(), {});
+  const auto vertex_at = [&](const Eigen::RowVector3d& p) {
+    for (int v = 0; v < m.num_vertices; ++v)
+      if ((m.rest.row(v) - p).norm() < 1e-12) return v;
+    return -1;
+  };
+  std::vector<char> hanging(static_cast<std::size_t>(m.num_vertices), 0);
+  for (const int v : m.hanging_vertices) hanging[static_cast<std::size_t>(v)] = 1;
+  std::map<int, FineRow> expected;
+  for (std::size_t k = 0; k < m.springs.size(); ++k) {
+    const Spring& s = m.springs[k];
+    if (s.kind != SpringKind::stretch) continue;
+    for (const auto& [t, c] : {std::make_pair(s.i, s.j), std::make_pair(s.j, s.i)}) {
+      const std::vector<StencilTerm>& parents = m.stencil[static_cast<std::size_t>(t)];
+      if (parents.size() != 2) continue;
+      const int a = m.free_vertices[static_cast<std::size_t>(parents[0].free)];
+      const int b = m.free_vertices[static_cast<std::size_t>(parents[1].free)];
+      if (c == a || c == b) continue;
+      const int ca = vertex_at(m.rest.row(c) + m.rest.row(a) - m.rest.row(t));
+      const int cb = vertex_at(m.rest.row(c) + m.rest.row(b) - m.rest.row(t));
+      if (ca >= 0 && cb >= 0 && !expected.count(static_cast<int>(k))) expected[static_cast<int>(k)] = {static_cast<int>(k), t, c, ca, cb};
+    }
+  }
+  const std::vector<FineRow> rows = t_node_fine_rows(m);
+  ASSERT_EQ(rows.size(), expected.size());
+  int corners = 0;
+  for (const FineRow& row : rows) {
+    SCOPED_TRACE("spring " + std::to_string(row.spring));
+    ASSERT_EQ(expected.count(row.spring), 1u);
+    const FineRow& e = expected[row.spring];
+    EXPECT_EQ(row.t_node, e.t_node);
+    EXPECT_EQ(row.c, e.c);
+    EXPECT_EQ(row.ca, e.ca);
+    EXPECT_EQ(row.cb, e.cb);
+    corners += hanging[static_cast<std::size_t>(row.ca)] || hanging[static_cast<std::size_t>(row.cb)];
+  }
+  EXPECT_GT(corners, 0) << "no row turns a corner: the test misses the T-node ends";
+  EXPECT_LT(corners, static_cast<int>(rows.size())) << "every row turns a corner: the plain rows go untested";
 }
 
 // t_node_sag reads only springs that hang from T-nodes: a mesh without
