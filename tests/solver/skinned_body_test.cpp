@@ -1362,12 +1362,13 @@ TEST_F(SkinnedBodyTest, SkinnedWaistMovesAsTheSkinUnderIt) {
       total += weight;
     }
     EXPECT_NEAR(total, 1.0, 1e-12) << "pin " << pin;
-    for (const auto& [joint, weight] : expected)
-      if (weight > 1e-9)
-        EXPECT_TRUE(std::any_of(band.options.waist_weights[static_cast<std::size_t>(pin)].begin(),
-                                band.options.waist_weights[static_cast<std::size_t>(pin)].end(),
-                                [&](const auto& jw) { return jw.first == joint; }))
-            << "pin " << pin << " lacks joint " << joint;
+    for (const auto& [joint, weight] : expected) {
+      if (weight <= 1e-9) continue;
+      EXPECT_TRUE(std::any_of(band.options.waist_weights[static_cast<std::size_t>(pin)].begin(),
+                              band.options.waist_weights[static_cast<std::size_t>(pin)].end(),
+                              [&](const auto& jw) { return jw.first == joint; }))
+          << "pin " << pin << " lacks joint " << joint;
+    }
   }
 
   band.options.waist_weights.pop_back();
