@@ -16,6 +16,7 @@
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
 #include "mesh_ops/boundary_loops.h"
+#include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/detail_measures.h"
@@ -128,14 +129,12 @@ Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, con
 int usage(const char* why) {
   std::fprintf(stderr,
                "%s\nusage: bench_swing <pipeline output>/<garment>/meshes [--frames N] [--iterations K] [--sweeps S] "
-               "[--alpha-bend A] [--t-node-sag 0|1]\n",
+               "[--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]\n",
                why);
   return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_bench(int argc, char** argv) {
   if (argc < 2) return usage("no meshes folder given");
   const std::filesystem::path folder = argv[1];
   BenchOptions b;
@@ -196,4 +195,15 @@ int main(int argc, char** argv) {
   std::printf("| %-16s | %8zu | %8.1f | %9.1f | %-16s | %-16s | %-16s |\n", "high", high.n_vertices(), high_ms, 0.0, "0.0", "0.0",
               "0.0");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_bench(argc, argv);
+  } catch (const mrcloth::Error& error) {  // bad options or data: say what, not abort
+    std::fprintf(stderr, "bench_swing: %s\n", error.what());
+    return 1;
+  }
 }
