@@ -12,7 +12,7 @@
 // every model, to see where it comes from.
 //
 // Usage: bench_swing <pipeline output>/<garment>/meshes [--frames N] [--iterations K]
-//                    [--sweeps S] [--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]
+//                    [--sweeps S] [--alpha A] [--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
 #include "mesh_ops/boundary_loops.h"
@@ -39,7 +39,8 @@ struct BenchOptions {
   int frames = 120;          // output frames at 30 fps: 1 s hanging still, then the swing
   int iterations = 2;        // local/global iterations per step (the library default)
   int sweeps = 6;            // strain-limiting sweeps per round (the library default)
-  double alpha_bend = DynamicsOptions{}.alpha_bend;
+  double alpha = DynamicsOptions{}.alpha;            // stretch and shear stiffness per level exponent
+  double alpha_bend = DynamicsOptions{}.alpha_bend;  // bend stiffness per level exponent
   bool t_node_sag = false;   // SimulationOptions::t_node_sag
   std::string regions;       // the mesh whose levels partition the points ("": the first multires_*)
 };
@@ -53,6 +54,7 @@ constexpr int kSkippedFrames = 30;      // the still second is not measured
 // Every output frame of `mesh` swung by its waist (#V x 3 each, metres).
 std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double* ms_per_frame) {
   DynamicsOptions d;
+  d.alpha = b.alpha;
   d.alpha_bend = b.alpha_bend;
   d.pinned = boundary_loop_by_name(mesh, "top");
   const DynamicsModel model = build_dynamics(mesh, d);
@@ -129,7 +131,7 @@ Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, con
 int usage(const char* why) {
   std::fprintf(stderr,
                "%s\nusage: bench_swing <pipeline output>/<garment>/meshes [--frames N] [--iterations K] [--sweeps S] "
-               "[--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]\n",
+               "[--alpha A] [--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]\n",
                why);
   return 2;
 }
@@ -143,6 +145,7 @@ int run_bench(int argc, char** argv) {
     if (key == "--frames") b.frames = std::atoi(value.c_str());
     else if (key == "--iterations") b.iterations = std::atoi(value.c_str());
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
+    else if (key == "--alpha") b.alpha = std::atof(value.c_str());
     else if (key == "--alpha-bend") b.alpha_bend = std::atof(value.c_str());
     else if (key == "--t-node-sag") b.t_node_sag = value == "1";
     else if (key == "--regions") b.regions = value;
@@ -168,9 +171,9 @@ int run_bench(int argc, char** argv) {
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
   std::printf("swing: each model of %s hangs from its waist for %.0f s, then the waist sways %.0f cm and %.0f degrees at "
-              "%.1f Hz; %d frames at 30 fps, no collider; %d iterations, %d sweeps, alphaBend %.1f, tNodeSag %s\n\n",
+              "%.1f Hz; %d frames at 30 fps, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, tNodeSag %s\n\n",
               folder.string().c_str(), kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, b.iterations, b.sweeps,
-              b.alpha_bend, b.t_node_sag ? "on" : "off");
+              b.alpha, b.alpha_bend, b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
               "at each level (share of the points; RMS over all their frames)\n\n", b.regions.c_str());
   std::printf("| %-16s | %8s | %8s | %9s | %-16s | %-16s | %-16s |\n", "model", "vertices", "ms/frame", "mean RMS",
