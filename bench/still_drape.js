@@ -10,18 +10,21 @@
 // high-resolution result": what is left is how differently the meshes hang.
 //
 // Usage (from where the pipeline ran, as its report holds paths as given):
-//   build/bin/mrcloth -b bench/still_drape.js -- <pipeline output folder> [alphaBend [alpha]]
+//   build/bin/mrcloth -b bench/still_drape.js -- <pipeline output folder> [alphaBend [alpha [options]]]
 // alphaBend / alpha: the stiffness-per-level exponents (default: the
-// pipeline's, i.e. the plugin's defaults), to see how they move the drape.
+// pipeline's, i.e. the plugin's defaults; "-" keeps it), to see how they
+// move the drape. options: more multirescloth.simulate options as a JSON
+// object, for every model and the high-resolution mesh alike, e.g.
+// '{"limiterMassExponent": 1}'.
 // Writes <output>/still/<motion>_still.bvh and <output>/still/<model>.pc2
 // (+ .obj) and prints a table.
 
 const args = core.scriptArguments();
-if (args.length < 1) throw new Error("usage: still_drape.js <pipeline output folder> [alphaBend [alpha]]");
+if (args.length < 1) throw new Error("usage: still_drape.js <pipeline output folder> [alphaBend [alpha [options]]]");
 const out = args[0];
 const stiffness = {};
-if (args.length > 1) stiffness.alphaBend = Number(args[1]);
-if (args.length > 2) stiffness.alpha = Number(args[2]);
+if (args.length > 1 && args[1] !== "-") stiffness.alphaBend = Number(args[1]);
+if (args.length > 2 && args[2] !== "-") stiffness.alpha = Number(args[2]);
 for (const key of Object.keys(stiffness))
   if (!Number.isFinite(stiffness[key])) throw new Error(key + " must be a number, got " + args[key === "alphaBend" ? 1 : 2]);
 
@@ -45,7 +48,17 @@ core.makePath(out + "/still");
 const stillPath = out + "/still/" + motion + "_still.bvh";
 core.writeTextFile(stillPath, held(core.readTextFile(motionPath)));
 
-const settings = Object.assign({}, report.testSettings, stiffness,
+let extra = {};
+if (args.length > 3) {
+  try {
+    extra = JSON.parse(args[3]);
+  } catch (e) {
+    throw new Error("options must be a JSON object of simulate options, got " + args[3] + " (" + e.message + ")");
+  }
+  if (extra === null || typeof extra !== "object" || Array.isArray(extra))
+    throw new Error("options must be a JSON object of simulate options, got " + args[3]);
+}
+const settings = Object.assign({}, report.testSettings, stiffness, extra,
                                {motion: {path: stillPath, units: report.options.motionUnits}});
 const rows = report.table3.filter((row) => row.motion === motion);
 const high = rows.find((row) => row.model === "high");
