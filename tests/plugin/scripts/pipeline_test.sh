@@ -87,5 +87,12 @@ for model in coarse multires_d6 multires_d8; do
     fail "still drape: no row for $model: $(cat "$tmp/still.out")"
 done
 
+# Options that are not a JSON object are refused by name, before any run.
+if "$host" -q -b "$resources/../bench/still_drape.js" -- "$tmp/command" - - '[1]' > "$tmp/still_bad.out" 2> "$tmp/still_bad.err"; then
+  fail "still_drape.js accepted options '[1]'"
+fi
+grep -q "options must be a JSON object of simulate options, got \[1\]" "$tmp/still_bad.err" ||
+  fail "still_drape.js bad options: $(cat "$tmp/still_bad.err")"
+
 [ "$failed" -eq 0 ] && echo "pipeline: ok"
 exit "$failed"
