@@ -11,14 +11,23 @@
 // first multires_* by name) is at level 1, 2 or 3, the same points for
 // every model, to see where it comes from.
 //
-// Usage: bench_swing <pipeline output>/<garment>/meshes [--frames N] [--iterations K]
-//                    [--sweeps S] [--alpha A] [--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]
+// `--curtain` instead of a folder swings meshes built here, with no data:
+// a 0.6 m square curtain of 12 x 12 quads hung by its top row, refined
+// uniformly once (L1) and twice (high), and with a level-3 patch painted
+// on the coarse curtain (patch) and on L1 (L1+patch).
+//
+// Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K]
+//                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
+#include "mesh_ops/adaptive_refine.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
+#include "mesh_ops/mode_layer.h"
 #include "mesh_ops/quad_mesh.h"
+#include "mesh_ops/quadtree_forest.h"
+#include "mesh_ops/uniform_refine.h"
 #include "solver/detail_measures.h"
 #include "solver/simulate.h"
 
@@ -28,7 +37,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -41,8 +52,10 @@ struct BenchOptions {
   int sweeps = 6;            // strain-limiting sweeps per round (the library default)
   double alpha = DynamicsOptions{}.alpha;            // stretch and shear stiffness per level exponent
   double alpha_bend = DynamicsOptions{}.alpha_bend;  // bend stiffness per level exponent
+  double bend_stiffness = DynamicsOptions{}.material.bend_stiffness;  // N/m at level 1, >= 0
   bool t_node_sag = false;   // SimulationOptions::t_node_sag
   std::string regions;       // the mesh whose levels partition the points ("": the first multires_*)
+  bool curtain = false;      // swing the built curtain instead of a pipeline run's meshes
 };
 
 constexpr double kStill = 1.0;          // seconds hanging before the swing
@@ -52,11 +65,24 @@ constexpr double kFrequency = 0.9;      // Hz
 constexpr int kSkippedFrames = 30;      // the still second is not measured
 
 // Every output frame of `mesh` swung by its waist (#V x 3 each, metres).
+// The pinned vertices: a garment's waist (boundary loop "top"), or the
+// curtain's top row (the vertices at its greatest height).
+std::vector<int> pinned_vertices(const QuadMesh& mesh, bool curtain) {
+  if (!curtain) return boundary_loop_by_name(mesh, "top");
+  double top = -std::numeric_limits<double>::infinity();
+  for (auto v : mesh.vertices()) top = std::max(top, static_cast<double>(mesh.point(v)[1]));
+  std::vector<int> row;
+  for (auto v : mesh.vertices())
+    if (mesh.point(v)[1] > top - 1e-9) row.push_back(v.idx());
+  return row;
+}
+
 std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double* ms_per_frame) {
   DynamicsOptions d;
   d.alpha = b.alpha;
   d.alpha_bend = b.alpha_bend;
-  d.pinned = boundary_loop_by_name(mesh, "top");
+  d.material.bend_stiffness = b.bend_stiffness;
+  d.pinned = pinned_vertices(mesh, b.curtain);
   const DynamicsModel model = build_dynamics(mesh, d);
   ClothState state = rest_state(model);
   SimulationOptions s;
@@ -128,18 +154,45 @@ Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, con
   return m;
 }
 
+// The curtain's models, high last: a vertical 0.6 m square of 12 x 12
+// quads in the x-y plane, its top row at y = 0.6.
+std::vector<std::pair<std::string, QuadMesh>> curtain_models() {
+  constexpr int kQuads = 12;
+  constexpr double kSpacing = 0.05;
+  QuadMesh coarse;
+  for (int j = 0; j <= kQuads; ++j)
+    for (int i = 0; i <= kQuads; ++i) coarse.add_vertex(QuadMesh::Point(i * kSpacing, j * kSpacing, 0.0));
+  const auto vertex = [&](int i, int j) { return coarse.vertex_handle(j * (kQuads + 1) + i); };
+  for (int j = 0; j < kQuads; ++j)
+    for (int i = 0; i < kQuads; ++i) coarse.add_face(vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1));
+  init_forest(coarse);
+  const auto refined = [&](int levels) {
+    QuadMesh mesh = coarse;
+    uniform_refine(mesh, levels);
+    return mesh;
+  };
+  const auto with_patch = [&](QuadMesh mesh) {  // level 3 within 15 cm of the middle, balanced
+    paint_modes_sphere(mesh, {0.3, 0.3, 0.0}, 0.15, 4);
+    adaptive_refine(mesh, {8.0, 3, true});
+    return mesh;
+  };
+  return {{"coarse", coarse}, {"L1", refined(1)}, {"patch", with_patch(coarse)}, {"L1+patch", with_patch(refined(1))},
+          {"high", refined(2)}};
+}
+
 int usage(const char* why) {
   std::fprintf(stderr,
-               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes [--frames N] [--iterations K] [--sweeps S] "
-               "[--alpha A] [--alpha-bend A] [--t-node-sag 0|1] [--regions MODEL]\n",
+               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--sweeps S] "
+               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]\n",
                why);
   return 2;
 }
 
 int run_bench(int argc, char** argv) {
   if (argc < 2) return usage("no meshes folder given");
-  const std::filesystem::path folder = argv[1];
   BenchOptions b;
+  b.curtain = std::string(argv[1]) == "--curtain";
+  const std::filesystem::path folder = b.curtain ? std::filesystem::path() : std::filesystem::path(argv[1]);
   for (int a = 2; a + 1 < argc; a += 2) {
     const std::string key = argv[a], value = argv[a + 1];
     if (key == "--frames") b.frames = std::atoi(value.c_str());
@@ -147,33 +200,47 @@ int run_bench(int argc, char** argv) {
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
     else if (key == "--alpha-bend") b.alpha_bend = std::atof(value.c_str());
+    else if (key == "--bend-stiffness") b.bend_stiffness = std::atof(value.c_str());
     else if (key == "--t-node-sag") b.t_node_sag = value == "1";
     else if (key == "--regions") b.regions = value;
     else return usage(("unknown option " + key).c_str());
   }
   if (b.frames <= kSkippedFrames) return usage("--frames must exceed the 30 still frames");
-  if (!std::filesystem::exists(folder / "high.om"))
-    return usage(("no high.om in " + folder.string() + "; expected a `mrcloth pipeline` run's meshes folder").c_str());
-  std::vector<std::string> models{"coarse_modes", "uniform_equal"};
-  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-    const std::string name = entry.path().stem().string();
-    if (entry.path().extension() == ".om" && name.rfind("multires_", 0) == 0) models.push_back(name);
-  }
-  std::sort(models.begin() + 2, models.end());
-  if (b.regions.empty()) b.regions = models.size() > 2 ? models[2] : "uniform_equal";
-  if (!std::filesystem::exists(folder / (b.regions + ".om"))) return usage(("no " + b.regions + ".om in " + folder.string()).c_str());
 
-  const auto load = [&](const std::string& name) { return load_garment((folder / (name + ".om")).string(), {"m"}).mesh; };
-  const QuadMesh high = load("high");
+  // The compared models and the high-resolution mesh, by name.
+  std::vector<std::pair<std::string, QuadMesh>> models;
+  QuadMesh high;
+  if (b.curtain) {
+    models = curtain_models();
+    high = std::move(models.back().second);
+    models.pop_back();
+  } else {
+    if (!std::filesystem::exists(folder / "high.om"))
+      return usage(("no high.om in " + folder.string() + "; expected a `mrcloth pipeline` run's meshes folder").c_str());
+    std::vector<std::string> names{"coarse_modes", "uniform_equal"};
+    std::vector<std::string> multires;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+      const std::string name = entry.path().stem().string();
+      if (entry.path().extension() == ".om" && name.rfind("multires_", 0) == 0) multires.push_back(name);
+    }
+    std::sort(multires.begin(), multires.end());
+    names.insert(names.end(), multires.begin(), multires.end());
+    const auto load = [&](const std::string& name) { return load_garment((folder / (name + ".om")).string(), {"m"}).mesh; };
+    for (const std::string& name : names) models.emplace_back(name, load(name));
+    high = load("high");
+  }
+  if (b.regions.empty()) b.regions = models.size() > 2 ? models[2].first : models.back().first;
+  const auto region_model = std::find_if(models.begin(), models.end(), [&](const auto& m) { return m.first == b.regions; });
+  if (region_model == models.end()) return usage(("no model named " + b.regions + " to take the regions from").c_str());
   const std::vector<MaterialPoint> points = material_points(high);
-  const std::vector<int> level = levels_at(load(b.regions), points);
+  const std::vector<int> level = levels_at(region_model->second, points);
   double high_ms = 0.0;
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
-  std::printf("swing: each model of %s hangs from its waist for %.0f s, then the waist sways %.0f cm and %.0f degrees at "
-              "%.1f Hz; %d frames at 30 fps, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, tNodeSag %s\n\n",
-              folder.string().c_str(), kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, b.iterations, b.sweeps,
-              b.alpha, b.alpha_bend, b.t_node_sag ? "on" : "off");
+  std::printf("swing: each model of %s hangs from its %s for %.0f s, then that sways %.0f cm and %.0f degrees at "
+              "%.1f Hz; %d frames at 30 fps, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
+              b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, b.iterations, b.sweeps,
+              b.alpha, b.alpha_bend, b.bend_stiffness, b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
               "at each level (share of the points; RMS over all their frames)\n\n", b.regions.c_str());
   std::printf("| %-16s | %8s | %8s | %9s | %-16s | %-16s | %-16s |\n", "model", "vertices", "ms/frame", "mean RMS",
@@ -181,8 +248,7 @@ int run_bench(int argc, char** argv) {
   std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(18, '-').c_str(), std::string(10, '-').c_str(),
               std::string(10, '-').c_str(), std::string(11, '-').c_str(), std::string(18, '-').c_str(),
               std::string(18, '-').c_str(), std::string(18, '-').c_str());
-  for (const std::string& name : models) {
-    const QuadMesh mesh = load(name);
+  for (const auto& [name, mesh] : models) {
     double ms = 0.0;
     const Measured m = measure(mesh, swing(mesh, b, &ms), points, level, reference);
     std::array<std::string, 4> cells;
