@@ -64,7 +64,6 @@ constexpr double kYaw = 0.35;           // radians about the vertical
 constexpr double kFrequency = 0.9;      // Hz
 constexpr int kSkippedFrames = 30;      // the still second is not measured
 
-// Every output frame of `mesh` swung by its waist (#V x 3 each, metres).
 // The pinned vertices: a garment's waist (boundary loop "top"), or the
 // curtain's top row (the vertices at its greatest height).
 std::vector<int> pinned_vertices(const QuadMesh& mesh, bool curtain) {
@@ -77,6 +76,7 @@ std::vector<int> pinned_vertices(const QuadMesh& mesh, bool curtain) {
   return row;
 }
 
+// Every output frame of `mesh` swung by its waist (#V x 3 each, metres).
 std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double* ms_per_frame) {
   DynamicsOptions d;
   d.alpha = b.alpha;
