@@ -338,12 +338,10 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   general_.clear();
   general_terms_.clear();
   general_ends_.clear();
-  std::vector<const FineRow*> row_of_spring;  // per spring, its fine row (t_node_sag)
+  // Per spring, its fine row (t_node_sag; empty when off).
   const std::vector<FineRow> rows = options.t_node_sag ? t_node_fine_rows(model) : std::vector<FineRow>{};
-  if (options.t_node_sag) {
-    row_of_spring.assign(model.springs.size(), nullptr);
-    for (const FineRow& row : rows) row_of_spring[static_cast<std::size_t>(row.spring)] = &row;
-  }
+  std::vector<const FineRow*> row_of_spring(rows.empty() ? 0 : model.springs.size(), nullptr);
+  for (const FineRow& row : rows) row_of_spring[static_cast<std::size_t>(row.spring)] = &row;
   for (LimitedSpring& l : sweep_) {
     if (l.fi >= 0) continue;
     const Spring& s = model.springs[static_cast<std::size_t>(l.fj)];
@@ -377,9 +375,8 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     general_ends_.insert(general_ends_.end(), model.stencil[s.j].begin(), model.stencil[s.j].end());
     g.count_i = static_cast<int>(model.stencil[s.i].size());
     g.count_j = static_cast<int>(model.stencil[s.j].size());
-    if (const FineRow* row = options.t_node_sag ? row_of_spring[static_cast<std::size_t>(l.fj)] : nullptr) {
+    if (const FineRow* row = row_of_spring.empty() ? nullptr : row_of_spring[static_cast<std::size_t>(l.fj)]) {
       g.sag_t = row->t_node;
-      g.sag_c = row->c;
       g.sag_ca = row->ca;
       g.sag_cb = row->cb;
     }
@@ -402,7 +399,7 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     for (int t = 0; t < g.count; ++t)
       dependents[static_cast<std::size_t>(general_terms_[static_cast<std::size_t>(g.first + t)].free)].push_back(static_cast<int>(k));
     if (g.sag_t >= 0)  // the row moves the T-node as the limiter reads it
-      for (const int row : {g.sag_c, g.sag_ca, g.sag_cb})
+      for (const int row : {g.sag_t == g.i ? g.j : g.i, g.sag_ca, g.sag_cb})  // the row's middle is the other end
         for (const StencilTerm& t : model.stencil[static_cast<std::size_t>(row)]) {
           std::vector<int>& list = dependents[static_cast<std::size_t>(t.free)];
           if (list.empty() || list.back() != static_cast<int>(k)) list.push_back(static_cast<int>(k));
@@ -496,9 +493,10 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       // The T-node as the fine cloth beside it would place its vertex: off
       // the chord by the fine row's bulge (at most 30 % of the spring's
       // rest length, so a row thrown about in a step cannot unlimit it).
-      const Eigen::Vector3d bulge =
-          fine_row_bulge(position_of(g.sag_c, q), position_of(g.sag_ca, q), position_of(g.sag_cb, q), 0.3 * g.rest);
-      (g.sag_t == g.i ? xi : xj) += bulge;
+      // The row's middle is the spring's other end, already read.
+      Eigen::Vector3d& t_node = g.sag_t == g.i ? xi : xj;
+      const Eigen::Vector3d& middle = g.sag_t == g.i ? xj : xi;
+      t_node += fine_row_bulge(middle, position_of(g.sag_ca, q), position_of(g.sag_cb, q), 0.3 * g.rest);
     }
     const Eigen::Vector3d e = xi - xj;
     const double length = e.norm();

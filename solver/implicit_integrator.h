@@ -257,10 +257,10 @@ class ImplicitIntegrator {
     int ends_first = 0, count_i = 0, count_j = 0;
     double rest = 0.0;  // metres
     // With t_node_sag, for a spring from a T-node (full id sag_t) into the
-    // finer side: its fine end and that end's neighbours along the row
-    // beside the coarse edge (full ids, read as position_of reads them: a
-    // neighbour may be a T-node or pinned); sag_t < 0: none.
-    int sag_t = -1, sag_c = -1, sag_ca = -1, sag_cb = -1;
+    // finer side: the neighbours of its fine end (the row's middle) along
+    // the row beside the coarse edge (full ids, read as position_of reads
+    // them: a neighbour may be a T-node or pinned); sag_t < 0: none.
+    int sag_t = -1, sag_ca = -1, sag_cb = -1;
   };
   std::vector<GeneralSpring> general_;
   std::vector<GeneralTerm> general_terms_;
