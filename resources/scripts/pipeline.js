@@ -45,6 +45,8 @@ const USAGE = [
   "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
   "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
   "  --fps F                output frames per second, > 0 [30]",
+  "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
+  "                         (README, Characters) [120, the CMU mocap rate]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
   "  --test-frames N        frames per test motion, >= 1 [60]",
   "  --preroll S            seconds from the rest pose to each motion's start, >= 0 [1]",
@@ -75,7 +77,7 @@ const DEFAULTS = {
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
-  tNodeSag: false,
+  tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
                "-h": "help", "--t-node-sag": "tNodeSag"};
@@ -84,7 +86,7 @@ const VALUED = {
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
-  "--threads": "threads",
+  "--threads": "threads", "--step-rate": "stepRate",
   "--size": "size",
 };
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
@@ -138,6 +140,7 @@ function parseOptions(args) {
       case "threads": options.threads = integerOption(name, text, 0); break;
       case "fps": options.fps = numberOption(name, text, 0, true); break;
       case "preroll": options.preroll = numberOption(name, text, 0, false); break;
+      case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
       case "delta": {
         const values = text.split(",").map((part) => numberOption(name, part, 0, true));
         options.delta = values.filter((value, k) => values.indexOf(value) === k);
@@ -177,6 +180,9 @@ function parseOptions(args) {
       throw pipelineError("option --test: " + options.test[first] + " and " + options.test[k] + " share the name \"" +
                           name + "\", which names their caches; rename one");
   });
+  if (options.stepRate !== null && options.stepRate < options.fps)
+    throw pipelineError("option --step-rate: expected at least --fps (" + options.fps + " frames per second), got " +
+                        options.stepRate);
   if (options.units === null) options.units = options.makehuman ? "dm" : "m";
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)
@@ -214,6 +220,7 @@ function resultOptions(options) {
   delete copy.resume;
   delete copy.help;
   delete copy.out;
+  if (copy.stepRate === null) delete copy.stepRate;  // runs from before --step-rate still resume
   return copy;
 }
 
@@ -289,9 +296,10 @@ function runPipeline(options) {
                          : options.body;
   const motion = (path) => ({path: path, units: options.motionUnits});
   // What a run on the character is given besides its motion and files.
-  const characterSettings = (frames) => ({body: body, place: options.place, frames: frames, fps: options.fps,
-                                          preroll: options.preroll, material: options.material,
-                                          tNodeSag: options.tNodeSag, threads: options.threads});
+  const characterSettings = (frames) => Object.assign(
+      {body: body, place: options.place, frames: frames, fps: options.fps, preroll: options.preroll,
+       material: options.material, tNodeSag: options.tNodeSag, threads: options.threads},
+      options.stepRate === null ? {} : {stepRate: options.stepRate});
   const onCharacter = (frames, output, bodyOutput) => {
     const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
@@ -302,7 +310,7 @@ function runPipeline(options) {
     perFrameMs: report.perFrameMs, maxStretch: report.maxStretch, maxTearOpening: report.maxTearOpening,
     maxPenetration: report.maxPenetration, maxFaceDepth: report.maxFaceDepth,
     meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
-    nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame,
+    nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame, stepRate: report.stepRate,
   });
   const mustFinish = (what, report) => {
     if (report.cancelled) throw new Error("pipeline: " + what + " was cancelled");
@@ -469,7 +477,7 @@ function runPipeline(options) {
     table1Instance: {vertices: highRecord.vertices, frames: instanceRecord.frames, seconds: instanceRecord.seconds,
                      msPerFrame: instanceRecord.msPerFrame, maxStretch: instanceRecord.maxStretch,
                      maxTearOpening: instanceRecord.maxTearOpening, maxPenetration: instanceRecord.maxPenetration,
-                     motion: baseName(options.instance)},
+                     stepRate: instanceRecord.stepRate, motion: baseName(options.instance)},
     table2Refinement: [{model: "high", vertices: highRecord.vertices, verticesPerLevel: highRecord.verticesPerLevel,
                         milliseconds: highRecord.milliseconds}].concat(
         multiRecord.meshes.map((mesh) => ({model: mesh.name, delta: mesh.delta, vertices: mesh.vertices,
@@ -591,7 +599,8 @@ function reportMarkdown(report) {
              report.garment.faces + " faces, " + fixed(report.garment.area, 3) + " m^2. Body: " +
              report.options.body + (report.options.makehuman ? " (MakeHuman)" : " (the mannequin)") +
              "; material " + report.options.material + (report.options.tNodeSag ? " (T-node sag read, tNodeSag)" : "") +
-             "; " + report.options.fps + " fps.", "");
+             "; " + report.options.fps + " fps" +
+             (report.table1Instance.stepRate ? ", " + report.table1Instance.stepRate + " steps per second" : "") + ".", "");
   lines.push("## Instance (Table 1)", "");
   const t1 = report.table1Instance;
   lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | tear opening | max penetration |",

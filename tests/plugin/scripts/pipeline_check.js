@@ -19,6 +19,9 @@ for (const key of ["vertices", "frames", "seconds", "msPerFrame", "maxStretch", 
 for (const key of ["dynamics", "collision", "total"])
   check(typeof report.table1Instance.msPerFrame[key] === "number", "table1Instance.msPerFrame." + key);
 expectEqual(report.table1Instance.frames, options.instanceFrames, "instance frames");
+// --step-rate reaches the runs (simulate's default without it: 120 per second).
+const stepRate = options.stepRate === undefined ? 120 : options.stepRate;
+expectEqual(report.table1Instance.stepRate, stepRate, "instance steps per second");
 expectEqual(report.table2Refinement.length, 1 + options.delta.length, "table 2 rows");
 for (const row of report.table2Refinement)
   for (const key of ["model", "vertices", "milliseconds", "verticesPerLevel"])

@@ -29,6 +29,8 @@ refused "option --levels: expected an integer >= 1, got \"0\"" --levels 0
 refused "option --delta: expected a number > 0, got \"-3\"" --delta 8,-3
 refused "option --fps: expected a number > 0, got \"fast\"" --fps fast
 refused "option --threads: expected an integer >= 0, got \"-2\"" --threads -2
+refused "option --step-rate: expected a number > 0, got \"0\"" --step-rate 0
+refused "option --step-rate: expected at least --fps \(30 frames per second\), got 20" --step-rate 20
 refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot
 refused "option --map-modes: expected one of index, highest, frequent, got \"nearest\"" --map-modes nearest
 refused "option --units: expected one of m, dm, cm, mm, inch, got \"feet\"" --units feet

@@ -44,8 +44,9 @@ code=$?
 [ "$code" -eq 1 ] || fail "resume with other options: exit code $code"
 grep -q "holds a run with other options (modes)" "$tmp/other.err" || fail "other options: $(cat "$tmp/other.err")"
 
-# 5. Ctrl-C once the instance is recorded, during the test runs or previews.
-"$host" pipeline $small --test-frames 120 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
+# 5. Ctrl-C once the instance is recorded, during the test runs or previews
+# (at 60 steps a second, which the finished report must say).
+"$host" pipeline $small --test-frames 120 --step-rate 60 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
 pid=$!
 tries=0
 until [ -f "$tmp/interrupted/stages/modes.json" ]; do
@@ -64,11 +65,13 @@ leftovers=$(find "$tmp/interrupted" -name '.*tmp*')
 [ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
 [ -f "$tmp/interrupted/report.json" ] && fail "an interrupted run wrote a report"
 # Every cache present is complete: the resumed run reads them all.
-"$host" -q pipeline $small --test-frames 120 --out "$tmp/interrupted" --resume > "$tmp/int_resume.out" 2> "$tmp/int_resume.err" ||
+"$host" -q pipeline $small --test-frames 120 --step-rate 60 --out "$tmp/interrupted" --resume > "$tmp/int_resume.out" 2> "$tmp/int_resume.err" ||
   { fail "resume after Ctrl-C: exit code $?"; cat "$tmp/int_resume.err"; }
 grep -q "resumed)" "$tmp/int_resume.out" && ! grep -q "(0 stages run" "$tmp/int_resume.out" ||
   fail "resume after Ctrl-C: $(cat "$tmp/int_resume.out")"
 grep -Eq ", [1-9][0-9]* resumed\)" "$tmp/int_resume.out" || fail "nothing was resumed: $(cat "$tmp/int_resume.out")"
+"$host" -q -b "$scripts/pipeline_check.js" -- "$tmp/interrupted" || fail "check the interrupted run at 60 steps a second"
+grep -q "; 30 fps, 60 steps per second\." "$tmp/interrupted/report.md" || fail "report.md does not say 60 steps per second"
 
 # 6. bench/distance_floor.js re-runs every model as the pipeline did: with
 # no perturbation each distance comes out as the pipeline measured it.
