@@ -16,7 +16,7 @@
 // uniformly once (L1) and twice (high), and with a level-3 patch painted
 // on the coarse curtain (patch) and on L1 (L1+patch).
 //
-// Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K]
+// Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N]
 //                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
@@ -49,6 +49,7 @@ using namespace mrcloth;
 struct BenchOptions {
   int frames = 120;          // output frames at 30 fps: 1 s hanging still, then the swing
   int iterations = 2;        // local/global iterations per step (the library default)
+  int substeps = 4;          // steps per 30 fps frame: 120 per second (the library default)
   int sweeps = 6;            // strain-limiting sweeps per round (the library default)
   double alpha = DynamicsOptions{}.alpha;            // stretch and shear stiffness per level exponent
   double alpha_bend = DynamicsOptions{}.alpha_bend;  // bend stiffness per level exponent
@@ -88,6 +89,7 @@ std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double
   SimulationOptions s;
   s.frames = b.frames;
   s.iterations = b.iterations;
+  s.substeps = b.substeps;
   s.strain_limit_sweeps = b.sweeps;
   s.t_node_sag = b.t_node_sag;
   const Positions rest = state.pinned;
@@ -182,7 +184,7 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models() {
 
 int usage(const char* why) {
   std::fprintf(stderr,
-               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--sweeps S] "
+               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N] [--sweeps S] "
                "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]\n",
                why);
   return 2;
@@ -197,6 +199,7 @@ int run_bench(int argc, char** argv) {
     const std::string key = argv[a], value = argv[a + 1];
     if (key == "--frames") b.frames = std::atoi(value.c_str());
     else if (key == "--iterations") b.iterations = std::atoi(value.c_str());
+    else if (key == "--substeps") b.substeps = std::atoi(value.c_str());
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
     else if (key == "--alpha-bend") b.alpha_bend = std::atof(value.c_str());
@@ -206,6 +209,7 @@ int run_bench(int argc, char** argv) {
     else return usage(("unknown option " + key).c_str());
   }
   if (b.frames <= kSkippedFrames) return usage("--frames must exceed the 30 still frames");
+  if (b.substeps < 1 || b.iterations < 1) return usage("--substeps and --iterations must be at least 1");
 
   // The compared models and the high-resolution mesh, by name.
   std::vector<std::pair<std::string, QuadMesh>> models;
@@ -238,8 +242,8 @@ int run_bench(int argc, char** argv) {
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
   std::printf("swing: each model of %s hangs from its %s for %.0f s, then that sways %.0f cm and %.0f degrees at "
-              "%.1f Hz; %d frames at 30 fps, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
-              b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, b.iterations, b.sweeps,
+              "%.1f Hz; %d frames at 30 fps, %d steps a second, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
+              b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, 30 * b.substeps, b.iterations, b.sweeps,
               b.alpha, b.alpha_bend, b.bend_stiffness, b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
               "at each level (share of the points; RMS over all their frames)\n\n", b.regions.c_str());
