@@ -18,6 +18,7 @@
 //
 // Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N]
 //                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]
+//                    [--smooth PASSES]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
 #include "mesh_ops/adaptive_refine.h"
@@ -56,6 +57,7 @@ struct BenchOptions {
   double bend_stiffness = DynamicsOptions{}.material.bend_stiffness;  // N/m at level 1, >= 0
   bool t_node_sag = false;   // SimulationOptions::t_node_sag
   std::string regions;       // the mesh whose levels partition the points ("": the first multires_*)
+  int smooth = 0;            // umbrella passes over the high mesh applied to each frame's error before it is measured (0: none)
   bool curtain = false;      // swing the built curtain instead of a pipeline run's meshes
 };
 
@@ -126,8 +128,36 @@ struct Measured {
   std::array<double, 4> share{};          // fraction of the points in that region
 };
 
+// Each high vertex's edge neighbours (the material points are the high
+// mesh's vertices, in order).
+std::vector<std::vector<int>> neighbours_of(const QuadMesh& high) {
+  std::vector<std::vector<int>> neighbours(high.n_vertices());
+  for (auto v : high.vertices())
+    for (auto w : high.vv_range(v)) neighbours[static_cast<std::size_t>(v.idx())].push_back(w.idx());
+  return neighbours;
+}
+
+// `passes` Jacobi passes of the umbrella average (each point halfway to its
+// neighbours' mean): keeps what varies over many edges, removes what varies
+// over a few (wrinkles), so the error left is the large-scale one.
+Eigen::MatrixX3d smoothed(Eigen::MatrixX3d error, const std::vector<std::vector<int>>& neighbours, int passes) {
+  Eigen::MatrixX3d next(error.rows(), 3);
+  for (int pass = 0; pass < passes; ++pass) {
+    for (Eigen::Index k = 0; k < error.rows(); ++k) {
+      const auto& around = neighbours[static_cast<std::size_t>(k)];
+      if (around.empty()) { next.row(k) = error.row(k); continue; }
+      Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+      for (int n : around) mean += error.row(n);
+      next.row(k) = 0.5 * error.row(k) + 0.5 * mean / static_cast<double>(around.size());
+    }
+    error.swap(next);
+  }
+  return error;
+}
+
 Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, const std::vector<MaterialPoint>& points,
-                 const std::vector<int>& level, const std::vector<Positions>& high) {
+                 const std::vector<int>& level, const std::vector<Positions>& high,
+                 const std::vector<std::vector<int>>& neighbours, int smooth) {
   const MaterialEvaluator evaluator(mesh);
   const MaterialBinding binding = evaluator.bind(points);
   Measured m;
@@ -135,10 +165,11 @@ Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, con
   std::array<long, 4> count{};
   int measured = 0;
   for (std::size_t f = kSkippedFrames; f < frames.size() && f < high.size(); ++f) {
-    const Eigen::MatrixX3d x = evaluator.evaluate(binding, frames[f]);
+    Eigen::MatrixX3d error = evaluator.evaluate(binding, frames[f]) - high[f];
+    if (smooth > 0) error = smoothed(std::move(error), neighbours, smooth);
     double frame_sum = 0.0;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const double d2 = (x.row(static_cast<Eigen::Index>(k)) - high[f].row(static_cast<Eigen::Index>(k))).squaredNorm();
+      const double d2 = error.row(static_cast<Eigen::Index>(k)).squaredNorm();
       frame_sum += d2;
       sum[static_cast<std::size_t>(level[k])] += d2;
       ++count[static_cast<std::size_t>(level[k])];
@@ -185,7 +216,7 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models() {
 int usage(const char* why) {
   std::fprintf(stderr,
                "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N] [--sweeps S] "
-               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]\n",
+               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES]\n",
                why);
   return 2;
 }
@@ -206,10 +237,12 @@ int run_bench(int argc, char** argv) {
     else if (key == "--bend-stiffness") b.bend_stiffness = std::atof(value.c_str());
     else if (key == "--t-node-sag") b.t_node_sag = value == "1";
     else if (key == "--regions") b.regions = value;
+    else if (key == "--smooth") b.smooth = std::atoi(value.c_str());
     else return usage(("unknown option " + key).c_str());
   }
   if (b.frames <= kSkippedFrames) return usage("--frames must exceed the 30 still frames");
   if (b.substeps < 1 || b.iterations < 1) return usage("--substeps and --iterations must be at least 1");
+  if (b.smooth < 0) return usage("--smooth must be at least 0");
 
   // The compared models and the high-resolution mesh, by name.
   std::vector<std::pair<std::string, QuadMesh>> models;
@@ -238,6 +271,7 @@ int run_bench(int argc, char** argv) {
   if (region_model == models.end()) return usage(("no model named " + b.regions + " to take the regions from").c_str());
   const std::vector<MaterialPoint> points = material_points(high);
   const std::vector<int> level = levels_at(region_model->second, points);
+  const std::vector<std::vector<int>> neighbours = neighbours_of(high);
   double high_ms = 0.0;
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
@@ -246,7 +280,9 @@ int run_bench(int argc, char** argv) {
               b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, 30 * b.substeps, b.iterations, b.sweeps,
               b.alpha, b.alpha_bend, b.bend_stiffness, b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
-              "at each level (share of the points; RMS over all their frames)\n\n", b.regions.c_str());
+              "at each level (share of the points; RMS over all their frames)%s\n\n", b.regions.c_str(),
+              b.smooth > 0 ? (", of the error smoothed by " + std::to_string(b.smooth) +
+                              " umbrella passes over the high mesh (its large-scale part)").c_str() : "");
   std::printf("| %-16s | %8s | %8s | %9s | %-16s | %-16s | %-16s |\n", "model", "vertices", "ms/frame", "mean RMS",
               "its level 1", "its level 2", "its level 3+");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(18, '-').c_str(), std::string(10, '-').c_str(),
@@ -254,7 +290,7 @@ int run_bench(int argc, char** argv) {
               std::string(18, '-').c_str(), std::string(18, '-').c_str());
   for (const auto& [name, mesh] : models) {
     double ms = 0.0;
-    const Measured m = measure(mesh, swing(mesh, b, &ms), points, level, reference);
+    const Measured m = measure(mesh, swing(mesh, b, &ms), points, level, reference, neighbours, b.smooth);
     std::array<std::string, 4> cells;
     for (std::size_t l = 1; l < 4; ++l) {
       char cell[32];
