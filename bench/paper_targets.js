@@ -24,6 +24,7 @@
 const TARGETS = {costShare: 0.35, msPerFrame: 33.0, detailKept: 0.90};
 const LIMIT_MOTION = /squat/i;
 const TORN_OPENING = 0.01;  // metres
+const DEFAULT_STEP_RATE = 120;  // simulate's steps per second when a run gives no stepRate
 
 function fixed(value, digits) {
   return value === undefined || value === null || !isFinite(value) ? "-" : Number(value).toFixed(digits);
@@ -125,3 +126,11 @@ for (let k = 0; k < folders.length; ++k) {
 }
 print("");
 print("targets met: " + met + " of " + judged + " checks on the test walks");
+// The step rate moves every time and distance (README, Half the steps):
+// say it, and say when it is not the mocap rate the defaults step at.
+const rates = reports.map((report) => {
+  const settings = report.testSettings || {};
+  return settings.stepRate !== undefined ? settings.stepRate : DEFAULT_STEP_RATE;
+});
+print("steps per second: " + reports.map((report, k) => report.garment.file.split("/").pop() + " " + rates[k]).join(", ") +
+      (rates.some((rate) => rate !== DEFAULT_STEP_RATE) ? " (the defaults step at " + DEFAULT_STEP_RATE + ", the mocap rate)" : ""));
