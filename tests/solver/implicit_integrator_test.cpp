@@ -538,22 +538,22 @@ TEST(ImplicitIntegrator, TheLimitersActiveSetGivesTheSameBitsAsEverySpring) {
   std::vector<Collider> sphere(1);
   sphere[0].shape = SphereCollider{{0.1, -0.25, 0.0}, 0.15};
   for (const bool sag : {false, true}) {
-  SCOPED_TRACE(sag ? "t_node_sag" : "plain");
-  const auto run = [&](bool active_set) {
-    IntegratorOptions o = options(1.0 / 60);
-    o.active_set = active_set;
-    o.t_node_sag = sag;
-    ImplicitIntegrator integrator;
-    integrator.precompute(m, o);
-    ClothState s = rest_state(m);
-    double pushed = 0.0;
-    for (int k = 0; k < 120; ++k) pushed = std::max(pushed, integrator.step(s, s.pinned, sphere).max_correction);
-    EXPECT_GT(pushed, 0.0) << "the sheet never met the sphere";
-    return s;
-  };
-  const ClothState a = run(true), b = run(false);
-  EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), sizeof(double) * a.positions.size()), 0);
-  EXPECT_EQ(std::memcmp(a.velocities.data(), b.velocities.data(), sizeof(double) * a.velocities.size()), 0);
+    SCOPED_TRACE(sag ? "t_node_sag" : "plain");
+    const auto run = [&](bool active_set) {
+      IntegratorOptions o = options(1.0 / 60);
+      o.active_set = active_set;
+      o.t_node_sag = sag;
+      ImplicitIntegrator integrator;
+      integrator.precompute(m, o);
+      ClothState s = rest_state(m);
+      double pushed = 0.0;
+      for (int k = 0; k < 120; ++k) pushed = std::max(pushed, integrator.step(s, s.pinned, sphere).max_correction);
+      EXPECT_GT(pushed, 0.0) << "the sheet never met the sphere";
+      return s;
+    };
+    const ClothState a = run(true), b = run(false);
+    EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), sizeof(double) * a.positions.size()), 0);
+    EXPECT_EQ(std::memcmp(a.velocities.data(), b.velocities.data(), sizeof(double) * a.velocities.size()), 0);
   }
 }
 
