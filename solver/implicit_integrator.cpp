@@ -236,6 +236,7 @@ std::vector<int> spatial_order(const Positions& points) {
 void check(const IntegratorOptions& o) {
   if (!(o.time_step > 0.0) || !std::isfinite(o.time_step)) throw ArgumentError("time step must be > 0 seconds");
   if (o.iterations < 1) throw ArgumentError("iterations must be >= 1");
+  if (o.newton_cg < 0) throw ArgumentError("newton_cg (conjugate-gradient iterations per Newton step) must be >= 0");
   if (o.strain_limit_sweeps < 0) throw ArgumentError("strain limit sweeps must be >= 0");
   if (!(o.limiter_acceleration >= 0.0 && o.limiter_acceleration < 1.0))
     throw ArgumentError("the limiter acceleration (a spectral radius estimate) must be >= 0 and < 1");
@@ -454,8 +455,12 @@ void ImplicitIntegrator::gradient(const Positions& q, const Positions& y, Positi
   full_.noalias() = m.S * q;
   full_ += pinned_part_;
   force_.setZero();
-  for (const Spring& s : m.springs) {
+  const bool newton = options_.newton_cg > 0;
+  if (newton) hessians_.resize(m.springs.size());
+  for (std::size_t k = 0; k < m.springs.size(); ++k) {
+    const Spring& s = m.springs[k];
     const Eigen::RowVector3d e = full_.row(s.i) - full_.row(s.j);
+    if (newton) hessians_[k] = projected_spring_hessian(e.transpose(), s.rest, s.stiffness);
     const double length = e.norm();
     if (length == 0.0) continue;
     const Eigen::RowVector3d g = (s.stiffness * (length - s.rest) / length) * e;
@@ -465,6 +470,48 @@ void ImplicitIntegrator::gradient(const Positions& q, const Positions& y, Positi
   grad.noalias() = m.S.transpose() * force_;
   const double inv_h2 = 1.0 / (options_.time_step * options_.time_step);
   for (Eigen::Index f = 0; f < q.rows(); ++f) grad.row(f) += (m.free_mass[f] * inv_h2) * (q.row(f) - y.row(f));
+}
+
+void ImplicitIntegrator::hessian_product(const Positions& v, Positions& out) const {
+  const DynamicsModel& m = *model_;
+  full_.noalias() = m.S * v;  // pinned targets do not vary: no P part
+  force_.setZero();
+  for (std::size_t k = 0; k < m.springs.size(); ++k) {
+    const Spring& s = m.springs[k];
+    const ProjectedSpringHessian& h = hessians_[k];
+    const Eigen::RowVector3d d = full_.row(s.i) - full_.row(s.j);
+    const Eigen::RowVector3d f = h.a * d + (h.b * d.dot(h.n.transpose())) * h.n.transpose();
+    force_.row(s.i) += f;
+    force_.row(s.j) -= f;
+  }
+  out.noalias() = m.S.transpose() * force_;
+  const double inv_h2 = 1.0 / (options_.time_step * options_.time_step);
+  for (Eigen::Index f = 0; f < v.rows(); ++f) out.row(f) += (m.free_mass[f] * inv_h2) * v.row(f);
+}
+
+// Preconditioned conjugate gradients from delta = 0: the first iterate is
+// Q^-1 grad scaled by the step that minimises the quadratic model along it.
+void ImplicitIntegrator::newton_direction(const Positions& grad, Positions& delta) const {
+  const auto dot = [](const Positions& a, const Positions& b) { return a.cwiseProduct(b).sum(); };
+  delta = Positions::Zero(grad.rows(), 3);
+  cg_residual_ = grad;
+  cg_direction_ = grad;
+  solver_.solve_in_place(cg_direction_);
+  double rz = dot(cg_residual_, cg_direction_);
+  for (int it = 0; it < options_.newton_cg; ++it) {
+    hessian_product(cg_direction_, cg_product_);
+    const double curvature = dot(cg_direction_, cg_product_);
+    if (!(curvature > 0.0) || !(rz > 0.0)) break;  // converged (or nothing to do)
+    const double alpha = rz / curvature;
+    delta += alpha * cg_direction_;
+    if (it + 1 == options_.newton_cg) break;
+    cg_residual_ -= alpha * cg_product_;
+    Positions z = cg_residual_;
+    solver_.solve_in_place(z);
+    const double rz_next = dot(cg_residual_, z);
+    cg_direction_ = z + (rz_next / rz) * cg_direction_;
+    rz = rz_next;
+  }
 }
 
 // Moves free positions so no stretch spring exceeds (1 + limit) rest length,
@@ -891,9 +938,15 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   Positions q = y;  // the inertial prediction is the usual warm start
   const auto start = Clock::now();
   Positions delta(q.rows(), 3);
+  Positions grad;
   for (int it = 0; it < options_.iterations; ++it) {
-    gradient(q, y, delta);
-    solver_.solve_in_place(delta);
+    if (options_.newton_cg > 0) {
+      gradient(q, y, grad);
+      newton_direction(grad, delta);
+    } else {
+      gradient(q, y, delta);
+      solver_.solve_in_place(delta);
+    }
     q -= delta;
   }
   report.dynamics_ms = ms_since(start);

@@ -37,6 +37,16 @@
 // alternate in rounds while checks move points or springs stay beyond the
 // round tolerance.
 //
+// With newton_cg k >= 1 each iteration is instead a Newton step: the
+// springs' Hessian at the iterate (each spring's negative part dropped),
+// solved by k conjugate-gradient iterations preconditioned by Q. Q
+// overstates the sideways stiffness of every spring (k for a taut spring
+// whose true sideways stiffness is its tension over its length), so the
+// plain iteration moves the cloth's slow bending and swinging motion only
+// a small part of the way per iteration; conjugate gradients scale each
+// direction by the true curvature. About one and a half times the plain
+// iteration's cost; less numerical damping (README, The free swing).
+//
 // Accuracy trade-off: with few iterations the step is a damped
 // approximation of implicit Euler (energy is lost in stiff directions,
 // which also makes it stable at any time step); stretch is bounded by the
@@ -45,6 +55,7 @@
 #include "dynamics_model.h"
 #include "self_contact.h"
 #include "sparse_ldlt3.h"
+#include "spring_energy.h"
 #include "worker_pool.h"
 
 #include <Eigen/Core>
@@ -58,6 +69,7 @@ namespace mrcloth {
 struct IntegratorOptions {
   double time_step = 1.0 / 120.0;               ///< seconds, > 0
   int iterations = 2;                           ///< local/global iterations per step, >= 1 (more: stiffer, less damped)
+  int newton_cg = 0;                            ///< >= 0; 0: each iteration steps by Q^-1 grad (Liu et al.); k: each is a Newton step solved by k conjugate-gradient iterations preconditioned by Q (less damped per iteration, see above)
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
   double limiter_acceleration = 0.97;           ///< spectral radius estimate rho in [0, 1) for Chebyshev acceleration of a round's sweeps (see limit_strain); 0: plain sweeps
   double limiter_mass_exponent = 0.5;           ///< the limiter moves a vertex in proportion to mass^-exponent, in [0, 1]: 1 mass-weighted (momentum-conserving), 0 equal; 0.5 converges on multi-resolution meshes, whose masses differ up to 16-fold (see precompute; README, Limiter weights)
@@ -150,7 +162,13 @@ class ImplicitIntegrator {
   WorkerPool* pool() const { return pool_.get(); }
 
  private:
+  /// Also keeps each spring's projected Hessian at q when newton_cg > 0.
   void gradient(const Positions& q, const Positions& y, Positions& grad) const;
+  /// delta ~ H^-1 grad (H = M/h^2 + S^T K S, K the springs' projected
+  /// Hessians from the last gradient) by newton_cg preconditioned CG iterations.
+  void newton_direction(const Positions& grad, Positions& delta) const;
+  /// out = H v (free coordinates, #free x 3).
+  void hessian_product(const Positions& v, Positions& out) const;
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
   /// Chebyshev extrapolation after a limiter sweep (see limit_strain): each
@@ -195,6 +213,8 @@ class ImplicitIntegrator {
   SelfContact self_contact_;
   Positions pinned_part_;              // P p for the step being taken (#V x 3)
   mutable Positions full_, force_;     // scratch, #V x 3
+  mutable std::vector<ProjectedSpringHessian> hessians_;  // per spring, at the last gradient (newton_cg only)
+  mutable Positions cg_residual_, cg_direction_, cg_product_;  // newton_direction's scratch, #free x 3
   mutable std::vector<ContactMemo> memos_;  // per free vertex (at memo_slot_), then per T-node: what the scene remembers between checks
   // Per free vertex, then per T-node: where its last check left it, and
   // how far it may move from there before it needs another.

@@ -91,6 +91,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   IntegratorOptions io;
   io.time_step = 1.0 / (options.fps * options.substeps);
   io.iterations = options.iterations;
+  io.newton_cg = options.newton_cg;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.limiter_acceleration = options.limiter_acceleration;
   io.limiter_mass_exponent = options.limiter_mass_exponent;

@@ -16,6 +16,7 @@ struct SimulationOptions {
   double fps = 30.0;                          ///< output frames per second, > 0
   int substeps = 4;                           ///< time steps per output frame (h = 1 / (fps * substeps)), >= 1
   int iterations = 2;                         ///< local/global iterations per step
+  int newton_cg = IntegratorOptions{}.newton_cg;  ///< see IntegratorOptions: 0 plain iterations, k: Newton steps by k preconditioned CG iterations
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   double limiter_acceleration = IntegratorOptions{}.limiter_acceleration;  ///< see IntegratorOptions: rho in [0, 1), 0 plain sweeps
   double limiter_mass_exponent = IntegratorOptions{}.limiter_mass_exponent;  ///< see IntegratorOptions: in [0, 1], 1 mass-weighted projections

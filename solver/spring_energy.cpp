@@ -1,5 +1,7 @@
 #include "spring_energy.h"
 
+#include <algorithm>
+
 namespace mrcloth {
 
 SpringEvaluation evaluate_spring(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, double rest, double stiffness) {
@@ -17,6 +19,19 @@ SpringEvaluation evaluate_spring(const Eigen::Vector3d& xi, const Eigen::Vector3
   out.gradient_i = stiffness * stretch * n;
   out.hessian = stiffness * (n * n.transpose() + (stretch / length) * (Eigen::Matrix3d::Identity() - n * n.transpose()));
   return out;
+}
+
+ProjectedSpringHessian projected_spring_hessian(const Eigen::Vector3d& e, double rest, double stiffness) {
+  ProjectedSpringHessian h;
+  const double length = e.norm();
+  if (length == 0.0) {  // direction undefined: isotropic, as evaluate_spring
+    h.a = stiffness;
+    return h;
+  }
+  h.n = e / length;
+  h.a = stiffness * std::max(0.0, 1.0 - rest / length);
+  h.b = stiffness - h.a;
+  return h;
 }
 
 double spring_energy(const DynamicsModel& model, const Positions& x) {

@@ -18,6 +18,19 @@ struct SpringEvaluation {
 };
 SpringEvaluation evaluate_spring(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, double rest, double stiffness);
 
+/// A spring's Hessian d2E/dxi2 with its negative part dropped, as
+/// a I + b n n^T (n the unit direction xi - xj): the exact Hessian while
+/// the spring is at least its rest length; a compressed spring's sideways
+/// term, negative, is taken as 0, so the sum over springs is positive
+/// semidefinite (what conjugate gradients need). a, b in N/m.
+struct ProjectedSpringHessian {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  double a = 0.0;  ///< N/m, sideways: stiffness (1 - rest / length), at least 0
+  double b = 0.0;  ///< N/m, added along n (a + b = stiffness)
+};
+/// e = xi - xj (metres), rest (metres) and stiffness (N/m) of the spring.
+ProjectedSpringHessian projected_spring_hessian(const Eigen::Vector3d& e, double rest, double stiffness);
+
 /// Total spring energy of full positions x (#V x 3), J.
 double spring_energy(const DynamicsModel& model, const Positions& x);
 

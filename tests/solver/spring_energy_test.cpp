@@ -4,6 +4,7 @@
 #include "mesh_ops/mode_layer.h"
 #include "solver/spring_energy.h"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -33,6 +34,35 @@ TEST(SpringEnergy, GradientAndHessianMatchFiniteDifferences) {
       EXPECT_NEAR(-e.gradient_i[c], fd_j, 1e-6 * std::max(1.0, std::abs(fd_j)));
     }
   }
+}
+
+// The Newton steps' spring Hessian: the exact one while the spring is at
+// least its rest length, and the exact one with its negative (sideways)
+// eigenvalue set to 0 when it is compressed.
+TEST(SpringEnergy, ProjectedHessianIsTheExactOneWithoutItsNegativePart) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int compressed = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d xi(u(rng), u(rng), u(rng)), xj(u(rng), u(rng), u(rng));
+    const double rest = 1.5 * std::abs(u(rng)), k = 10.0 + 100.0 * std::abs(u(rng));
+    const Eigen::Matrix3d exact = evaluate_spring(xi, xj, rest, k).hessian;
+    const ProjectedSpringHessian p = projected_spring_hessian(xi - xj, rest, k);
+    const Eigen::Matrix3d projected = p.a * Eigen::Matrix3d::Identity() + p.b * p.n * p.n.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(exact);
+    const Eigen::Matrix3d clamped =
+        eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+    EXPECT_LT((projected - clamped).cwiseAbs().maxCoeff(), 1e-12 * k) << "trial " << trial;
+    if ((xi - xj).norm() >= rest) EXPECT_LT((projected - exact).cwiseAbs().maxCoeff(), 1e-12 * k) << "trial " << trial;
+    else ++compressed;
+    EXPECT_GE(p.a, 0.0);
+    EXPECT_NEAR(p.a + p.b, k, 1e-12 * k);
+  }
+  EXPECT_GT(compressed, 20);  // both cases were met
+  // A spring of zero length: isotropic, as evaluate_spring.
+  const ProjectedSpringHessian zero = projected_spring_hessian(Eigen::Vector3d::Zero(), 0.3, 7.0);
+  EXPECT_EQ(zero.a, 7.0);
+  EXPECT_EQ(zero.b, 0.0);
 }
 
 TEST(SpringEnergy, ModelForcesAreMinusTheEnergyGradient) {
