@@ -781,7 +781,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text,
         QStringLiteral(
             "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
-            "iterations: int >= 1 = 2 (per step), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
+            "iterations: int >= 1 = 2 (per step), newtonCg: int >= 0 = 0 (k: each iteration a Newton step solved by k "
+            "preconditioned conjugate-gradient iterations, less damped; 0: the plain iteration), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
             "limiterAcceleration: number in [0, 1) = 0.97 (Chebyshev acceleration of those sweeps, a spectral radius "
             "estimate; 0: plain Gauss-Seidel sweeps), "
             "limiterMassExponent: number in [0, 1] = 0.5 (the limiter moves a vertex in proportion to "

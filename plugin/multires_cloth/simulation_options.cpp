@@ -186,7 +186,7 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
-                     QStringLiteral("iterations"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
+                     QStringLiteral("iterations"), QStringLiteral("newtonCg"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
                      QStringLiteral("limiterMassExponent"), QStringLiteral("tNodeSag"), QStringLiteral("collisionRounds"),
                      QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
@@ -220,6 +220,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
   if (!character) sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
+  sim.newton_cg = fields.integerAtLeast(QStringLiteral("newtonCg"), sim.newton_cg, 0);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
   sim.limiter_acceleration = fields.numberFrom(QStringLiteral("limiterAcceleration"), sim.limiter_acceleration, 0.0, false);
   if (!(sim.limiter_acceleration < 1.0))
