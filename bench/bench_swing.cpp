@@ -13,10 +13,11 @@
 //
 // `--curtain` instead of a folder swings meshes built here, with no data:
 // a 0.6 m square curtain of 12 x 12 quads hung by its top row, refined
-// uniformly once (L1) and twice (high), and with a level-3 patch painted
-// on the coarse curtain (patch) and on L1 (L1+patch).
+// uniformly once (L1) and twice (high; `--curtain-levels N`: N times, and
+// L1 .. L(N-1) are models), and with a level-3 patch painted on the
+// coarse curtain (patch) and on L1 (L1+patch).
 //
-// Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N]
+// Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N]
 //                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]
 //                    [--smooth PASSES]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
@@ -50,6 +51,7 @@ using namespace mrcloth;
 struct BenchOptions {
   int frames = 120;          // output frames at 30 fps: 1 s hanging still, then the swing
   int iterations = 2;        // local/global iterations per step (the library default)
+  int newton_cg = 0;         // SimulationOptions::newton_cg (0: the plain iteration, the library default)
   int substeps = 4;          // steps per 30 fps frame: 120 per second (the library default)
   int sweeps = 6;            // strain-limiting sweeps per round (the library default)
   double alpha = DynamicsOptions{}.alpha;            // stretch and shear stiffness per level exponent
@@ -59,6 +61,7 @@ struct BenchOptions {
   std::string regions;       // the mesh whose levels partition the points ("": the first multires_*)
   int smooth = 0;            // umbrella passes over the high mesh applied to each frame's error before it is measured (0: none)
   bool curtain = false;      // swing the built curtain instead of a pipeline run's meshes
+  int curtain_levels = 2;    // the curtain's high-resolution mesh: refined uniformly this many times (>= 2)
 };
 
 constexpr double kStill = 1.0;          // seconds hanging before the swing
@@ -91,6 +94,7 @@ std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double
   SimulationOptions s;
   s.frames = b.frames;
   s.iterations = b.iterations;
+  s.newton_cg = b.newton_cg;
   s.substeps = b.substeps;
   s.strain_limit_sweeps = b.sweeps;
   s.t_node_sag = b.t_node_sag;
@@ -188,8 +192,9 @@ Measured measure(const QuadMesh& mesh, const std::vector<Positions>& frames, con
 }
 
 // The curtain's models, high last: a vertical 0.6 m square of 12 x 12
-// quads in the x-y plane, its top row at y = 0.6.
-std::vector<std::pair<std::string, QuadMesh>> curtain_models() {
+// quads in the x-y plane, its top row at y = 0.6; high is it refined
+// uniformly `levels` times, and the uniform ones between are models too.
+std::vector<std::pair<std::string, QuadMesh>> curtain_models(int levels) {
   constexpr int kQuads = 12;
   constexpr double kSpacing = 0.05;
   QuadMesh coarse;
@@ -209,13 +214,17 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models() {
     adaptive_refine(mesh, {8.0, 3, true});
     return mesh;
   };
-  return {{"coarse", coarse}, {"L1", refined(1)}, {"patch", with_patch(coarse)}, {"L1+patch", with_patch(refined(1))},
-          {"high", refined(2)}};
+  std::vector<std::pair<std::string, QuadMesh>> models{{"coarse", coarse}};
+  for (int level = 1; level < levels; ++level) models.emplace_back("L" + std::to_string(level), refined(level));
+  models.emplace_back("patch", with_patch(coarse));
+  models.emplace_back("L1+patch", with_patch(refined(1)));
+  models.emplace_back("high", refined(levels));
+  return models;
 }
 
 int usage(const char* why) {
   std::fprintf(stderr,
-               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--frames N] [--iterations K] [--substeps N] [--sweeps S] "
+               "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N] [--sweeps S] "
                "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES]\n",
                why);
   return 2;
@@ -230,6 +239,8 @@ int run_bench(int argc, char** argv) {
     const std::string key = argv[a], value = argv[a + 1];
     if (key == "--frames") b.frames = std::atoi(value.c_str());
     else if (key == "--iterations") b.iterations = std::atoi(value.c_str());
+    else if (key == "--newton-cg") b.newton_cg = std::atoi(value.c_str());
+    else if (key == "--curtain-levels") b.curtain_levels = std::atoi(value.c_str());
     else if (key == "--substeps") b.substeps = std::atoi(value.c_str());
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
@@ -242,13 +253,15 @@ int run_bench(int argc, char** argv) {
   }
   if (b.frames <= kSkippedFrames) return usage("--frames must exceed the 30 still frames");
   if (b.substeps < 1 || b.iterations < 1) return usage("--substeps and --iterations must be at least 1");
+  if (b.newton_cg < 0) return usage("--newton-cg must be at least 0");
+  if (b.curtain_levels < 2 || b.curtain_levels > 4) return usage("--curtain-levels must be 2, 3 or 4");
   if (b.smooth < 0) return usage("--smooth must be at least 0");
 
   // The compared models and the high-resolution mesh, by name.
   std::vector<std::pair<std::string, QuadMesh>> models;
   QuadMesh high;
   if (b.curtain) {
-    models = curtain_models();
+    models = curtain_models(b.curtain_levels);
     high = std::move(models.back().second);
     models.pop_back();
   } else {
@@ -276,8 +289,9 @@ int run_bench(int argc, char** argv) {
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
   std::printf("swing: each model of %s hangs from its %s for %.0f s, then that sways %.0f cm and %.0f degrees at "
-              "%.1f Hz; %d frames at 30 fps, %d steps a second, no collider; %d iterations, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
-              b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, 30 * b.substeps, b.iterations, b.sweeps,
+              "%.1f Hz; %d frames at 30 fps, %d steps a second, no collider; %d iterations%s, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
+              b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, 30 * b.substeps, b.iterations,
+              b.newton_cg > 0 ? (" (Newton, " + std::to_string(b.newton_cg) + " CG each)").c_str() : "", b.sweeps,
               b.alpha, b.alpha_bend, b.bend_stiffness, b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
               "at each level (share of the points; RMS over all their frames)%s\n\n", b.regions.c_str(),

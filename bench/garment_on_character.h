@@ -36,7 +36,7 @@ struct GarmentRun {
 inline constexpr const char* kRunOptionsUsage =
     "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--mass-exponent E] "
     "[--slack METRES] "
-    "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--stretch-stiffness N/M] "
+    "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--newton-cg K] [--stretch-stiffness N/M] "
     "[--self-contact METRES] [--mittens 0|1] [--threads N]";
 
 /// Takes option `key` with `value` into `o` when it is one of
@@ -54,12 +54,20 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--round-tolerance") s.round_tolerance = std::atof(value);
   else if (key == "--tethers") s.tethers = std::atoi(value) != 0;
   else if (key == "--iterations") s.iterations = std::atoi(value);
+  else if (key == "--newton-cg") s.newton_cg = std::atoi(value);
   else if (key == "--stretch-stiffness") o.stretch_stiffness = std::atof(value);
   else if (key == "--self-contact") s.self_contact.thickness = std::atof(value);
   else if (key == "--threads") s.threads = std::atoi(value);
   else if (key == "--mittens") o.hand_mittens = std::atoi(value) != 0;
   else return false;
   return true;
+}
+
+/// The solve a run takes per step, for the benchmarks' headers: "2 iterations", or
+/// "2 Newton iterations of 1 CG".
+inline std::string solve_description(const SimulationOptions& s) {
+  return std::to_string(s.iterations) +
+         (s.newton_cg > 0 ? " Newton iterations of " + std::to_string(s.newton_cg) + " CG" : " iterations");
 }
 
 /// Reads "--key value" pairs: `own(key, value)` takes a benchmark's own
