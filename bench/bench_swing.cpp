@@ -18,7 +18,7 @@
 // coarse curtain (patch) and on L1 (L1+patch).
 //
 // Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N]
-//                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL]
+//                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--bend-model distance|second-difference] [--t-node-sag 0|1] [--regions MODEL]
 //                    [--smooth PASSES]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
@@ -57,6 +57,7 @@ struct BenchOptions {
   double alpha = DynamicsOptions{}.alpha;            // stretch and shear stiffness per level exponent
   double alpha_bend = DynamicsOptions{}.alpha_bend;  // bend stiffness per level exponent
   double bend_stiffness = DynamicsOptions{}.material.bend_stiffness;  // N/m at level 1, >= 0
+  BendModel bend_model = BendModel::distance;  // DynamicsOptions::bend_model
   bool t_node_sag = false;   // SimulationOptions::t_node_sag
   std::string regions;       // the mesh whose levels partition the points ("": the first multires_*)
   int smooth = 0;            // umbrella passes over the high mesh applied to each frame's error before it is measured (0: none)
@@ -87,6 +88,7 @@ std::vector<Positions> swing(const QuadMesh& mesh, const BenchOptions& b, double
   DynamicsOptions d;
   d.alpha = b.alpha;
   d.alpha_bend = b.alpha_bend;
+  d.bend_model = b.bend_model;
   d.material.bend_stiffness = b.bend_stiffness;
   d.pinned = pinned_vertices(mesh, b.curtain);
   const DynamicsModel model = build_dynamics(mesh, d);
@@ -225,7 +227,7 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models(int levels) {
 int usage(const char* why) {
   std::fprintf(stderr,
                "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N] [--sweeps S] "
-               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES]\n",
+               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--bend-model distance|second-difference] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES]\n",
                why);
   return 2;
 }
@@ -245,6 +247,8 @@ int run_bench(int argc, char** argv) {
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
     else if (key == "--alpha-bend") b.alpha_bend = std::atof(value.c_str());
+    else if (key == "--bend-model" && (value == "distance" || value == "second-difference"))
+      b.bend_model = value == "distance" ? BendModel::distance : BendModel::second_difference;
     else if (key == "--bend-stiffness") b.bend_stiffness = std::atof(value.c_str());
     else if (key == "--t-node-sag") b.t_node_sag = value == "1";
     else if (key == "--regions") b.regions = value;
@@ -289,10 +293,11 @@ int run_bench(int argc, char** argv) {
   const std::vector<Positions> reference = swing(high, b, &high_ms);
 
   std::printf("swing: each model of %s hangs from its %s for %.0f s, then that sways %.0f cm and %.0f degrees at "
-              "%.1f Hz; %d frames at 30 fps, %d steps a second, no collider; %d iterations%s, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.2f N/m, tNodeSag %s\n\n",
+              "%.1f Hz; %d frames at 30 fps, %d steps a second, no collider; %d iterations%s, %d sweeps, alpha %.2f, alphaBend %.2f, bend %.3f N/m (%s springs), tNodeSag %s\n\n",
               b.curtain ? "the built curtain" : folder.string().c_str(), b.curtain ? "top row" : "waist", kStill, 100 * kSway, kYaw * 180 / M_PI, kFrequency, b.frames, 30 * b.substeps, b.iterations,
               b.newton_cg > 0 ? (" (Newton, " + std::to_string(b.newton_cg) + " CG each)").c_str() : "", b.sweeps,
-              b.alpha, b.alpha_bend, b.bend_stiffness, b.t_node_sag ? "on" : "off");
+              b.alpha, b.alpha_bend, b.bend_stiffness, b.bend_model == BendModel::distance ? "distance" : "second-difference",
+              b.t_node_sag ? "on" : "off");
   std::printf("mean RMS to the high-resolution swing at its material points, mm; then over the points where %s is "
               "at each level (share of the points; RMS over all their frames)%s\n\n", b.regions.c_str(),
               b.smooth > 0 ? (", of the error smoothed by " + std::to_string(b.smooth) +

@@ -61,7 +61,19 @@ std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, c
   }
   for (const BendPair& b : bend_pairs(mesh))
     set.add(b.i, b.j, m.bend_stiffness * level_scale(o.alpha_bend, b.level), SpringKind::bend, b.level);
-  return set.take();
+  std::vector<Spring> springs = set.take();
+  if (o.bend_model == BendModel::second_difference) {
+    // A bend pair is listed once with the middle of its first record pair;
+    // the set kept the pairs' order among the bend springs.
+    std::unordered_map<std::uint64_t, int> via;
+    for (const BendPair& b : bend_pairs(mesh)) via.emplace(pair_key(b.i, b.j), b.via);
+    for (Spring& s : springs) {
+      if (s.kind != SpringKind::bend) continue;
+      s.via = via.at(pair_key(s.i, s.j));
+      s.rest = (rest.row(s.i) - 2.0 * rest.row(s.via) + rest.row(s.j)).norm();
+    }
+  }
+  return springs;
 }
 
 void check_options(const QuadMesh& mesh, const DynamicsOptions& o, const std::vector<char>& hanging) {
@@ -98,6 +110,7 @@ DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& option
   model.material = options.material;
   model.alpha = options.alpha;
   model.alpha_bend = options.alpha_bend;
+  model.bend_model = options.bend_model;
   model.rest.resize(n, 3);
   for (auto v : mesh.vertices())
     for (int c = 0; c < 3; ++c) model.rest(v.idx(), c) = mesh.point(v)[c];

@@ -44,9 +44,16 @@ using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 enum class SpringKind { stretch, shear, bend };
 
+/// How a bend pair (i, via, j) resists bending.
+enum class BendModel {
+  distance,           ///< the paper's: a spring i-j, E = k/2 (|xi - xj| - rest)^2 (quartic in the curvature about flat)
+  second_difference,  ///< experimental: E = k/2 (|xi - 2 xvia + xj| - rest)^2 (quadratic in the curvature; with alpha_bend 2 the same curvature stores the same energy at every level)
+};
+
 struct Spring {
   int i = -1, j = -1;        ///< full vertex indices
-  double rest = 0.0;         ///< rest length, metres
+  int via = -1;              ///< a second-difference bend spring's middle vertex (its length is |xi - 2 xvia + xj|); -1: a distance spring
+  double rest = 0.0;         ///< rest length, metres (a second-difference spring's: |Xi - 2 Xvia + Xj| at rest)
   double stiffness = 0.0;    ///< N/m, already scaled by level
   SpringKind kind = SpringKind::stretch;
   int level = 1;
@@ -61,6 +68,7 @@ struct DynamicsOptions {
   // spring's must grow as 1/h^2, i.e. x4 per level).
   double alpha = 0.0;        ///< eq. 1 exponent for stretch and shear (0 = same k at every level)
   double alpha_bend = 2.0;   ///< eq. 1 exponent for bend springs
+  BendModel bend_model = BendModel::distance;  ///< see BendModel (README, The free swing)
   std::vector<int> pinned;   ///< full vertex ids that follow targets; none may be hanging
 };
 
@@ -85,6 +93,7 @@ struct DynamicsModel {
   std::vector<std::array<std::int32_t, 4>> corners;  ///< per active quadtree record: its corners (full ids, face orientation)
   Material material;
   double alpha = 0.0, alpha_bend = 2.0;
+  BendModel bend_model = BendModel::distance;
 };
 
 /// Builds the model from a refinable mesh (its points are the rest state).

@@ -33,11 +33,13 @@ Eigen::SparseMatrix<double> full_stiffness_laplacian(const DynamicsModel& model,
   t.reserve(model.springs.size() * 8);
   for (std::size_t s = 0; s < model.springs.size(); ++s) {
     const Spring& sp = model.springs[s];
-    if (sp.kind != SpringKind::bend || bend_middle[s] < 0) {
+    // A second-difference spring's |xi - 2 xvia + xj|^2 is bounded the same way.
+    const int middle = sp.via >= 0 ? sp.via : bend_middle[s];
+    if (sp.kind != SpringKind::bend || middle < 0) {
       add_spring(t, sp.i, sp.j, sp.stiffness);
     } else {
-      add_spring(t, sp.i, bend_middle[s], 2.0 * sp.stiffness);
-      add_spring(t, bend_middle[s], sp.j, 2.0 * sp.stiffness);
+      add_spring(t, sp.i, middle, 2.0 * sp.stiffness);
+      add_spring(t, middle, sp.j, 2.0 * sp.stiffness);
     }
   }
   Eigen::SparseMatrix<double> L(model.num_vertices, model.num_vertices);
@@ -459,13 +461,19 @@ void ImplicitIntegrator::gradient(const Positions& q, const Positions& y, Positi
   if (newton) hessians_.resize(m.springs.size());
   for (std::size_t k = 0; k < m.springs.size(); ++k) {
     const Spring& s = m.springs[k];
-    const Eigen::RowVector3d e = full_.row(s.i) - full_.row(s.j);
+    const Eigen::RowVector3d e = s.via < 0 ? Eigen::RowVector3d(full_.row(s.i) - full_.row(s.j))
+                                           : Eigen::RowVector3d(full_.row(s.i) - 2.0 * full_.row(s.via) + full_.row(s.j));
     if (newton) hessians_[k] = projected_spring_hessian(e.transpose(), s.rest, s.stiffness);
     const double length = e.norm();
     if (length == 0.0) continue;
     const Eigen::RowVector3d g = (s.stiffness * (length - s.rest) / length) * e;
     force_.row(s.i) += g;  // energy gradient, not force
-    force_.row(s.j) -= g;
+    if (s.via < 0) {
+      force_.row(s.j) -= g;
+    } else {  // e = xi - 2 xvia + xj
+      force_.row(s.j) += g;
+      force_.row(s.via) -= 2.0 * g;
+    }
   }
   grad.noalias() = m.S.transpose() * force_;
   const double inv_h2 = 1.0 / (options_.time_step * options_.time_step);
@@ -479,10 +487,16 @@ void ImplicitIntegrator::hessian_product(const Positions& v, Positions& out) con
   for (std::size_t k = 0; k < m.springs.size(); ++k) {
     const Spring& s = m.springs[k];
     const ProjectedSpringHessian& h = hessians_[k];
-    const Eigen::RowVector3d d = full_.row(s.i) - full_.row(s.j);
+    const Eigen::RowVector3d d = s.via < 0 ? Eigen::RowVector3d(full_.row(s.i) - full_.row(s.j))
+                                           : Eigen::RowVector3d(full_.row(s.i) - 2.0 * full_.row(s.via) + full_.row(s.j));
     const Eigen::RowVector3d f = h.a * d + (h.b * d.dot(h.n.transpose())) * h.n.transpose();
     force_.row(s.i) += f;
-    force_.row(s.j) -= f;
+    if (s.via < 0) {
+      force_.row(s.j) -= f;
+    } else {
+      force_.row(s.j) += f;
+      force_.row(s.via) -= 2.0 * f;
+    }
   }
   out.noalias() = m.S.transpose() * force_;
   const double inv_h2 = 1.0 / (options_.time_step * options_.time_step);

@@ -34,10 +34,15 @@ ProjectedSpringHessian projected_spring_hessian(const Eigen::Vector3d& e, double
   return h;
 }
 
+Eigen::Vector3d spring_vector(const Spring& s, const Positions& x) {
+  if (s.via < 0) return (x.row(s.i) - x.row(s.j)).transpose();
+  return (x.row(s.i) - 2.0 * x.row(s.via) + x.row(s.j)).transpose();
+}
+
 double spring_energy(const DynamicsModel& model, const Positions& x) {
   double energy = 0.0;
   for (const Spring& s : model.springs) {
-    const double stretch = (x.row(s.i) - x.row(s.j)).norm() - s.rest;
+    const double stretch = spring_vector(s, x).norm() - s.rest;
     energy += 0.5 * s.stiffness * stretch * stretch;
   }
   return energy;
@@ -46,12 +51,17 @@ double spring_energy(const DynamicsModel& model, const Positions& x) {
 Positions spring_forces(const DynamicsModel& model, const Positions& x) {
   Positions f = Positions::Zero(x.rows(), 3);
   for (const Spring& s : model.springs) {
-    const Eigen::Vector3d e = (x.row(s.i) - x.row(s.j)).transpose();
+    const Eigen::Vector3d e = spring_vector(s, x);
     const double length = e.norm();
     if (length == 0.0) continue;
     const Eigen::Vector3d g = s.stiffness * (length - s.rest) / length * e;
     f.row(s.i) -= g.transpose();
-    f.row(s.j) += g.transpose();
+    if (s.via < 0) {
+      f.row(s.j) += g.transpose();
+    } else {  // e = xi - 2 xvia + xj
+      f.row(s.j) -= g.transpose();
+      f.row(s.via) += 2.0 * g.transpose();
+    }
   }
   return f;
 }

@@ -31,6 +31,11 @@ struct ProjectedSpringHessian {
 /// e = xi - xj (metres), rest (metres) and stiffness (N/m) of the spring.
 ProjectedSpringHessian projected_spring_hessian(const Eigen::Vector3d& e, double rest, double stiffness);
 
+/// A spring's vector at full positions x: xi - xj, or a second-difference
+/// bend spring's xi - 2 xvia + xj (metres). Its energy is
+/// stiffness/2 (|vector| - rest)^2 either way.
+Eigen::Vector3d spring_vector(const Spring& s, const Positions& x);
+
 /// Total spring energy of full positions x (#V x 3), J.
 double spring_energy(const DynamicsModel& model, const Positions& x);
 

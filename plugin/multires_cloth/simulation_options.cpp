@@ -189,7 +189,7 @@ QStringList simulationOptionKeys() {
                      QStringLiteral("iterations"), QStringLiteral("newtonCg"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
                      QStringLiteral("limiterMassExponent"), QStringLiteral("tNodeSag"), QStringLiteral("collisionRounds"),
                      QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
-                     QStringLiteral("alphaBend"), QStringLiteral("gravity"),     QStringLiteral("pins"),
+                     QStringLiteral("alphaBend"), QStringLiteral("bendModel"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
                      QStringLiteral("updateObject"), QStringLiteral("selfContact"), QStringLiteral("threads")} +
          characterOptionKeys();
@@ -263,6 +263,11 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   if (fields.has(QStringLiteral("material"))) dynamics.material = parseMaterial(fields.required(QStringLiteral("material")));
   dynamics.alpha = fields.number(QStringLiteral("alpha"), dynamics.alpha);
   dynamics.alpha_bend = fields.number(QStringLiteral("alphaBend"), dynamics.alpha_bend);
+  dynamics.bend_model = fields.choice(QStringLiteral("bendModel"), QStringLiteral("distance"),
+                                     {QStringLiteral("distance"), QStringLiteral("secondDifference")}) ==
+                               QStringLiteral("secondDifference")
+                           ? BendModel::second_difference
+                           : BendModel::distance;
 
   // The pins; on a character they are its waist, "top" unless given.
   request.pinsText = QStringLiteral("none");

@@ -1,7 +1,7 @@
 // The same simulation twice gives the same bytes: no hidden state between
 // calls, no dependence on timing or the thread count. On a mesh with T-nodes, with colliders and
-// pins; a different option gives a different cache (limiterMassExponent's
-// default given explicitly, the same). Arguments: <tests/data> <shared data> <tmp>.
+// pins; a different option gives a different cache (limiterMassExponent's,
+// newtonCg's and bendModel's defaults given explicitly, the same). Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 
@@ -85,4 +85,19 @@ options.output = tmpDir + "/run_mass_weighted.pc2";
 options.limiterMassExponent = 1;
 multirescloth.simulate(refined, options);
 if (core.filesEqual(paths[0], options.output)) throw new Error("mass-weighted limiter projections wrote the same cache");
+delete options.limiterMassExponent;
+// newtonCg and bendModel reach the solver: their defaults given explicitly
+// write the same bytes, other values others.
+for (const [key, same, other] of [["newtonCg", 0, 1], ["bendModel", "distance", "secondDifference"]]) {
+  options.output = tmpDir + "/run_" + key + "_default.pc2";
+  options[key] = same;
+  multirescloth.simulate(refined, options);
+  if (!core.filesEqual(paths[0], options.output)) throw new Error(key + " " + same + " is not the default");
+  options.output = tmpDir + "/run_" + key + "_other.pc2";
+  options[key] = other;
+  const report = multirescloth.simulate(refined, options);
+  if (report.nonFinite) throw new Error(key + " " + other + " went non-finite");
+  if (core.filesEqual(paths[0], options.output)) throw new Error(key + " " + other + " wrote the same cache");
+  delete options[key];
+}
 print("simulate determinism: ok");

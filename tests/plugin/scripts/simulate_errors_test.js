@@ -14,7 +14,7 @@ const sim = options => () => multirescloth.simulate(grid, options);
 expectThrows(() => multirescloth.simulate(99), "ArgumentError", "multirescloth.simulate: no object with id 99");
 expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options must be an object, got the number 5");
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
-             "accepted: frames, fps, substeps, iterations, newtonCg, limiterSweeps, limiterAcceleration, limiterMassExponent, tNodeSag, collisionRounds, contactSlack, material, alpha, alphaBend, " +
+             "accepted: frames, fps, substeps, iterations, newtonCg, limiterSweeps, limiterAcceleration, limiterMassExponent, tNodeSag, collisionRounds, contactSlack, material, alpha, alphaBend, bendModel, " +
              "gravity, pins, colliders, " +
              "output, objSequence, updateObject, selfContact, threads");
 
@@ -26,6 +26,7 @@ expectThrows(sim({fps: 0}), "ArgumentError", "option 'fps' must be a number > 0,
 expectThrows(sim({fps: "30"}), "ArgumentError", "option 'fps' must be a finite number");
 expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer >= 1");
 expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer >= 1");
+expectThrows(sim({bendModel: "hinge"}), "ArgumentError", "option 'bendModel'");
 expectThrows(sim({newtonCg: -1}), "ArgumentError", "option 'newtonCg' must be an integer >= 0");
 expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
 expectThrows(sim({limiterAcceleration: -0.1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0, got the number -0.1");
