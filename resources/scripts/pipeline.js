@@ -44,6 +44,11 @@ const USAGE = [
   "  --material M           cotton | denim | silk [cotton]",
   "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
   "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
+  "  --newton-cg K          each solve iteration a Newton step by K conjugate-gradient iterations, >= 0;",
+  "                         less damped, costlier (simulate's newtonCg; README) [0: the plain iteration]",
+  "  --bend-model M         distance | secondDifference: experimental bend springs quadratic in the",
+  "                         curvature (simulate's bendModel; give --bend-stiffness) [distance, the paper's]",
+  "  --bend-stiffness K     bend spring stiffness at level 1, N/m, >= 0 [the material's]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
   "                         (README, Characters) [120, the CMU mocap rate]",
@@ -78,6 +83,7 @@ const DEFAULTS = {
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
+  newtonCg: 0, bendModel: "distance", bendStiffness: null,  // null: the material's
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
                "-h": "help", "--t-node-sag": "tNodeSag"};
@@ -86,7 +92,8 @@ const VALUED = {
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
-  "--threads": "threads", "--step-rate": "stepRate",
+  "--threads": "threads", "--step-rate": "stepRate", "--newton-cg": "newtonCg", "--bend-model": "bendModel",
+  "--bend-stiffness": "bendStiffness",
   "--size": "size",
 };
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
@@ -141,6 +148,9 @@ function parseOptions(args) {
       case "fps": options.fps = numberOption(name, text, 0, true); break;
       case "preroll": options.preroll = numberOption(name, text, 0, false); break;
       case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
+      case "newtonCg": options.newtonCg = integerOption(name, text, 0); break;
+      case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
+      case "bendStiffness": options.bendStiffness = numberOption(name, text, 0, false); break;
       case "delta": {
         const values = text.split(",").map((part) => numberOption(name, part, 0, true));
         options.delta = values.filter((value, k) => values.indexOf(value) === k);
@@ -221,6 +231,10 @@ function resultOptions(options) {
   delete copy.help;
   delete copy.out;
   if (copy.stepRate === null) delete copy.stepRate;  // runs from before --step-rate still resume
+  // Likewise runs from before the solve and bend options, at their defaults.
+  if (copy.newtonCg === 0) delete copy.newtonCg;
+  if (copy.bendModel === "distance") delete copy.bendModel;
+  if (copy.bendStiffness === null) delete copy.bendStiffness;
   return copy;
 }
 
@@ -296,10 +310,14 @@ function runPipeline(options) {
                          : options.body;
   const motion = (path) => ({path: path, units: options.motionUnits});
   // What a run on the character is given besides its motion and files.
+  const material = options.bendStiffness === null ? options.material
+                                                   : {preset: options.material, bendStiffness: options.bendStiffness};
   const characterSettings = (frames) => Object.assign(
       {body: body, place: options.place, frames: frames, fps: options.fps, preroll: options.preroll,
-       material: options.material, tNodeSag: options.tNodeSag, threads: options.threads},
-      options.stepRate === null ? {} : {stepRate: options.stepRate});
+       material: material, tNodeSag: options.tNodeSag, threads: options.threads},
+      options.stepRate === null ? {} : {stepRate: options.stepRate},
+      options.newtonCg === 0 ? {} : {newtonCg: options.newtonCg},
+      options.bendModel === "distance" ? {} : {bendModel: options.bendModel});
   const onCharacter = (frames, output, bodyOutput) => {
     const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
@@ -599,6 +617,11 @@ function reportMarkdown(report) {
              report.garment.faces + " faces, " + fixed(report.garment.area, 3) + " m^2. Body: " +
              report.options.body + (report.options.makehuman ? " (MakeHuman)" : " (the mannequin)") +
              "; material " + report.options.material + (report.options.tNodeSag ? " (T-node sag read, tNodeSag)" : "") +
+             (report.options.bendStiffness !== null && report.options.bendStiffness !== undefined
+                  ? " with bend stiffness " + report.options.bendStiffness + " N/m" : "") +
+             (report.options.bendModel && report.options.bendModel !== "distance"
+                  ? " (" + report.options.bendModel + " bend springs)" : "") +
+             (report.options.newtonCg ? "; Newton steps of " + report.options.newtonCg + " CG" : "") +
              "; " + report.options.fps + " fps" +
              (report.table1Instance.stepRate ? ", " + report.table1Instance.stepRate + " steps per second" : "") + ".", "");
   lines.push("## Instance (Table 1)", "");

@@ -44,6 +44,18 @@ code=$?
 [ "$code" -eq 1 ] || fail "resume with other options: exit code $code"
 grep -q "holds a run with other options (modes)" "$tmp/other.err" || fail "other options: $(cat "$tmp/other.err")"
 
+# 4b. The solve and bend options reach every run: the report says so, the
+# runs' settings carry them, and the instance moves otherwise.
+"$host" -q pipeline $small --newton-cg 1 --bend-model secondDifference --bend-stiffness 0.02 --out "$tmp/solve" \
+  > "$tmp/solve.out" 2> "$tmp/solve.err" || { fail "solve options exit code $?"; cat "$tmp/solve.err"; }
+grep -q "with bend stiffness 0.02 N/m (secondDifference bend springs); Newton steps of 1 CG" "$tmp/solve/report.md" ||
+  fail "report.md does not name the solve: $(head -3 "$tmp/solve/report.md")"
+for setting in '"newtonCg": 1' '"bendModel": "secondDifference"' '"bendStiffness": 0.02'; do
+  grep -q "$setting" "$tmp/solve/report.json" || fail "report.json lacks $setting"
+done
+cmp -s "$tmp/solve/caches/instance_high.pc2" "$tmp/command/caches/instance_high.pc2" &&
+  fail "the solve options left the instance as it was"
+
 # 5. Ctrl-C once the instance is recorded, during the test runs or previews
 # (at 60 steps a second, which the finished report must say).
 "$host" pipeline $small --test-frames 120 --step-rate 60 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
