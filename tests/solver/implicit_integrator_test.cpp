@@ -72,6 +72,16 @@ TEST(ImplicitIntegrator, FreeFallFollowsTheExactParabola) {
   }
 }
 
+// The rest state with every free vertex given a random velocity (m/s, each
+// component in [-1, 1]).
+ClothState moving_in_every_direction(const DynamicsModel& m) {
+  ClothState s = rest_state(m);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (Eigen::Index f = 0; f < s.velocities.rows(); ++f) s.velocities.row(f) << u(rng), u(rng), u(rng);
+  return s;
+}
+
 TEST(ImplicitIntegrator, LinearMomentumIsConservedWithoutGravity) {
   DynamicsOptions d;
   d.material.damping = 0.0;
@@ -82,10 +92,7 @@ TEST(ImplicitIntegrator, LinearMomentumIsConservedWithoutGravity) {
   IntegratorOptions o = options(1.0 / 120, {0, 0, 0});
   o.limiter_mass_exponent = 1.0;
   integrator.precompute(m, o);
-  ClothState s = rest_state(m);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (Eigen::Index f = 0; f < s.velocities.rows(); ++f) s.velocities.row(f) << u(rng), u(rng), u(rng);
+  ClothState s = moving_in_every_direction(m);
   const Eigen::RowVector3d momentum = m.free_mass.transpose() * s.velocities;
   for (int k = 0; k < 50; ++k) {
     integrator.step(s, s.pinned, {});
@@ -143,10 +150,7 @@ TEST_P(NewtonSteps, ConserveLinearMomentumAndKeepTNodesExact) {
   o.newton_cg = 2;
   ImplicitIntegrator integrator;
   integrator.precompute(m, o);
-  ClothState s = rest_state(m);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (Eigen::Index f = 0; f < s.velocities.rows(); ++f) s.velocities.row(f) << u(rng), u(rng), u(rng);
+  ClothState s = moving_in_every_direction(m);
   const Eigen::RowVector3d momentum = m.free_mass.transpose() * s.velocities;
   const Layers l = get_layers(mesh);
   for (int k = 0; k < 50; ++k) {
