@@ -247,8 +247,11 @@ int run_bench(int argc, char** argv) {
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
     else if (key == "--alpha-bend") b.alpha_bend = std::atof(value.c_str());
-    else if (key == "--bend-model" && (value == "distance" || value == "second-difference"))
+    else if (key == "--bend-model") {
+      if (value != "distance" && value != "second-difference")
+        return usage(("--bend-model must be distance or second-difference, got " + value).c_str());
       b.bend_model = value == "distance" ? BendModel::distance : BendModel::second_difference;
+    }
     else if (key == "--bend-stiffness") b.bend_stiffness = std::atof(value.c_str());
     else if (key == "--t-node-sag") b.t_node_sag = value == "1";
     else if (key == "--regions") b.regions = value;

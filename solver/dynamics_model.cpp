@@ -63,8 +63,7 @@ std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, c
     set.add(b.i, b.j, m.bend_stiffness * level_scale(o.alpha_bend, b.level), SpringKind::bend, b.level);
   std::vector<Spring> springs = set.take();
   if (o.bend_model == BendModel::second_difference) {
-    // A bend pair is listed once with the middle of its first record pair;
-    // the set kept the pairs' order among the bend springs.
+    // Each pair through the middle bend_pairs gives it (its first record pair's).
     std::unordered_map<std::uint64_t, int> via;
     for (const BendPair& b : bend_pairs(mesh)) via.emplace(pair_key(b.i, b.j), b.via);
     for (Spring& s : springs) {

@@ -44,8 +44,9 @@
 // whose true sideways stiffness is its tension over its length), so the
 // plain iteration moves the cloth's slow bending and swinging motion only
 // a small part of the way per iteration; conjugate gradients scale each
-// direction by the true curvature. About one and a half times the plain
-// iteration's cost; less numerical damping (README, The free swing).
+// direction by the true curvature. The solve costs about 1.4 times the
+// plain one on a body, twice in a free swing; less numerical damping
+// (README, The free swing).
 //
 // Accuracy trade-off: with few iterations the step is a damped
 // approximation of implicit Euler (energy is lost in stiff directions,
