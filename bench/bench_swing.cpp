@@ -19,7 +19,7 @@
 //
 // Usage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N]
 //                    [--sweeps S] [--alpha A] [--alpha-bend A] [--bend-stiffness K] [--bend-model distance|second-difference] [--t-node-sag 0|1] [--regions MODEL]
-//                    [--smooth PASSES]
+//                    [--smooth PASSES] [--twin 0|1]
 // (the folder holds high.om, coarse_modes.om, uniform_equal.om and
 // multires_*.om, as `mrcloth pipeline` writes them).
 #include "mesh_ops/adaptive_refine.h"
@@ -40,6 +40,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +64,7 @@ struct BenchOptions {
   int smooth = 0;            // umbrella passes over the high mesh applied to each frame's error before it is measured (0: none)
   bool curtain = false;      // swing the built curtain instead of a pipeline run's meshes
   int curtain_levels = 2;    // the curtain's high-resolution mesh: refined uniformly this many times (>= 2)
+  bool twin = false;         // also swing the high mesh with every rest position moved by up to 1e-7 m (the noise floor)
 };
 
 constexpr double kStill = 1.0;          // seconds hanging before the swing
@@ -79,7 +81,7 @@ std::vector<int> pinned_vertices(const QuadMesh& mesh, bool curtain) {
   for (auto v : mesh.vertices()) top = std::max(top, static_cast<double>(mesh.point(v)[1]));
   std::vector<int> row;
   for (auto v : mesh.vertices())
-    if (mesh.point(v)[1] > top - 1e-9) row.push_back(v.idx());
+    if (mesh.point(v)[1] > top - 1e-6) row.push_back(v.idx());  // 1e-6: a nudged twin keeps its row
   return row;
 }
 
@@ -224,10 +226,25 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models(int levels) {
   return models;
 }
 
+// `mesh` with every rest position moved by a pseudo-random offset of up to
+// 1e-7 m per coordinate (fixed seed): how far such a hair moves the swing
+// is the floor under every other distance.
+QuadMesh nudged(const QuadMesh& mesh) {
+  QuadMesh twin = mesh;
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> offset(-1e-7, 1e-7);
+  for (auto v : twin.vertices()) {
+    QuadMesh::Point p = twin.point(v);
+    for (int c = 0; c < 3; ++c) p[c] += offset(rng);
+    twin.set_point(v, p);
+  }
+  return twin;
+}
+
 int usage(const char* why) {
   std::fprintf(stderr,
                "%s\nusage: bench_swing <pipeline output>/<garment>/meshes | --curtain [--curtain-levels N] [--frames N] [--iterations K] [--newton-cg K] [--substeps N] [--sweeps S] "
-               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--bend-model distance|second-difference] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES]\n",
+               "[--alpha A] [--alpha-bend A] [--bend-stiffness K] [--bend-model distance|second-difference] [--t-node-sag 0|1] [--regions MODEL] [--smooth PASSES] [--twin 0|1]\n",
                why);
   return 2;
 }
@@ -243,6 +260,7 @@ int run_bench(int argc, char** argv) {
     else if (key == "--iterations") b.iterations = std::atoi(value.c_str());
     else if (key == "--newton-cg") b.newton_cg = std::atoi(value.c_str());
     else if (key == "--curtain-levels") b.curtain_levels = std::atoi(value.c_str());
+    else if (key == "--twin") b.twin = value == "1";
     else if (key == "--substeps") b.substeps = std::atoi(value.c_str());
     else if (key == "--sweeps") b.sweeps = std::atoi(value.c_str());
     else if (key == "--alpha") b.alpha = std::atof(value.c_str());
@@ -286,6 +304,7 @@ int run_bench(int argc, char** argv) {
     for (const std::string& name : names) models.emplace_back(name, load(name));
     high = load("high");
   }
+  if (b.twin) models.emplace_back("high, moved 1e-7", nudged(high));
   if (b.regions.empty()) b.regions = models.size() > 2 ? models[2].first : models.back().first;
   const auto region_model = std::find_if(models.begin(), models.end(), [&](const auto& m) { return m.first == b.regions; });
   if (region_model == models.end()) return usage(("no model named " + b.regions + " to take the regions from").c_str());
