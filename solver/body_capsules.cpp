@@ -90,6 +90,15 @@ const DefaultRadii* find_default(const std::string& name) {
   return nullptr;
 }
 
+/// Whether the nearest ancestor of joint j with a default radius has none
+/// (a hand or a toe): its unnamed descendants (finger links) get none either.
+bool under_bare_joint(const Skeleton& skeleton, int j) {
+  for (int a = skeleton.joints[static_cast<std::size_t>(j)].parent; a >= 0; a = skeleton.joints[static_cast<std::size_t>(a)].parent)
+    if (const DefaultRadii* known = find_default(skeleton.joints[static_cast<std::size_t>(a)].name))
+      return known->head == 0.0 && known->tail == 0.0;
+  return false;
+}
+
 std::string text(double value) {
   std::ostringstream out;
   out.imbue(std::locale::classic());
@@ -250,6 +259,7 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
     const DefaultRadii* known = find_default(joint.name);
     const auto override_it = options.radii.find(joint.name);
     const bool overridden = override_it != options.radii.end();
+    if (!known && !overridden && under_bare_joint(skeleton, j)) continue;  // a DAZ hand's finger links: no capsule, as CMU's
 
     std::vector<int> long_children;
     for (int c : children[j])

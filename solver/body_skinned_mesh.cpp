@@ -113,6 +113,7 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
 
 struct RigBone {
   std::string head, tail;                ///< joint names
+  std::string parent;                    ///< the parent bone's name; empty for the root
   std::vector<std::string> weight_bones;  ///< default-skeleton bones whose weights this bone takes
 };
 
@@ -161,6 +162,8 @@ std::map<std::string, RigBone> rig_bones(const JsonValue& rig, const std::map<st
     bone.tail = entry.at("tail", what).as_string(what + " tail");
     for (const std::string* joint : {&bone.head, &bone.tail})
       if (!joints.count(*joint)) entry.fail(what + " names joint \"" + *joint + "\", which \"joints\" does not list; expected a listed joint");
+    if (const JsonValue* parent = entry.find("parent"); parent != nullptr && !parent->is_null())
+      bone.parent = parent->as_string(what + " parent");
     const JsonValue* weights = entry.find("weights_reference");
     if (weights == nullptr || weights->is_null()) weights = &entry.at("reference", what);
     if (!weights->is_null()) bone.weight_bones = unique_strings(*weights, what + " reference");
@@ -270,13 +273,14 @@ struct Binding {
 /// towards the child that direction is closest to (an End Site counts).
 /// Bones keep their parent's correction when the skeleton gives them no
 /// direction: every child coincides with them (Hips, Spine1, the hands), or
-/// they are one of several branches leaving their parent's joint at the
-/// same point (the hip, lower back, neck, shoulder, finger and thumb
-/// branches) -- their rest directions describe where the capture subject's
-/// branches leave the pelvis, chest or hand, not a pose, and aligning them
-/// bends the pelvis and chest out of shape (the CMU hip branch is 36 deg off
-/// the mesh's). The root keeps the identity: the mesh already faces +Z with
-/// Y up, as the skeleton does.
+/// they are one of several branches leaving their parent's joint (the hip,
+/// lower back, neck, shoulder, finger and thumb branches; in CMU they leave
+/// at the parent's point, in DAZ's skeleton a little apart) -- their rest
+/// directions describe where the capture subject's branches leave the
+/// pelvis, chest or hand, not a pose, and aligning them bends the pelvis
+/// and chest out of shape (the CMU hip branch is 36 deg off the mesh's, the
+/// DAZ buttock bone points backwards). The root keeps the identity: the mesh
+/// already faces +Z with Y up, as the skeleton does.
 Binding bind_skeleton(const Skeleton& skeleton, const Pose& rest, const std::vector<Vector3d>& heads,
                       const std::vector<Vector3d>& tails, const std::vector<bool>& has_bone) {
   const std::size_t n = skeleton.joints.size();
@@ -305,7 +309,7 @@ Binding bind_skeleton(const Skeleton& skeleton, const Pose& rest, const std::vec
     }
     binding.pivot[j] = binding.pivot[p] + inherited * (heads[j] - heads[p]);
 
-    const bool branch = (rest_j - rest.position(parent)).norm() <= kCoincident && children[p].size() > 1;
+    const bool branch = children[p].size() > 1;
     const Vector3d mesh_direction = inherited * (tails[j] - heads[j]);
     if (branch || mesh_direction.norm() <= kCoincident) continue;
     Vector3d best = Vector3d::Zero();
@@ -419,28 +423,41 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   const std::map<std::string, Vector3d> joints = rig_joints(rig, all_vertices);
   const std::map<std::string, RigBone> bones = rig_bones(rig, joints);
 
-  // Rig bone <-> skeleton joint, both ways complete.
+  // Rig bone <-> skeleton joint, by name. A joint the rig has no bone for
+  // (a DAZ skeleton's eyes and finger links) carries no skin and follows
+  // its parent; a bone the skeleton has no joint for (DAZ has no Spine,
+  // Neck1 or toes) hands its skin to its nearest ancestor that has one.
   const std::size_t n = skeleton.joints.size();
   if (n == 0) throw InputError(files.skeleton_file + ": the skeleton to bind to has no joints; expected a CMU skeleton");
   std::vector<const RigBone*> bone_of(n, nullptr);
-  std::set<std::string> bound;
+  std::map<std::string, int> joint_of_rig_bone;
   for (std::size_t j = 0; j < n; ++j) {
     if (skeleton.joints[j].end_site) continue;
-    const std::string name = rig_name(skeleton.joints[j].name);
-    const auto found = bones.find(name);
-    if (found == bones.end()) {
-      throw InputError(files.skeleton_file + ": no bone \"" + name + "\" for skeleton joint \"" + skeleton.joints[j].name +
-                       "\"; expected a rig for the skeleton's joints (the CMU MotionBuilder skeleton)");
-    }
+    const auto found = bones.find(rig_name(skeleton.joints[j].name));
+    if (found == bones.end()) continue;
     bone_of[j] = &found->second;
-    bound.insert(name);
+    joint_of_rig_bone[found->first] = static_cast<int>(j);
   }
-  for (const auto& entry : bones) {
-    if (!bound.count(entry.first)) {
-      throw InputError(files.skeleton_file + ": bone \"" + entry.first +
-                       "\" has no joint in the skeleton; expected the skeleton the rig was made for");
+  if (!bone_of[0]) {
+    std::string root_bone;
+    for (const auto& [name, bone] : bones)
+      if (bone.parent.empty()) root_bone = name;
+    throw InputError(files.skeleton_file + ": the skeleton's root joint \"" + skeleton.joints[0].name +
+                     "\" has no bone in the rig; expected the rig's root \"" + root_bone +
+                     "\" (the CMU MotionBuilder names; rename the motion's joints onto them)");
+  }
+  // Each rig bone's skin goes to its own joint or its nearest ancestor's.
+  const auto joint_taking = [&](const std::string& bone_name) {
+    std::string at = bone_name;
+    for (std::size_t guard = 0; guard <= bones.size(); ++guard) {
+      const auto joint = joint_of_rig_bone.find(at);
+      if (joint != joint_of_rig_bone.end()) return joint->second;
+      const auto bone = bones.find(at);
+      if (bone == bones.end() || bone->second.parent.empty()) break;
+      at = bone->second.parent;
     }
-  }
+    return 0;  // no bound ancestor (a second root): the skeleton's root
+  };
 
   // Align: the mesh's hip joints' midpoint on the skeleton's (leg lengths
   // agree within 1 %, so the feet meet the skeleton's ground; the two Hips
@@ -490,6 +507,11 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   for (std::size_t j = 0; j < n; ++j)
     if (bone_of[j])
       for (const std::string& name : bone_of[j]->weight_bones) joint_of_bone[name].push_back(static_cast<int>(j));
+  for (const auto& [name, bone] : bones) {
+    if (joint_of_rig_bone.count(name)) continue;
+    const int j = joint_taking(name);
+    for (const std::string& weight_bone : bone.weight_bones) joint_of_bone[weight_bone].push_back(j);
+  }
   const int hips = skeleton.find("Hips");
   body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root);
 

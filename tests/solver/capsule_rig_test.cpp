@@ -205,6 +205,31 @@ TEST(CapsuleRig, UnknownNamesGetRadiiProportionalToLength) {
   EXPECT_NEAR(rig.bones[2].radius_head, 0.01 * scale, 1e-12) << "clamped to 0.01 m at 1.65 m";
 }
 
+TEST(CapsuleRig, UnknownNamesUnderAHandGetNoneAsTheHandsOwn) {
+  // A DAZ-like hand: LeftHand (no capsule by default) with finger links of
+  // unknown names; a forearm before it and an eye under the head for contrast.
+  SkeletonBuilder b;
+  const int hips = b.add("Hips", -1, Vector3d::Zero());
+  const int arm = b.add("LeftForeArm", hips, Vector3d(0.2, 0.4, 0));
+  const int hand = b.add("LeftHand", arm, Vector3d(0.25, 0, 0));
+  const int finger = b.add("lIndex1", hand, Vector3d(0.08, 0, 0));
+  const int link = b.add("lIndex2", finger, Vector3d(0.03, 0, 0));
+  b.add("lIndex2_end", link, Vector3d(0.02, 0, 0), true);
+  const int head = b.add("Head", hips, Vector3d(0, 0.8, 0));
+  const int eye = b.add("leftEye", head, Vector3d(0.03, 0.05, 0.08));
+  b.add("leftEye_end", eye, Vector3d(0, 0, 0.01), true);
+  b.add("Head_end", head, Vector3d(0, 0.2, 0), true);
+  const CapsuleRig rig = make_capsule_rig(b.skeleton);
+  for (const BoneCapsule& bone : rig.bones)
+    EXPECT_TRUE(bone.joint != hand && bone.joint != finger && bone.joint != link) << b.skeleton.joints[bone.joint].name;
+  EXPECT_EQ(bones_named(rig, b.skeleton, "LeftForeArm").size(), 1u);
+  EXPECT_EQ(bones_named(rig, b.skeleton, "leftEye").size(), 1u) << "under the head, which has a capsule";
+  // An override still puts one on a finger.
+  CapsuleRigOptions options;
+  options.radii["lIndex1"] = {0.01, 0.01};
+  EXPECT_EQ(bones_named(make_capsule_rig(b.skeleton, options), b.skeleton, "lIndex1").size(), 1u);
+}
+
 TEST(CapsuleRig, OverridesReplaceAddAndRemoveCapsules) {
   const Skeleton skeleton = cmu_like();
   CapsuleRigOptions options;
