@@ -46,6 +46,28 @@ double metresPerUnit(const QString& units) {
   return metres_per_unit(units.toStdString());
 }
 
+/// motion.joints: "auto" (a known convention renamed onto CMU names),
+/// "asIs", or {name in the file: CMU name, ...}.
+void parseJointNames(const Fields& fields, CharacterRequest& request) {
+  const QString key = QStringLiteral("joints");
+  if (!fields.has(key)) return;
+  const QVariant value = fields.required(key);
+  const QString label = fields.label(key);
+  if (value.typeId() == QMetaType::QString) {
+    request.autoJointNames = fields.choice(key, QStringLiteral("auto"), {QStringLiteral("auto"), QStringLiteral("asIs")}) ==
+                             QLatin1String("auto");
+    return;
+  }
+  if (!options::isObjectLike(value) || value.typeId() == QMetaType::QVariantList)
+    fail(QStringLiteral("%1 must be \"auto\", \"asIs\" or an object {name in the file: CMU name}, got %2")
+             .arg(label, script::describeValue(value)));
+  request.autoJointNames = false;
+  const QVariantMap map = value.toMap();
+  for (auto it = map.cbegin(); it != map.cend(); ++it)
+    request.jointRenaming[it.key().toStdString()] =
+        script::toString(it.value(), QStringLiteral("option '%1.%2'").arg(fields.key(key), it.key())).toStdString();
+}
+
 void parseMotion(const Fields& top, CharacterRequest& request) {
   const QString key = QStringLiteral("motion");
   const QVariant value = top.required(key);
@@ -56,11 +78,12 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
     return;
   }
   if (!options::isObjectLike(value))
-    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start}, got %2")
+    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints}, got %2")
              .arg(optionLabel(key), script::describeValue(value)));
   const Fields fields(value, key,
                       {QStringLiteral("path"), QStringLiteral("units"), QStringLiteral("scale"),
-                       QStringLiteral("skipFirst"), QStringLiteral("start")});
+                       QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints")});
+  parseJointNames(fields, request);
   const QString path = script::toString(fields.required(QStringLiteral("path")), fields.label(QStringLiteral("path")));
   request.motionPath = options::existingInputFile(path, fields.label(QStringLiteral("path")));
   if (fields.has(QStringLiteral("units")) && fields.has(QStringLiteral("scale")))
@@ -245,7 +268,11 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
   BvhReadOptions read_options;
   read_options.scale = request.motionScale;
   read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
-  const Motion full = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
+  Motion full = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
+  // Every later step reads joints by their CMU names.
+  naming(motion_label, [&] {
+    rename_joints(full.skeleton, request.autoJointNames ? cmu_renaming(full.skeleton) : request.jointRenaming);
+  });
 
   // What make_character refuses, said here with the file and the option.
   const QString file = QDir::toNativeSeparators(request.motionPath);
@@ -253,8 +280,12 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
   if (full.skeleton.joints.empty() || full.frames.rows() < 1)
     throw InputError(QStringLiteral("%1: %2 has no joints or no frames").arg(motion_label, file).toStdString());
   if (full.skeleton.find(defaults.pelvis_joint) < 0)
-    throw InputError(QStringLiteral("%1: %2 has no joint '%3', which the pinned waist follows")
-                         .arg(motion_label, file, QString::fromStdString(defaults.pelvis_joint))
+    throw InputError(QStringLiteral("%1: %2 has no joint '%3', which the pinned waist follows (rename the joints "
+                                    "onto the CMU MotionBuilder names with %4 {name in the file: CMU name, ...}, e.g. "
+                                    "{\"%5\": \"%3\"}; \"auto\" knows the DAZ/Poser and Mixamo names)")
+                         .arg(motion_label, file, QString::fromStdString(defaults.pelvis_joint),
+                              optionLabel(QStringLiteral("motion.joints")),
+                              QString::fromStdString(full.skeleton.joints[0].name))
                          .toStdString());
   if (setup.skip_first && full.frames.rows() < 2)
     throw InputError(QStringLiteral("%1: %2 has a single frame, so skipFirst leaves nothing (set skipFirst: false)")

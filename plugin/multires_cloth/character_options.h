@@ -8,6 +8,7 @@
 #include "plugin/core/option_fields.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/character_setup.h"
+#include "solver/joint_names.h"
 #include "solver/character_sim.h"
 #include "solver/garment_fit.h"
 
@@ -23,6 +24,8 @@ struct CharacterRequest {
   QString motionPath;
   double motionScale = 1.0;     ///< metres per BVH unit
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01")
+  bool autoJointNames = true;   ///< rename a known convention's joints onto CMU names (motion.joints "auto")
+  JointRenaming jointRenaming;  ///< motion.joints given as {name in the file: CMU name}; used when !autoJointNames
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
 };
