@@ -262,7 +262,7 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   return request;
 }
 
-Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment) {
+Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, JointRenaming* renamed) {
   const CharacterSetup& setup = request.setup;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
   BvhReadOptions read_options;
@@ -270,9 +270,9 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
   read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
   Motion full = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
   // Every later step reads joints by their CMU names.
-  naming(motion_label, [&] {
-    rename_joints(full.skeleton, request.autoJointNames ? cmu_renaming(full.skeleton) : request.jointRenaming);
-  });
+  const JointRenaming renaming = request.autoJointNames ? cmu_renaming(full.skeleton) : request.jointRenaming;
+  naming(motion_label, [&] { rename_joints(full.skeleton, renaming); });
+  if (renamed) *renamed = renaming;
 
   // What make_character refuses, said here with the file and the option.
   const QString file = QDir::toNativeSeparators(request.motionPath);

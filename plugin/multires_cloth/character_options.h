@@ -39,9 +39,11 @@ QStringList characterOptionKeys();
 /// option); errors name the option.
 CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
 
-/// Reads the BVH and builds the character (make_character). Errors name the
-/// option they come from ("option 'motion': <file>:<line>: ...").
-Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment);
+/// Reads the BVH, renames its joints onto CMU names as motion.joints says
+/// (`renamed`, if given, receives the renaming applied) and builds the
+/// character (make_character). Errors name the option they come from
+/// ("option 'motion': <file>:<line>: ...").
+Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, JointRenaming* renamed = nullptr);
 
 QString bodyTypeName(CharacterBodyKind type);
 QString placementName(GarmentPlacement place);

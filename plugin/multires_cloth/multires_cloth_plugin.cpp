@@ -539,8 +539,14 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
-  Character character = loadCharacter(wanted, *input.mesh);
+  JointRenaming renamed;
+  Character character = loadCharacter(wanted, *input.mesh, &renamed);
   const Motion& motion = *character.motion;
+  if (!renamed.empty())
+    emit log(LOGINFO, QStringLiteral("%1: %2 joints of %3 renamed onto CMU names (%4 -> %5, ...)")
+                          .arg(slot).arg(renamed.size()).arg(QFileInfo(wanted.motionPath).fileName(),
+                                                             QString::fromStdString(renamed.begin()->first),
+                                                             QString::fromStdString(renamed.begin()->second)));
 
   // The garment in the skeleton's rest space (on the skinned body, moved
   // clear of it); the object itself is untouched.
@@ -641,6 +647,9 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
 
   last_report_ = simulationReportMap(motion_report, model);
   last_report_.insert(characterReportMap(report, wanted, character, run));
+  QVariantMap joints;
+  for (const auto& [from, to] : renamed) joints.insert(QString::fromStdString(from), QString::fromStdString(to));
+  last_report_.insert(QStringLiteral("jointsRenamed"), joints);
   last_report_.insert({{QStringLiteral("operation"), slot},
                        {QStringLiteral("source"), input.id},
                        {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
@@ -774,7 +783,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
                       "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows, "
                       "handMittens (mesh body: capsules standing in for its hands, 0: its own hands), "
-                      "armsOpened {maxDegrees, steps, clearance}. The rest pose is "
+                      "armsOpened {maxDegrees, steps, clearance}, jointsRenamed {name in the file: CMU name} "
+                      "(motion.joints). The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},

@@ -54,6 +54,8 @@ for (const [s, side, hip] of [["l", "Left", "LHipJoint"], ["r", "Right", "RHipJo
                          [s + "Hand"]: side + "Hand", [s + "Buttock"]: hip, [s + "Thigh"]: side + "UpLeg",
                          [s + "Shin"]: side + "Leg", [s + "Foot"]: side + "Foot"});
 }
+const sorted = (object) => Object.keys(object).sort().map((key) => key + ">" + object[key]).join(" ");
+expectEqual(sorted(reports.mesh.jointsRenamed), sorted(byHand), "the report says which joints auto renamed");
 const manual = run("mesh", byHand, tmpDir + "/daz_mesh_by_hand.pc2");
 expectEqual([manual.maxStretch, manual.maxPenetration], [reports.mesh.maxStretch, reports.mesh.maxPenetration],
             "a hand-written renaming runs as auto");
