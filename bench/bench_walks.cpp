@@ -19,13 +19,15 @@
 //                    run options of garment_on_character.h (--frames, --preroll,
 //                    --rounds, --sweeps, --slack, --threads, ...)
 //   LIST: comma-separated; kinds coarse-capsules,coarse-mesh,refined-mesh;
-//   garments skirt,knee,trousers; walks 07_06,07_03,08_03,02_01.
+//   garments skirt,knee,trousers; walks 07_06,07_03,08_03,02_01 (and
+//   16_15_daz: a walk on the DAZ-named skeleton, not in the default list).
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/uniform_refine.h"
 #include "garment_on_character.h"
 #include "solver/character_setup.h"
+#include "solver/joint_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -73,10 +75,14 @@ struct Result {
 Result run(const std::string& garment, const std::string& walk, const std::string& kind, const WalkOptions& w) {
   if (kind != "coarse-capsules" && kind != "coarse-mesh" && kind != "refined-mesh")
     throw ArgumentError("unknown kind '" + kind + "'; expected coarse-capsules, coarse-mesh or refined-mesh");
+  // 16_15_daz: CMU 16_15 on the DAZ-friendly skeleton (centimetres, DAZ
+  // names), renamed onto CMU names as motion.joints "auto" renames it.
+  const bool daz = walk == "16_15_daz";
   BvhReadOptions bvh;
-  bvh.scale = 0.056444;          // CMU units to metres
-  bvh.skip_first_frame = false;  // make_character drops CMU's added T-pose
-  const Motion clip = read_bvh(data("motions/cmu_mb/" + walk + ".bvh"), bvh);
+  bvh.scale = daz ? 0.01 : 0.056444;  // to metres
+  bvh.skip_first_frame = false;       // make_character drops the added T-pose
+  Motion clip = read_bvh(data(daz ? "motions/cmu_daz/16_15_daz.bvh" : "motions/cmu_mb/" + walk + ".bvh"), bvh);
+  rename_joints(clip.skeleton, cmu_renaming(clip.skeleton));
   QuadMesh mesh = load_garment(data(garment_file(garment)), {"dm"}).mesh;
   if (kind == "refined-mesh") uniform_refine(mesh, 1);
   bench::GarmentRunOptions o = w.run;
