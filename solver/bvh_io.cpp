@@ -273,11 +273,17 @@ class BvhParser {
       joint.name = base;
       for (int k = 2; names_.count(joint.name) > 0; ++k) joint.name = base + std::to_string(k);
     } else {
-      // The name is every token on the keyword's line up to '{' (names with spaces exist).
+      // The name is every token on the keyword's line up to '{' (names with
+      // spaces exist), one space between tokens that white space parted;
+      // tokens the tokenizer parted after a ':' join as they were (Mixamo's
+      // "mixamorig:Hips", Maya's namespaces).
+      const char* previous_end = nullptr;
       while (!at_end() && tokens_[pos_].line == keyword.line && tokens_[pos_].text != "{" &&
              tokens_[pos_].text != "}") {
-        if (!joint.name.empty()) joint.name += ' ';
-        joint.name += std::string(tokens_[pos_++].text);
+        const std::string_view part = tokens_[pos_++].text;
+        if (!joint.name.empty() && part.data() != previous_end) joint.name += ' ';
+        joint.name += std::string(part);
+        previous_end = part.data() + part.size();
       }
       if (joint.name.empty()) fail(keyword.line, quoted(keyword.text) + " without a name", "a joint name");
       if (names_.count(joint.name) > 0)

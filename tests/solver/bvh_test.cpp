@@ -412,11 +412,12 @@ TEST(BvhRead, TruncationsAndMutationsNeverCrash) {
 TEST(BvhRead, LenientLayouts) {
   const fs::path dir = empty_folder("lenient");
   // Rows wrapped across lines, CRLF line ends, braces on the keyword line,
-  // "Frames:3" without a space, a name with a space, a position channel in
-  // the middle of the rotations, a joint without CHANNELS.
+  // "Frames:3" without a space, a name with a space, one with a ':' (as
+  // Mixamo's), a position channel in the middle of the rotations, a joint
+  // without CHANNELS.
   const std::string text =
       "HIERARCHY\r\nROOT Hips {\r\n OFFSET 0 0 0\r\n CHANNELS 4 Zrotation Xposition Yrotation Xrotation\r\n"
-      " JOINT Left Arm {\r\n  OFFSET 1 0 0\r\n  JOINT Hand {\r\n   OFFSET 1 0 0\r\n   CHANNELS 1 Yrotation\r\n"
+      " JOINT Left Arm {\r\n  OFFSET 1 0 0\r\n  JOINT mixamorig:Hand {\r\n   OFFSET 1 0 0\r\n   CHANNELS 1 Yrotation\r\n"
       "   End Site { OFFSET 0 1 0 }\r\n  }\r\n }\r\n}\r\nMOTION\r\nFrames:3\r\nFrame Time:\t0.1\r\n"
       "1 2\r\n3 4 5\r\n6 7 8 9 10\r\n+11 12 13 14e0 1.5e1\r\n";
   const Motion motion = read_bvh(write_text(dir, "lenient.bvh", text), {2.0, false});
@@ -424,7 +425,8 @@ TEST(BvhRead, LenientLayouts) {
   EXPECT_EQ(motion.skeleton.joints[1].name, "Left Arm");
   EXPECT_TRUE(motion.skeleton.joints[1].channels.empty());
   EXPECT_EQ(motion.skeleton.joints[2].first_channel, 4);
-  EXPECT_EQ(motion.skeleton.joints[3].name, "Hand_end");
+  EXPECT_EQ(motion.skeleton.joints[2].name, "mixamorig:Hand") << "a ':' inside a name stays";
+  EXPECT_EQ(motion.skeleton.joints[3].name, "mixamorig:Hand_end");
   EXPECT_EQ(motion.skeleton.joints[2].offset, Eigen::Vector3d(2, 0, 0));
   ASSERT_EQ(motion.frames.rows(), 3);
   ASSERT_EQ(motion.frames.cols(), 5);
