@@ -3,7 +3,8 @@
 // drives the shared skirt on the skinned MakeHuman body and on capsules
 // fitted to it. `motion.joints` "auto" renames its joints onto the CMU
 // names the rig, the waist and the capsules read; "asIs" leaves them, and
-// the run is refused with the way out named. Skipped (exit 77) when
+// the run is refused with the way out named. A CMU clip given Mixamo's
+// names runs as the clip itself. Skipped (exit 77) when
 // ../shared/data is absent. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
@@ -73,3 +74,28 @@ expectThrows(() => run("mesh", {hip: "Hips", abdomen: "Hips"}, tmpDir + "/never.
 expectThrows(() => run("mesh", 5, tmpDir + "/never.pc2"), "ArgumentError", "option 'motion.joints' must be",
              "\"auto\", \"asIs\"");
 expectThrows(() => run("mesh", "cmu", tmpDir + "/never.pc2"), "ArgumentError", "option 'motion.joints'");
+
+// Mixamo's names: CMU 07_06 with its joints named as Mixamo names them
+// (the prefix, and its three spine joints one lower) runs, renamed back by
+// "auto", to the same cache as the clip itself.
+const walk = sharedDir + "/motions/cmu_mb/07_06.bvh";
+skipUnlessFiles([walk]);
+const mixamo = {Hips: "Hips", LowerBack: "Spine", Spine: "Spine1", Spine1: "Spine2"};
+const text = core.readTextFile(walk).replace(/^(\s*(?:ROOT|JOINT)\s+)(\S+)/gm,
+                                                 (line, head, name) => head + "mixamorig:" + (mixamo[name] || name));
+core.writeTextFile(tmpDir + "/07_06_mixamo.bvh", text);
+const walkRun = (path, output) => {
+  const skirt = core.loadObject(garment, {units: "dm"});
+  try {
+    return multirescloth.simulate(skirt, {motion: {path: path, units: "cmu"}, body: Object.assign({}, files, {type: "mesh"}),
+                                          place: "makehuman", preroll: 0.2, frames: 6, output: output});
+  } finally {
+    core.deleteObject(skirt);
+  }
+};
+const asCmu = walkRun(walk, tmpDir + "/07_06.pc2");
+const asMixamo = walkRun(tmpDir + "/07_06_mixamo.bvh", tmpDir + "/07_06_mixamo.pc2");
+expectEqual(Object.keys(asCmu.jointsRenamed).length, 0, "CMU names are kept");
+expectEqual([Object.keys(asMixamo.jointsRenamed).length, asMixamo.jointsRenamed["mixamorig:Spine2"]], [31, "Spine1"],
+            "every Mixamo name renamed");
+expectEqual(core.filesEqual(tmpDir + "/07_06.pc2", tmpDir + "/07_06_mixamo.pc2"), true, "the same cache as the CMU clip");
