@@ -78,12 +78,15 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
     return;
   }
   if (!options::isObjectLike(value))
-    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints}, got %2")
+    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints, axes}, got %2")
              .arg(optionLabel(key), script::describeValue(value)));
   const Fields fields(value, key,
                       {QStringLiteral("path"), QStringLiteral("units"), QStringLiteral("scale"),
-                       QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints")});
+                       QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints"),
+                       QStringLiteral("axes")});
   parseJointNames(fields, request);
+  request.autoAxes = fields.choice(QStringLiteral("axes"), QStringLiteral("auto"),
+                                   {QStringLiteral("auto"), QStringLiteral("asIs")}) == QLatin1String("auto");
   const QString path = script::toString(fields.required(QStringLiteral("path")), fields.label(QStringLiteral("path")));
   request.motionPath = options::existingInputFile(path, fields.label(QStringLiteral("path")));
   if (fields.has(QStringLiteral("units")) && fields.has(QStringLiteral("scale")))
@@ -262,7 +265,7 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   return request;
 }
 
-Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, JointRenaming* renamed) {
+Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes) {
   const CharacterSetup& setup = request.setup;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
   BvhReadOptions read_options;
@@ -272,7 +275,10 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
   // Every later step reads joints by their CMU names.
   const JointRenaming renaming = request.autoJointNames ? cmu_renaming(full.skeleton) : request.jointRenaming;
   naming(motion_label, [&] { rename_joints(full.skeleton, renaming); });
-  if (renamed) *renamed = renaming;
+  // ... and stand with Y up, facing +Z, as the MakeHuman body does.
+  const AxisTurn turn = request.autoAxes ? upright_turn(full.skeleton) : AxisTurn{};
+  turn_axes(full, turn);
+  if (changes) *changes = {renaming, turn};
 
   // What make_character refuses, said here with the file and the option.
   const QString file = QDir::toNativeSeparators(request.motionPath);

@@ -539,9 +539,14 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest& wanted = *request.character;
-  JointRenaming renamed;
-  Character character = loadCharacter(wanted, *input.mesh, &renamed);
+  ClipChanges changes;
+  Character character = loadCharacter(wanted, *input.mesh, &changes);
+  const JointRenaming& renamed = changes.renamed;
   const Motion& motion = *character.motion;
+  if (!changes.turned.identity())
+    emit log(LOGINFO, QStringLiteral("%1: %2 stands upright with its axes turned (%3)")
+                          .arg(slot, QFileInfo(wanted.motionPath).fileName(),
+                               QString::fromStdString(changes.turned.describe())));
   if (!renamed.empty())
     emit log(LOGINFO, QStringLiteral("%1: %2 joints of %3 renamed onto CMU names (%4 -> %5, ...)")
                           .arg(slot).arg(renamed.size()).arg(QFileInfo(wanted.motionPath).fileName(),
@@ -650,6 +655,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   QVariantMap joints;
   for (const auto& [from, to] : renamed) joints.insert(QString::fromStdString(from), QString::fromStdString(to));
   last_report_.insert(QStringLiteral("jointsRenamed"), joints);
+  last_report_.insert(QStringLiteral("axesTurned"), QString::fromStdString(changes.turned.describe()));
   last_report_.insert({{QStringLiteral("operation"), slot},
                        {QStringLiteral("source"), input.id},
                        {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
@@ -784,7 +790,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows, "
                       "handMittens (mesh body: capsules standing in for its hands, 0: its own hands), "
                       "armsOpened {maxDegrees, steps, clearance}, jointsRenamed {name in the file: CMU name} "
-                      "(motion.joints). The rest pose is "
+                      "(motion.joints), axesTurned (motion.axes: \"\" or e.g. \"x = x, y = z, z = -y\"). The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character; the cache stays in the clip's coordinates."),
        {QStringLiteral("id"), QStringLiteral("options")},
@@ -818,7 +824,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "\"mm\" | \"inch\" = \"m\" or scale: metres per unit, skipFirst: bool = true (drop frame 0, "
             "CMU's added T-pose), start: s = 0, joints: \"auto\" | \"asIs\" | {name in the file: CMU name} = "
             "\"auto\" (the joints renamed onto the CMU MotionBuilder names the waist, rig and capsules read; auto "
-            "knows the DAZ/Poser and Mixamo names; joint names in other options are the renamed ones)}, "
+            "knows the DAZ/Poser and Mixamo names; joint names in other options are the renamed ones), axes: \"auto\" | "
+            "\"asIs\" = \"auto\" (a clip whose rest pose is not Y up with the figure's left along +X, e.g. Z up, is "
+            "turned by multiples of 90 degrees to stand so, as the MakeHuman body stands; exact)}, "
             "skipFirst (also at the top level), body: \"capsules\" "
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "

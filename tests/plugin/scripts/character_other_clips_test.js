@@ -4,7 +4,7 @@
 // fitted to it. `motion.joints` "auto" renames its joints onto the CMU
 // names the rig, the waist and the capsules read; "asIs" leaves them, and
 // the run is refused with the way out named. A CMU clip given Mixamo's
-// names runs as the clip itself. Skipped (exit 77) when
+// names, or written Z up, runs as the clip itself. Skipped (exit 77) when
 // ../shared/data is absent. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
@@ -99,3 +99,52 @@ expectEqual(Object.keys(asCmu.jointsRenamed).length, 0, "CMU names are kept");
 expectEqual([Object.keys(asMixamo.jointsRenamed).length, asMixamo.jointsRenamed["mixamorig:Spine2"]], [31, "Spine1"],
             "every Mixamo name renamed");
 expectEqual(core.filesEqual(tmpDir + "/07_06.pc2", tmpDir + "/07_06_mixamo.pc2"), true, "the same cache as the CMU clip");
+
+// Other axes: 07_06 written Z up (every offset and position turned, each
+// rotation channel relabelled to the turned axis, negated where it flips)
+// is stood upright again by motion.axes "auto" and runs to the same cache;
+// "asIs" leaves it lying, and the run differs.
+const zUp = (bvh) => {
+  // new x = x, new y = -z, new z = y: an upright figure then has its head along +z.
+  const lines = bvh.split(/\r?\n/);
+  const negate = [];
+  let inMotion = false, framesFollow = false;
+  const number = (x) => (Object.is(x, -0) ? "-0" : String(x));
+  return lines.map((line) => {
+    if (framesFollow && line.trim().length > 0)
+      return line.trim().split(/\s+/).map((v, c) => number(negate[c] ? -Number(v) : Number(v))).join(" ");
+    if (/^\s*MOTION/.test(line)) inMotion = true;
+    if (inMotion && /^\s*Frame Time:/.test(line)) framesFollow = true;
+    let m = line.match(/^(\s*OFFSET\s+)(\S+)\s+(\S+)\s+(\S+)\s*$/);
+    if (m) return m[1] + [Number(m[2]), -Number(m[4]), Number(m[3])].map(number).join(" ");
+    m = line.match(/^(\s*CHANNELS\s+\d+\s+)(.*)$/);
+    if (m) {
+      const names = m[2].trim().split(/\s+/).map((name) => {
+        const axis = name[0], kind = name.slice(1);
+        negate.push(axis === "Z");
+        return (axis === "Y" ? "Z" : axis === "Z" ? "Y" : "X") + kind;
+      });
+      return m[1] + names.join(" ");
+    }
+    return line;
+  }).join("\n");
+};
+core.writeTextFile(tmpDir + "/07_06_z_up.bvh", zUp(core.readTextFile(walk)));
+const standing = walkRun(tmpDir + "/07_06_z_up.bvh", tmpDir + "/07_06_z_up.pc2");
+expectEqual(standing.axesTurned, "x = x, y = z, z = -y", "the Z-up clip is turned upright");
+expectEqual(asCmu.axesTurned, "", "an upright clip is not turned");
+expectEqual(core.filesEqual(tmpDir + "/07_06.pc2", tmpDir + "/07_06_z_up.pc2"), true, "the same cache as the clip upright");
+let lying = null;
+try {
+  const skirt = core.loadObject(garment, {units: "dm"});
+  lying = multirescloth.simulate(skirt, {motion: {path: tmpDir + "/07_06_z_up.bvh", units: "cmu", axes: "asIs"},
+                                         body: Object.assign({}, files, {type: "mesh"}), place: "makehuman", preroll: 0.2,
+                                         frames: 6, output: tmpDir + "/07_06_lying.pc2"});
+} catch (e) {
+  print("lying: " + e.message);
+}
+expectEqual(lying !== null && core.filesEqual(tmpDir + "/07_06.pc2", tmpDir + "/07_06_lying.pc2"), false,
+            "axes \"asIs\" leaves the clip lying: not the upright run");
+expectThrows(() => multirescloth.simulate(core.loadObject(garment, {units: "dm"}),
+                                         {motion: {path: walk, units: "cmu", axes: "z"}, frames: 1}),
+             "ArgumentError", "option 'motion.axes'", "\"auto\"");
