@@ -88,6 +88,16 @@ TEST(MotionAxes, TheSharedClipsStandUprightAlready) {
   EXPECT_EQ(AxisTurn{}.describe(), "");
 }
 
+TEST(MotionAxes, TheEmbeddedClipsStandUprightAlready) {
+  // The main job's runs must not change: its mannequin and motions are
+  // written Y up, left along +X, with CMU names.
+  for (const char* clip : {"mannequin", "walk_instance", "walk_new", "squat"}) {
+    const Motion m = read_bvh(std::string(MRCLOTH_RESOURCES) + "/characters/" + clip + ".bvh");
+    EXPECT_EQ(joint_convention(m.skeleton), JointConvention::cmu) << clip;
+    EXPECT_TRUE(upright_turn(m.skeleton).identity()) << clip;
+  }
+}
+
 TEST(MotionAxes, ZUpIsNamedAndMirrorsAreRefused) {
   AxisTurn z_up;  // y = z, z = -y: a Z-up clip stood upright
   z_up.axis = {0, 2, 1};
