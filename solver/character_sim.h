@@ -5,6 +5,7 @@
 #include "arm_clearance.h"
 #include "body_capsules.h"
 #include "body_skinned_mesh.h"
+#include "mesh_body.h"
 #include "body_surface.h"
 #include "simulate.h"
 #include "skeleton.h"

@@ -4,6 +4,7 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/mode_layer.h"
 #include "solver/body_skinned_mesh.h"
+#include "solver/mesh_body.h"
 #include "solver/implicit_integrator.h"
 #include "solver/material.h"
 #include "solver/simulate.h"

@@ -2,6 +2,7 @@
 // data, and MeshBody (BVH closest point, pseudo-normal sign, resolve,
 // friction) against brute force on meshes built here and on the body.
 #include "solver/body_skinned_mesh.h"
+#include "solver/mesh_body.h"
 
 #include "solver/character_sim.h"
 
