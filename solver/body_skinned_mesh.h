@@ -6,8 +6,6 @@
 
 #include <Eigen/Core>
 
-#include <array>
-#include <memory>
 #include <string>
 #include <vector>
 
