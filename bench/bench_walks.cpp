@@ -27,8 +27,6 @@
 #include "mesh_ops/uniform_refine.h"
 #include "garment_on_character.h"
 #include "solver/character_setup.h"
-#include "solver/joint_names.h"
-#include "solver/motion_axes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -83,8 +81,7 @@ Result run(const std::string& garment, const std::string& walk, const std::strin
   bvh.scale = daz ? 0.01 : 0.056444;  // to metres
   bvh.skip_first_frame = false;       // make_character drops the added T-pose
   Motion clip = read_bvh(data(daz ? "motions/cmu_daz/16_15_daz.bvh" : "motions/cmu_mb/" + walk + ".bvh"), bvh);
-  rename_joints(clip.skeleton, cmu_renaming(clip.skeleton));
-  turn_axes(clip, upright_turn(clip.skeleton));  // as motion.axes "auto" (every shared clip stands upright already)
+  standardise_clip(clip);  // as motion.joints and motion.axes "auto" do
   QuadMesh mesh = load_garment(data(garment_file(garment)), {"dm"}).mesh;
   if (kind == "refined-mesh") uniform_refine(mesh, 1);
   bench::GarmentRunOptions o = w.run;

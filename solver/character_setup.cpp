@@ -45,6 +45,15 @@ void check(const Motion& full, const CharacterSetup& setup) {
 
 }  // namespace
 
+ClipChanges standardise_clip(Motion& clip, const ClipConventions& conventions) {
+  ClipChanges changes;
+  changes.renamed = conventions.auto_joint_names ? cmu_renaming(clip.skeleton) : conventions.joint_names;
+  rename_joints(clip.skeleton, changes.renamed);
+  if (conventions.auto_axes) changes.turned = upright_turn(clip.skeleton);  // reads the renamed joints
+  turn_axes(clip, changes.turned);
+  return changes;
+}
+
 Motion without_first_frame(const Motion& motion) {
   Motion clip;
   clip.skeleton = motion.skeleton;

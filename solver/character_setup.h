@@ -8,6 +8,8 @@
 // multirescloth.simulate / recordInstance and bench_character both build
 // their runs here, so the benchmark measures what a user's run does.
 #include "character_sim.h"
+#include "joint_names.h"
+#include "motion_axes.h"
 #include "mesh_ops/quad_mesh.h"
 
 #include <Eigen/Geometry>
@@ -85,6 +87,24 @@ struct Character {
   /// The hands kept out of the hips (on the body's own proportions); null: off.
   std::shared_ptr<const ArmClearance> arm_clearance;
 };
+
+/// How a clip read from another exporter is made the characters' own.
+struct ClipConventions {
+  bool auto_joint_names = true;  ///< rename a known convention's joints onto CMU names (joint_names.h)
+  JointRenaming joint_names;     ///< with !auto_joint_names: this renaming (empty: the names as read)
+  bool auto_axes = true;         ///< stand a clip recorded with other axes upright (motion_axes.h)
+};
+
+/// What standardise_clip did.
+struct ClipChanges {
+  JointRenaming renamed;  ///< joints renamed onto CMU names
+  AxisTurn turned;        ///< the axes turned to stand it upright
+};
+
+/// Renames the clip's joints onto CMU names and stands it Y up, left along
+/// +X, as `conventions` say, before anything reads its joints. Throws
+/// ArgumentError for a renaming that names no joint or makes two alike.
+ClipChanges standardise_clip(Motion& clip, const ClipConventions& conventions = {});
 
 /// The clip without its frame 0.
 Motion without_first_frame(const Motion& motion);

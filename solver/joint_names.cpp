@@ -48,16 +48,6 @@ JointConvention joint_convention(const Skeleton& skeleton) {
   return any && all_mixamo ? JointConvention::mixamo : JointConvention::unknown;
 }
 
-std::string convention_name(JointConvention convention) {
-  switch (convention) {
-    case JointConvention::cmu: return "cmu";
-    case JointConvention::daz: return "daz";
-    case JointConvention::mixamo: return "mixamo";
-    case JointConvention::unknown: break;
-  }
-  return "unknown";
-}
-
 JointRenaming cmu_renaming(const Skeleton& skeleton) {
   JointRenaming out;
   switch (joint_convention(skeleton)) {

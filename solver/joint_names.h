@@ -26,9 +26,6 @@ enum class JointConvention {
 /// The convention of a skeleton's joint names (End Sites are not looked at).
 JointConvention joint_convention(const Skeleton& skeleton);
 
-/// "cmu", "daz", "mixamo" or "unknown".
-std::string convention_name(JointConvention convention);
-
 /// The renaming onto CMU names for the skeleton's convention: empty for cmu
 /// and unknown. Only joints with a CMU counterpart are renamed: DAZ's eyes
 /// and finger links keep their names (the rig has no bone for them, so they

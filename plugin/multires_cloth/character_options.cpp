@@ -54,17 +54,17 @@ void parseJointNames(const Fields& fields, CharacterRequest& request) {
   const QVariant value = fields.required(key);
   const QString label = fields.label(key);
   if (value.typeId() == QMetaType::QString) {
-    request.autoJointNames = fields.choice(key, QStringLiteral("auto"), {QStringLiteral("auto"), QStringLiteral("asIs")}) ==
+    request.conventions.auto_joint_names = fields.choice(key, QStringLiteral("auto"), {QStringLiteral("auto"), QStringLiteral("asIs")}) ==
                              QLatin1String("auto");
     return;
   }
   if (!options::isObjectLike(value) || value.typeId() == QMetaType::QVariantList)
     fail(QStringLiteral("%1 must be \"auto\", \"asIs\" or an object {name in the file: CMU name}, got %2")
              .arg(label, script::describeValue(value)));
-  request.autoJointNames = false;
+  request.conventions.auto_joint_names = false;
   const QVariantMap map = value.toMap();
   for (auto it = map.cbegin(); it != map.cend(); ++it)
-    request.jointRenaming[it.key().toStdString()] =
+    request.conventions.joint_names[it.key().toStdString()] =
         script::toString(it.value(), QStringLiteral("option '%1.%2'").arg(fields.key(key), it.key())).toStdString();
 }
 
@@ -85,7 +85,7 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
                        QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints"),
                        QStringLiteral("axes")});
   parseJointNames(fields, request);
-  request.autoAxes = fields.choice(QStringLiteral("axes"), QStringLiteral("auto"),
+  request.conventions.auto_axes = fields.choice(QStringLiteral("axes"), QStringLiteral("auto"),
                                    {QStringLiteral("auto"), QStringLiteral("asIs")}) == QLatin1String("auto");
   const QString path = script::toString(fields.required(QStringLiteral("path")), fields.label(QStringLiteral("path")));
   request.motionPath = options::existingInputFile(path, fields.label(QStringLiteral("path")));
@@ -272,13 +272,9 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
   read_options.scale = request.motionScale;
   read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
   Motion full = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
-  // Every later step reads joints by their CMU names.
-  const JointRenaming renaming = request.autoJointNames ? cmu_renaming(full.skeleton) : request.jointRenaming;
-  naming(motion_label, [&] { rename_joints(full.skeleton, renaming); });
-  // ... and stand with Y up, facing +Z, as the MakeHuman body does.
-  const AxisTurn turn = request.autoAxes ? upright_turn(full.skeleton) : AxisTurn{};
-  turn_axes(full, turn);
-  if (changes) *changes = {renaming, turn};
+  // Every later step reads joints by their CMU names, the body standing Y up.
+  const ClipChanges changed = naming(motion_label, [&] { return standardise_clip(full, request.conventions); });
+  if (changes) *changes = changed;
 
   // What make_character refuses, said here with the file and the option.
   const QString file = QDir::toNativeSeparators(request.motionPath);

@@ -8,8 +8,6 @@
 #include "plugin/core/option_fields.h"
 #include "mesh_ops/quad_mesh.h"
 #include "solver/character_setup.h"
-#include "solver/joint_names.h"
-#include "solver/motion_axes.h"
 #include "solver/character_sim.h"
 #include "solver/garment_fit.h"
 
@@ -25,9 +23,7 @@ struct CharacterRequest {
   QString motionPath;
   double motionScale = 1.0;     ///< metres per BVH unit
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01")
-  bool autoJointNames = true;   ///< rename a known convention's joints onto CMU names (motion.joints "auto")
-  JointRenaming jointRenaming;  ///< motion.joints given as {name in the file: CMU name}; used when !autoJointNames
-  bool autoAxes = true;         ///< stand a clip recorded with other axes upright (motion.axes "auto")
+  ClipConventions conventions;  ///< motion.joints and motion.axes
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
 };
@@ -41,15 +37,9 @@ QStringList characterOptionKeys();
 /// option); errors name the option.
 CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
 
-/// What loadCharacter did to the clip before building the character.
-struct ClipChanges {
-  JointRenaming renamed;  ///< joints renamed onto CMU names (motion.joints)
-  AxisTurn turned;        ///< the axes turned to stand it upright (motion.axes)
-};
-
-/// Reads the BVH, renames its joints onto CMU names as motion.joints says,
-/// turns its axes as motion.axes says (`changes`, if given, receives both)
-/// and builds the character (make_character). Errors name the option they
+/// Reads the BVH, renames its joints and turns its axes as motion.joints
+/// and motion.axes say (standardise_clip; `changes`, if given, receives what
+/// it did) and builds the character (make_character). Errors name the option they
 /// come from ("option 'motion': <file>:<line>: ...").
 Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes = nullptr);
 

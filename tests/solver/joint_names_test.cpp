@@ -52,7 +52,6 @@ TEST(JointNames, CmuNamesAreKeptAndUnknownOnesLeftAlone) {
   const Skeleton other = chain({"pelvis", "spine_01", "spine_02"});
   EXPECT_EQ(joint_convention(other), JointConvention::unknown);
   EXPECT_TRUE(cmu_renaming(other).empty());
-  EXPECT_EQ(convention_name(JointConvention::daz), "daz");
 }
 
 TEST(JointNames, MixamoPrefixesAreDroppedAndTheSpineShifted) {

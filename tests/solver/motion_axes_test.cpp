@@ -3,6 +3,7 @@
 #include "solver/motion_axes.h"
 
 #include "mesh_ops/errors.h"
+#include "solver/character_setup.h"
 #include "solver/joint_names.h"
 #include "test_meshes.h"
 
@@ -95,6 +96,40 @@ TEST(MotionAxes, TheEmbeddedClipsStandUprightAlready) {
     const Motion m = read_bvh(std::string(MRCLOTH_RESOURCES) + "/characters/" + clip + ".bvh");
     EXPECT_EQ(joint_convention(m.skeleton), JointConvention::cmu) << clip;
     EXPECT_TRUE(upright_turn(m.skeleton).identity()) << clip;
+  }
+}
+
+TEST(MotionAxes, StandardisingAClipRenamesThenTurnsItBackToTheBit) {
+  SKIP_WITHOUT("motions/cmu_mb/07_06.bvh");
+  const Motion clip = shared_clip("motions/cmu_mb/07_06.bvh", 0.056444);
+  // 07_06 as a Z-up Mixamo export would hold it.
+  Motion exported = clip;
+  AxisTurn z_up;
+  z_up.axis = {0, 2, 1};
+  z_up.sign = {1.0, 1.0, -1.0};
+  turn_axes(exported, z_up.inverse());
+  JointRenaming to_mixamo;
+  for (const Joint& joint : clip.skeleton.joints)
+    if (!joint.end_site) to_mixamo[joint.name] = "mixamorig:" + joint.name;
+  to_mixamo["LowerBack"] = "mixamorig:Spine";
+  to_mixamo["Spine"] = "mixamorig:Spine1";
+  to_mixamo["Spine1"] = "mixamorig:Spine2";
+  rename_joints(exported.skeleton, to_mixamo);
+
+  Motion as_is = exported;
+  const ClipChanges none = standardise_clip(as_is, {false, {}, false});
+  EXPECT_TRUE(none.renamed.empty());
+  EXPECT_TRUE(none.turned.identity());
+  EXPECT_EQ(as_is.frames, exported.frames);
+
+  const ClipChanges changes = standardise_clip(exported);
+  EXPECT_EQ(changes.renamed.size(), to_mixamo.size());
+  EXPECT_EQ(changes.turned.describe(), "x = x, y = z, z = -y") << "found after the renaming, from Hips, Head and the legs";
+  EXPECT_EQ(exported.frames, clip.frames);
+  for (std::size_t j = 0; j < clip.skeleton.joints.size(); ++j) {
+    EXPECT_EQ(exported.skeleton.joints[j].name, clip.skeleton.joints[j].name);
+    EXPECT_EQ(exported.skeleton.joints[j].offset, clip.skeleton.joints[j].offset);
+    EXPECT_EQ(exported.skeleton.joints[j].channels, clip.skeleton.joints[j].channels);
   }
 }
 
