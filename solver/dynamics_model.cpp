@@ -206,14 +206,22 @@ double max_stretch(const DynamicsModel& model, const Positions& full) { return m
 
 StretchPeak most_stretched(const DynamicsModel& model, const Positions& full) {
   StretchPeak peak;
+  // A vertex with no free term in its stencil (S row) follows the pins alone.
+  const auto follows_pins = [&](int v) {
+    return static_cast<std::size_t>(v) < model.stencil.size() && model.stencil[static_cast<std::size_t>(v)].empty();
+  };
   for (const Spring& s : model.springs) {
     if (s.kind != SpringKind::stretch) continue;
     const double excess = (full.row(s.i) - full.row(s.j)).norm() - s.rest;
     const double strain = excess / s.rest;
+    const bool pinned = follows_pins(s.i) && follows_pins(s.j);
+    double& part = pinned ? peak.pinned_strain : peak.cloth_strain;
+    part = std::max(part, strain);
     if (strain > peak.strain) {
       peak.strain = strain;
       peak.i = s.i;
       peak.j = s.j;
+      peak.pinned = pinned;
     }
     if (strain >= 1.0) peak.tear_opening = std::max(peak.tear_opening, excess);
   }

@@ -123,10 +123,17 @@ double max_stretch(const DynamicsModel& model, const Positions& full);
 /// least doubled in length (0 when none is). Relative strain alone calls a
 /// 2 mm edge stretched 4 mm by a collision push "torn"; a spring doubled
 /// and centimetres longer is cloth parted around something.
+/// The peak is also split by who sets a spring's length: a spring whose
+/// ends both follow pins (pinned vertices, or T-nodes between them) is
+/// stretched by whatever drives the pins (a waistband following the skin
+/// of a walking body), not by the cloth, and no solver setting changes it.
 struct StretchPeak {
   double strain = 0.0;
   int i = -1, j = -1;
   double tear_opening = 0.0;
+  bool pinned = false;         ///< whether the most stretched spring's ends both follow pins
+  double cloth_strain = 0.0;   ///< the largest strain of a spring with an end the solver moves (0 if none is stretched)
+  double pinned_strain = 0.0;  ///< the largest strain of a spring whose ends both follow pins (0 if none is stretched)
 };
 StretchPeak most_stretched(const DynamicsModel& model, const Positions& full);
 

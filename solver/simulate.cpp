@@ -35,11 +35,14 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
   report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x, pool));
   const StretchPeak peak = most_stretched(model, x);
   report.max_tear_opening = std::max(report.max_tear_opening, peak.tear_opening);
+  report.max_cloth_stretch = std::max(report.max_cloth_stretch, peak.cloth_strain);
+  report.max_pinned_stretch = std::max(report.max_pinned_stretch, peak.pinned_strain);
   if (peak.strain > report.max_stretch) {
     report.max_stretch = peak.strain;
     report.stretch_vertices[0] = peak.i;
     report.stretch_vertices[1] = peak.j;
     report.stretch_frame = frame;
+    report.stretch_pinned = peak.pinned;
   }
   if (scene.empty()) return;
   struct Worst {

@@ -63,6 +63,8 @@ struct SimulationReport {
   double time_step = 0.0;              ///< seconds
   double precompute_ms = 0.0;          ///< model factorisation
   double max_stretch = 0.0;            ///< largest stretch-spring strain at any output frame
+  double max_cloth_stretch = 0.0;      ///< the same over springs with an end the solver moves (StretchPeak::cloth_strain)
+  double max_pinned_stretch = 0.0;     ///< the same over springs whose ends both follow pins (StretchPeak::pinned_strain): set by what drives the pins
   double max_tear_opening = 0.0;       ///< largest StretchPeak::tear_opening at any output frame, metres (0: no spring ever doubled)
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
@@ -77,6 +79,7 @@ struct SimulationReport {
   int deepest_frame = -1;              ///< and output frame (0-based)
   int stretch_vertices[2] = {-1, -1};  ///< the ends of the spring that had max_stretch (-1: never stretched)
   int stretch_frame = -1;              ///< and output frame (0-based)
+  bool stretch_pinned = false;         ///< whether that spring's ends both follow pins
   double mean_rounds = 0.0;            ///< strain-limiting/collision rounds per step, mean (1 .. collision_rounds): what a step's dynamics cost grows with
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)

@@ -343,10 +343,10 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                             .arg(report.frames + 1).arg(settings.frames));
     else
       emit log(LOGINFO, QStringLiteral("simulate: object %1: %2 frames, %3 steps, %4 ms/frame (dynamics %5, "
-                                       "collision %6), max stretch %7 %, max penetration %8 mm%9")
+                                       "collision %6), %7, max penetration %8 mm%9")
                             .arg(input.id).arg(report.frames).arg(report.steps)
                             .arg(report.mean_frame.total_ms(), 0, 'f', 2).arg(report.mean_frame.dynamics_ms, 0, 'f', 2)
-                            .arg(report.mean_frame.collision_ms, 0, 'f', 2).arg(100.0 * report.max_stretch, 0, 'f', 2)
+                            .arg(report.mean_frame.collision_ms, 0, 'f', 2).arg(stretchSummary(report))
                             .arg(1000.0 * report.max_penetration, 0, 'f', 3)
                             .arg(report.cache_path.empty() ? QString()
                                                            : QStringLiteral(" -> ") +
@@ -685,14 +685,14 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                                                .arg(motion_report.frames + 1).arg(run.frames)));
   else
     emit log(LOGINFO, QStringLiteral("%1: object %2 on %3: pre-roll %4 frames, %5 frames, %6 ms/frame (dynamics %7, "
-                                     "collision %8), max stretch %9 %, max penetration %10 mm, max waist error %11 "
+                                     "collision %8), %9, max penetration %10 mm, max waist error %11 "
                                      "m%12%13")
                           .arg(slot).arg(input.id).arg(QFileInfo(wanted.motionPath).fileName())
                           .arg(report.preroll.frames).arg(motion_report.frames)
                           .arg(motion_report.mean_frame.total_ms(), 0, 'f', 2)
                           .arg(motion_report.mean_frame.dynamics_ms, 0, 'f', 2)
                           .arg(motion_report.mean_frame.collision_ms, 0, 'f', 2)
-                          .arg(100.0 * motion_report.max_stretch, 0, 'f', 2)
+                          .arg(stretchSummary(motion_report))
                           .arg(1000.0 * motion_report.max_penetration, 0, 'f', 3)
                           .arg(report.max_waist_error, 0, 'g', 3)
                           .arg(motion_report.cache_path.empty()

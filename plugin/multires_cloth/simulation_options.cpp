@@ -294,6 +294,15 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   return request;
 }
 
+QString stretchSummary(const SimulationReport& report) {
+  QString text = QStringLiteral("max stretch %1 %").arg(100.0 * report.max_stretch, 0, 'f', 2);
+  // Said when the peak is a spring the pins set: the cloth's own is then smaller.
+  if (report.stretch_pinned)
+    text += QStringLiteral(" (between pinned vertices, set by what drives them; the cloth's %1 %)")
+                .arg(100.0 * report.max_cloth_stretch, 0, 'f', 2);
+  return text;
+}
+
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model) {
   qlonglong stretch = 0, shear = 0, bend = 0;
   for (const Spring& spring : model.springs) {
@@ -321,6 +330,8 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
                                                  {QStringLiteral("posing"), report.mean_frame.posing_ms},
                                                  {QStringLiteral("firstRound"), report.mean_frame.first_round_ms}}},
       {QStringLiteral("maxStretch"), report.max_stretch},
+      {QStringLiteral("maxClothStretch"), report.max_cloth_stretch},
+      {QStringLiteral("maxPinnedStretch"), report.max_pinned_stretch},
       {QStringLiteral("maxTearOpening"), report.max_tear_opening},
       {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
@@ -331,7 +342,8 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
                                               {QStringLiteral("frame"), report.deepest_frame}}},
       {QStringLiteral("mostStretched"),
        QVariantMap{{QStringLiteral("vertices"), QVariantList{report.stretch_vertices[0], report.stretch_vertices[1]}},
-                   {QStringLiteral("frame"), report.stretch_frame}}},
+                   {QStringLiteral("frame"), report.stretch_frame},
+                   {QStringLiteral("pinned"), report.stretch_pinned}}},
       {QStringLiteral("initialPenetration"), report.initial_penetration},
       {QStringLiteral("nonFinite"), report.non_finite},
       {QStringLiteral("cancelled"), report.cancelled},

@@ -57,4 +57,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 /// bend}, perFrameMs [{dynamics, collision}].
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model);
 
+/// "max stretch X %" for log lines, saying when the most stretched spring
+/// lies between pinned vertices (then with the cloth's own largest stretch).
+QString stretchSummary(const SimulationReport& report);
+
 }  // namespace mrcloth

@@ -171,4 +171,87 @@ TEST(DynamicsModel, AnEdgeExactlyDoubledCountsAsATearAndOneJustShortDoesNot) {
 }
 
 }  // namespace
+
+// The peak split by who sets a spring's length: a spring between two
+// pinned vertices is stretched by what drives the pins (a waistband on the
+// skin), one with a free end by the cloth.
+TEST(DynamicsModel, MostStretchedSaysWhetherThePinsSetIt) {
+  DynamicsOptions o;
+  o.pinned = {0, 1, 2, 3, 4};  // the grid's first row
+  const DynamicsModel m = build_dynamics(test::make_grid(4, 3, 0.1), o);
+  const std::set<int> pinned(o.pinned.begin(), o.pinned.end());
+  const auto brute = [&](const Positions& x, double& cloth, double& held) {
+    cloth = held = 0.0;
+    for (const Spring& s : m.springs) {
+      if (s.kind != SpringKind::stretch) continue;
+      const double strain = (x.row(s.i) - x.row(s.j)).norm() / s.rest - 1.0;
+      double& part = pinned.count(s.i) && pinned.count(s.j) ? held : cloth;
+      part = std::max(part, strain);
+    }
+  };
+  // The first row's last edge (pinned at both ends) to 1.5x; the last
+  // column's top edge (free) to 1.2x. Moving pin 4 also tilts its edge to
+  // free vertex 9: sqrt(0.05^2 + 0.1^2) = 0.1118 m, strain 0.118.
+  Positions x = m.rest;
+  x(4, 0) += 0.05;
+  x(19, 1) += 0.02;
+  StretchPeak peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.strain, 0.5, 1e-12);
+  EXPECT_TRUE(peak.pinned);
+  EXPECT_EQ(std::min(peak.i, peak.j), 3);
+  EXPECT_EQ(std::max(peak.i, peak.j), 4);
+  EXPECT_NEAR(peak.pinned_strain, 0.5, 1e-12);
+  EXPECT_NEAR(peak.cloth_strain, 0.2, 1e-12);
+  // The free edge pulled farther than the pinned one: the peak is the cloth's.
+  x(19, 1) += 0.05;
+  peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.strain, 0.7, 1e-12);
+  EXPECT_FALSE(peak.pinned);
+  EXPECT_NEAR(peak.cloth_strain, 0.7, 1e-12);
+  EXPECT_NEAR(peak.pinned_strain, 0.5, 1e-12);
+  // A spring from a pin to a free vertex is the cloth's: the solver moves
+  // its free end.
+  x = m.rest;
+  x(9, 1) += 0.03;
+  peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.strain, 0.3, 1e-12);
+  EXPECT_FALSE(peak.pinned);
+  EXPECT_EQ(std::min(peak.i, peak.j), 4);
+  EXPECT_EQ(std::max(peak.i, peak.j), 9);
+  EXPECT_NEAR(peak.cloth_strain, 0.3, 1e-12);
+  EXPECT_EQ(peak.pinned_strain, 0.0);
+  // At random: both parts against the loop, the peak their larger.
+  x = m.rest;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) x.row(v) += 0.01 * Eigen::RowVector3d(std::sin(7.0 * v), std::cos(2.0 * v), std::sin(v));
+  double cloth = 0.0, held = 0.0;
+  brute(x, cloth, held);
+  peak = most_stretched(m, x);
+  EXPECT_NEAR(peak.cloth_strain, cloth, 1e-12);
+  EXPECT_NEAR(peak.pinned_strain, held, 1e-12);
+  EXPECT_EQ(peak.strain, std::max(peak.cloth_strain, peak.pinned_strain));
+  EXPECT_EQ(peak.pinned, held > cloth);
+}
+
+// A T-node whose coarse edge's ends are both pinned follows the pins too:
+// with every vertex but the T-nodes pinned, no spring is the cloth's.
+TEST(DynamicsModel, TNodesBetweenPinsFollowThePins) {
+  const QuadMesh mesh = refined_grid();
+  const Layers l = get_layers(mesh);
+  DynamicsOptions o;
+  int hanging = 0;
+  for (auto v : mesh.vertices()) {
+    if (mesh.property(l.hanging, v)) ++hanging;
+    else o.pinned.push_back(v.idx());
+  }
+  ASSERT_GT(hanging, 0) << "the refined grid has T-nodes";
+  const DynamicsModel m = build_dynamics(mesh, o);
+  Positions x = m.rest;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) x.row(v) *= 1.0 + 0.1 * std::abs(std::sin(3.0 * v));
+  const StretchPeak peak = most_stretched(m, x);
+  ASSERT_GT(peak.strain, 0.0);
+  EXPECT_TRUE(peak.pinned);
+  EXPECT_EQ(peak.cloth_strain, 0.0);
+  EXPECT_EQ(peak.pinned_strain, peak.strain);
+}
+
 }  // namespace mrcloth

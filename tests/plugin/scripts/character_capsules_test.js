@@ -58,6 +58,12 @@ const [si, sj] = report.mostStretched.vertices;
 if (!(si >= 0 && sj >= 0 && si < info.vertices && sj < info.vertices && report.mostStretched.frame >= 0 &&
       report.mostStretched.frame < frames))
   throw new Error("mostStretched " + JSON.stringify(report.mostStretched));
+// The peak is the larger of the cloth's and the pinned band's, and says
+// which. Pinned to the pelvis frame, the band moves rigidly: its springs
+// keep their length.
+expectEqual(report.maxStretch, Math.max(report.maxClothStretch, report.maxPinnedStretch), "maxStretch, the larger part");
+expectEqual(report.mostStretched.pinned, report.maxPinnedStretch > report.maxClothStretch, "mostStretched.pinned");
+expectAtMost(report.maxPinnedStretch, 1e-9, "the rigidly carried waistband's stretch:");
 if (report.maxPenetration > 0 && !(report.deepest.vertex >= 0 && report.deepest.frame >= 0 && report.deepest.frame < frames))
   throw new Error("deepest " + JSON.stringify(report.deepest));
 // The mannequin's walk swings the hands close to the hips: the arms open by
