@@ -204,6 +204,7 @@ CharacterRunOptions character_run_options(const Character& character, const Char
   run.preroll_seconds = setup.preroll_seconds;
   run.simulation = simulation;
   run.arm_clearance = character.arm_clearance;
+  run.waist_smoothing = setup.waist_smoothing;
   if (character.waist_skin) waist_follows_skin(run, *character.waist_skin, *character.motion, model);
   return run;
 }

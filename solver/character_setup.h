@@ -60,6 +60,7 @@ struct CharacterSetup {
   bool hand_mittens = true;
   /// Automatic: the skin whenever the MakeHuman body is given, else the pelvis.
   WaistFollows waist = WaistFollows::automatic;
+  double waist_smoothing = 0.02;  ///< metres: a skinned waist's weights averaged along it (CharacterRunOptions::waist_smoothing)
   GarmentPlacement place = GarmentPlacement::none;
   bool skip_first = true;        ///< drop the clip's frame 0 (CMU's added T-pose)
   double motion_start = 0.0;     ///< seconds into the clip (after skip_first) where the recording starts

@@ -166,12 +166,40 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
   return out;
 }
 
+std::vector<std::vector<std::pair<int, double>>> smooth_along_waist(
+    const std::vector<std::vector<std::pair<int, double>>>& weights, const Eigen::MatrixX3d& points, double sigma) {
+  if (weights.size() != static_cast<std::size_t>(points.rows()))
+    throw ArgumentError("smooth_along_waist: " + std::to_string(weights.size()) + " weight lists for " +
+                        std::to_string(points.rows()) + " points; expected one list per point");
+  if (!(sigma >= 0.0) || !std::isfinite(sigma))
+    throw ArgumentError("smooth_along_waist: sigma " + std::to_string(sigma) + "; expected a finite value >= 0 (metres)");
+  if (sigma == 0.0) return weights;
+  const double reach2 = 9.0 * sigma * sigma;
+  std::vector<std::vector<std::pair<int, double>>> out(weights.size());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    std::map<int, double> sum;  // per joint, ordered as the lists are
+    double total = 0.0;
+    for (Eigen::Index j = 0; j < points.rows(); ++j) {
+      const double d2 = (points.row(i) - points.row(j)).squaredNorm();
+      if (d2 > reach2) continue;
+      const double kernel = std::exp(-0.5 * d2 / (sigma * sigma));
+      total += kernel;
+      for (const auto& [joint, weight] : weights[static_cast<std::size_t>(j)]) sum[joint] += kernel * weight;
+    }
+    for (const auto& [joint, weight] : sum)
+      if (weight > 0.0) out[static_cast<std::size_t>(i)].emplace_back(joint, weight / total);
+  }
+  return out;
+}
+
 void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, const Motion& motion,
                         const DynamicsModel& model) {
   if (model.pinned_vertices.empty()) return;
   options.body_joints = body.joint_rest;
-  options.waist_weights = waist_skin_weights(body, skin(body, motion.skeleton, reference_pose(motion, options)),
-                                             pinned_rows(model, model.rest));
+  const Eigen::MatrixX3d pins = pinned_rows(model, model.rest);
+  options.waist_weights = smooth_along_waist(
+      waist_skin_weights(body, skin(body, motion.skeleton, reference_pose(motion, options)), pins), pins,
+      options.waist_smoothing);
 }
 
 void fit_capsules_to_body(CapsuleRig& rig, const Skeleton& skeleton, const SkinnedBody& body,

@@ -96,6 +96,11 @@ struct CharacterRunOptions {
   /// to 13 mm inside it.
   std::vector<std::vector<std::pair<int, double>>> waist_weights;
   std::vector<Eigen::Vector3d> body_joints;  ///< SkinnedBody::joint_rest of the body the weights come from; empty: the skeleton's
+  /// Metres: waist_follows_skin averages the pins' skin weights over their
+  /// neighbours within about this (smooth_along_waist's sigma), so the
+  /// band does not stretch where the skin under it does; 0: each pin
+  /// moves exactly as the skin under it.
+  double waist_smoothing = 0.02;
   /// Opens the arms of every pose just enough to keep the hands out of the
   /// hips and thighs (clear_arms); null: the poses as the clip has them.
   std::shared_ptr<const ArmClearance> arm_clearance;
@@ -130,11 +135,24 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
                                                                     const Eigen::MatrixX3d& body_vertices,
                                                                     const Eigen::MatrixX3d& points);
 
+/// Per point, the Gaussian-weighted mean (sigma `sigma`, metres, over the
+/// points within 3 sigma, itself included) of the points' weight lists:
+/// neighbouring pins then turn about nearly the same joints, so the band
+/// between them keeps its length where linear blend skinning stretches the
+/// skin under it (the shared trousers' waistband over the hip: 53 % of its
+/// rest length with each pin's own skin weights, 10 % averaged over 2 cm).
+/// `weights` (one list per row of `points`, #P x 3, metres; each summing
+/// to 1, and so is each result); sigma 0: the lists as given. Throws
+/// ArgumentError for a count mismatch or a negative or non-finite sigma.
+std::vector<std::vector<std::pair<int, double>>> smooth_along_waist(
+    const std::vector<std::vector<std::pair<int, double>>>& weights, const Eigen::MatrixX3d& points, double sigma);
+
 /// Makes the model's pinned waist follow the skin of `body` (the skinned
 /// body the run collides with, or the one a capsule rig was fitted to):
 /// sets options.waist_weights (from the body in the reference pose, so
-/// options.garment_pose and motion_start must already be set) and
-/// options.body_joints. No pinned vertices: nothing to set.
+/// options.garment_pose and motion_start must already be set; smoothed
+/// over options.waist_smoothing) and options.body_joints. No pinned
+/// vertices: nothing to set.
 void waist_follows_skin(CharacterRunOptions& options, const SkinnedBody& body, const Motion& motion,
                         const DynamicsModel& model);
 

@@ -128,8 +128,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
                                       QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
                                                   QStringLiteral("radii"), QStringLiteral("legBridges"),
-                                                  QStringLiteral("waistFollows"), QStringLiteral("armClearance"),
-                                                  QStringLiteral("handMittens")});
+                                                  QStringLiteral("waistFollows"), QStringLiteral("waistSmoothing"),
+                                                  QStringLiteral("armClearance"), QStringLiteral("handMittens")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
   request.setup.body = type == QLatin1String("mesh") ? CharacterBodyKind::mesh : CharacterBodyKind::capsules;
 
@@ -200,6 +200,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
       fail(QStringLiteral("%1 \"skin\" needs a body to skin by: give the MakeHuman files (obj, skeleton, weights)")
                .arg(fields.label(QStringLiteral("waistFollows"))));
   }
+  request.setup.waist_smoothing =
+      fields.numberFrom(QStringLiteral("waistSmoothing"), request.setup.waist_smoothing, 0.0, false);
   request.setup.thickness = fields.numberFrom(QStringLiteral("thickness"), request.setup.thickness, 0.0, false);
   request.setup.friction = fields.numberFrom(QStringLiteral("friction"), request.setup.friction, 0.0, false);
   if (fields.has(QStringLiteral("radii"))) {
@@ -353,6 +355,7 @@ QVariantMap characterReportMap(const CharacterRunReport& report, const Character
       {QStringLiteral("legBridges"), character.leg_bridges},
       {QStringLiteral("capsulesShrunk"), character.capsules_shrunk},
       {QStringLiteral("waistFollows"), character.waist_skin ? QStringLiteral("skin") : QStringLiteral("pelvis")},
+      {QStringLiteral("waistSmoothing"), character.waist_skin ? request.setup.waist_smoothing : 0.0},
   };
   if (request.setup.body == CharacterBodyKind::mesh) {
     map.insert(QStringLiteral("bodyVertices"), character.body_vertices);
