@@ -202,6 +202,11 @@ void parseBody(const Fields& top, CharacterRequest& request) {
   }
   request.setup.waist_smoothing =
       fields.numberFrom(QStringLiteral("waistSmoothing"), request.setup.waist_smoothing, 0.0, false);
+  if (fields.has(QStringLiteral("waistSmoothing")) &&
+      (!request.setup.makehuman || request.setup.waist == WaistFollows::pelvis))
+    fail(QStringLiteral("%1 applies where the waist follows the skin: give the MakeHuman files (obj, skeleton, "
+                        "weights), and no waistFollows \"pelvis\"")
+             .arg(fields.label(QStringLiteral("waistSmoothing"))));
   request.setup.thickness = fields.numberFrom(QStringLiteral("thickness"), request.setup.thickness, 0.0, false);
   request.setup.friction = fields.numberFrom(QStringLiteral("friction"), request.setup.friction, 0.0, false);
   if (fields.has(QStringLiteral("radii"))) {

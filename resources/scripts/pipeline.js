@@ -31,6 +31,9 @@ const USAGE = [
   "                         rigs/default_weights.mhw): fits the capsules, or is the body",
   "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
   "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
+  "  --waist-smoothing M    with --makehuman: metres along the waist over which its pins' skin weights",
+  "                         are averaged, so the band keeps its length where skinning stretches the",
+  "                         skin; 0: each pin as the skin under it (body.waistSmoothing; README) [0.02]",
   "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
   "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
   "  --motion-units U       m, cmu, dm, cm, mm, inch: the BVH files' units [m]",
@@ -83,6 +86,7 @@ const DEFAULTS = {
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
+  waistSmoothing: 0.02,  // simulate's default; always recorded, so runs made before it (0 in effect) do not resume
   newtonCg: 0, bendModel: "distance", bendStiffness: null,  // null: the material's
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
@@ -93,7 +97,7 @@ const VALUED = {
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
   "--threads": "threads", "--step-rate": "stepRate", "--newton-cg": "newtonCg", "--bend-model": "bendModel",
-  "--bend-stiffness": "bendStiffness",
+  "--bend-stiffness": "bendStiffness", "--waist-smoothing": "waistSmoothing",
   "--size": "size",
 };
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
@@ -121,7 +125,7 @@ function choiceOption(name, text, choices) {
 /// option wins except --test, which accumulates.
 function parseOptions(args) {
   const options = Object.assign({}, DEFAULTS);
-  let tests = null;
+  let tests = null, waistGiven = false;
   for (let i = 0; i < args.length; ++i) {
     const argument = args[i];
     const equals = argument.startsWith("--") ? argument.indexOf("=") : -1;
@@ -151,6 +155,10 @@ function parseOptions(args) {
       case "newtonCg": options.newtonCg = integerOption(name, text, 0); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
       case "bendStiffness": options.bendStiffness = numberOption(name, text, 0, false); break;
+      case "waistSmoothing":
+        options.waistSmoothing = numberOption(name, text, 0, false);
+        waistGiven = true;
+        break;
       case "delta": {
         const values = text.split(",").map((part) => numberOption(name, part, 0, true));
         options.delta = values.filter((value, k) => values.indexOf(value) === k);
@@ -197,6 +205,8 @@ function parseOptions(args) {
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)
     throw pipelineError("option --body mesh needs --makehuman DIR (the skinned MakeHuman body)");
+  if (waistGiven && !options.makehuman)
+    throw pipelineError("option --waist-smoothing needs --makehuman DIR (the body whose skin the waist follows)");
   if (options.place === "makehuman" && !options.makehuman)
     throw pipelineError("option --place makehuman needs --makehuman DIR (the body the garment was modelled on)");
   return options;
@@ -306,7 +316,8 @@ function runPipeline(options) {
   const started = Date.now();
 
   const makehuman = options.makehuman ? makehumanFiles(options.makehuman) : null;
-  const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2]}
+  const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2],
+                            waistSmoothing: options.waistSmoothing}
                          : options.body;
   const motion = (path) => ({path: path, units: options.motionUnits});
   // What a run on the character is given besides its motion and files.

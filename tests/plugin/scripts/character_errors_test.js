@@ -37,6 +37,12 @@ expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must 
 expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
              "option 'body.waistFollows' \"skin\" needs a body to skin by");
 expectThrows(sim({motion: walk, body: {waistFollows: "ribs"}}), "ArgumentError", "option 'body.waistFollows'");
+expectThrows(sim({motion: walk, body: {waistSmoothing: -0.01}}), "ArgumentError",
+             "option 'body.waistSmoothing' must be a number >= 0");
+expectThrows(sim({motion: walk, body: {waistSmoothing: 0.02}}), "ArgumentError",
+             "option 'body.waistSmoothing' applies where the waist follows the skin");
+expectThrows(sim({motion: walk, body: {obj: walk, skeleton: walk, weights: walk, waistFollows: "pelvis", waistSmoothing: 0}}),
+             "ArgumentError", "option 'body.waistSmoothing' applies where the waist follows the skin");
 expectThrows(sim({motion: walk, body: {armClearance: 0.5}}), "ArgumentError",
              "option 'body.armClearance' must be \"auto\", false or a clearance from 0 to 0.1 m, got the number 0.5");
 expectThrows(sim({motion: walk, body: {armClearance: -0.01}}), "ArgumentError", "option 'body.armClearance'");

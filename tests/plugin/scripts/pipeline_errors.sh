@@ -34,6 +34,8 @@ refused "option --step-rate: expected at least --fps \(30 frames per second\), g
 refused "option --newton-cg: expected an integer >= 0, got \"-1\"" --newton-cg -1
 refused "option --bend-model: expected one of distance, secondDifference, got \"hinge\"" --bend-model hinge
 refused "option --bend-stiffness: expected a number >= 0, got \"-0.1\"" --bend-stiffness -0.1
+refused "option --waist-smoothing: expected a number >= 0, got \"-0.01\"" --waist-smoothing -0.01
+refused "option --waist-smoothing needs --makehuman DIR" --waist-smoothing 0.03
 refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot
 refused "option --map-modes: expected one of index, highest, frequent, got \"nearest\"" --map-modes nearest
 refused "option --units: expected one of m, dm, cm, mm, inch, got \"feet\"" --units feet
