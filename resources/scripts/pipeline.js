@@ -86,7 +86,7 @@ const DEFAULTS = {
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
-  waistSmoothing: 0.02,  // simulate's default; always recorded, so runs made before it (0 in effect) do not resume
+  waistSmoothing: 0.02,  // simulate's default; recorded with --makehuman, so runs made before it (0 in effect) do not resume
   newtonCg: 0, bendModel: "distance", bendStiffness: null,  // null: the material's
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
@@ -245,6 +245,7 @@ function resultOptions(options) {
   if (copy.newtonCg === 0) delete copy.newtonCg;
   if (copy.bendModel === "distance") delete copy.bendModel;
   if (copy.bendStiffness === null) delete copy.bendStiffness;
+  if (!copy.makehuman) delete copy.waistSmoothing;  // no skin to follow: it decides nothing
   return copy;
 }
 
