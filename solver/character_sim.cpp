@@ -177,7 +177,7 @@ std::vector<std::vector<std::pair<int, double>>> smooth_along_waist(
   const double reach2 = 9.0 * sigma * sigma;
   std::vector<std::vector<std::pair<int, double>>> out(weights.size());
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    std::map<int, double> sum;  // per joint, ordered as the lists are
+    std::map<int, double> sum;  // per joint, in ascending joint order as waist_skin_weights lists them
     double total = 0.0;
     for (Eigen::Index j = 0; j < points.rows(); ++j) {
       const double d2 = (points.row(i) - points.row(j)).squaredNorm();

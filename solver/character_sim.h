@@ -139,8 +139,8 @@ std::vector<std::vector<std::pair<int, double>>> waist_skin_weights(const Skinne
 /// points within 3 sigma, itself included) of the points' weight lists:
 /// neighbouring pins then turn about nearly the same joints, so the band
 /// between them keeps its length where linear blend skinning stretches the
-/// skin under it (the shared trousers' waistband over the hip: 53 % of its
-/// rest length with each pin's own skin weights, 10 % averaged over 2 cm).
+/// skin under it (the shared trousers' waistband over the hip stretched
+/// 53 % with each pin's own skin weights, 10 % with them averaged over 2 cm).
 /// `weights` (one list per row of `points`, #P x 3, metres; each summing
 /// to 1, and so is each result); sigma 0: the lists as given. Throws
 /// ArgumentError for a count mismatch or a negative or non-finite sigma.
