@@ -23,6 +23,7 @@ struct GarmentRunOptions {
   double step_rate = CharacterSetup{}.step_rate;            ///< time steps per second
   double stretch_stiffness = Material{}.stretch_stiffness;  ///< N/m, the cloth's stretch springs (cotton's by default)
   bool hand_mittens = CharacterSetup{}.hand_mittens;        ///< mesh body: the hands collide as capsules
+  double waist_smoothing = CharacterSetup{}.waist_smoothing;  ///< metres along a skinned waist its pins' weights are averaged over
   SimulationOptions simulation;                             ///< frames and the solver's settings
 };
 
@@ -37,7 +38,7 @@ inline constexpr const char* kRunOptionsUsage =
     "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--mass-exponent E] "
     "[--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--newton-cg K] [--stretch-stiffness N/M] "
-    "[--self-contact METRES] [--mittens 0|1] [--threads N]";
+    "[--self-contact METRES] [--mittens 0|1] [--waist-smoothing METRES] [--threads N]";
 
 /// Takes option `key` with `value` into `o` when it is one of
 /// kRunOptionsUsage's; false when it is not.
@@ -59,6 +60,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--self-contact") s.self_contact.thickness = std::atof(value);
   else if (key == "--threads") s.threads = std::atoi(value);
   else if (key == "--mittens") o.hand_mittens = std::atoi(value) != 0;
+  else if (key == "--waist-smoothing") o.waist_smoothing = std::atof(value);
   else return false;
   return true;
 }
@@ -139,6 +141,7 @@ inline PreparedGarment prepare_garment_on_character(const QuadMesh& garment, con
   setup.preroll_seconds = o.preroll;
   setup.step_rate = o.step_rate;
   setup.hand_mittens = o.hand_mittens;
+  setup.waist_smoothing = o.waist_smoothing;
   PreparedGarment g{make_character(clip, setup, garment), {}, {}, {}};
   g.placed = place_garment(g.character, setup, garment);
   DynamicsOptions d;
