@@ -221,7 +221,6 @@ StretchPeak most_stretched(const DynamicsModel& model, const Positions& full) {
       peak.strain = strain;
       peak.i = s.i;
       peak.j = s.j;
-      peak.pinned = pinned;
     }
     if (strain >= 1.0) peak.tear_opening = std::max(peak.tear_opening, excess);
   }

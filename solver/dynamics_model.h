@@ -131,9 +131,10 @@ struct StretchPeak {
   double strain = 0.0;
   int i = -1, j = -1;
   double tear_opening = 0.0;
-  bool pinned = false;         ///< whether the most stretched spring's ends both follow pins
   double cloth_strain = 0.0;   ///< the largest strain of a spring with an end the solver moves (0 if none is stretched)
   double pinned_strain = 0.0;  ///< the largest strain of a spring whose ends both follow pins (0 if none is stretched)
+  /// Whether the most stretched spring's ends both follow pins.
+  bool pinned() const { return pinned_strain > cloth_strain; }
 };
 StretchPeak most_stretched(const DynamicsModel& model, const Positions& full);
 

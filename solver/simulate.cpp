@@ -42,7 +42,6 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
     report.stretch_vertices[0] = peak.i;
     report.stretch_vertices[1] = peak.j;
     report.stretch_frame = frame;
-    report.stretch_pinned = peak.pinned;
   }
   if (scene.empty()) return;
   struct Worst {

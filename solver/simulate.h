@@ -79,7 +79,8 @@ struct SimulationReport {
   int deepest_frame = -1;              ///< and output frame (0-based)
   int stretch_vertices[2] = {-1, -1};  ///< the ends of the spring that had max_stretch (-1: never stretched)
   int stretch_frame = -1;              ///< and output frame (0-based)
-  bool stretch_pinned = false;         ///< whether that spring's ends both follow pins
+  /// Whether that spring's ends both follow pins.
+  bool stretch_pinned() const { return max_pinned_stretch > max_cloth_stretch; }
   double mean_rounds = 0.0;            ///< strain-limiting/collision rounds per step, mean (1 .. collision_rounds): what a step's dynamics cost grows with
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)

@@ -297,7 +297,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 QString stretchSummary(const SimulationReport& report) {
   QString text = QStringLiteral("max stretch %1 %").arg(100.0 * report.max_stretch, 0, 'f', 2);
   // Said when the peak is a spring the pins set: the cloth's own is then smaller.
-  if (report.stretch_pinned)
+  if (report.stretch_pinned())
     text += QStringLiteral(" (between pinned vertices, set by what drives them; the cloth's %1 %)")
                 .arg(100.0 * report.max_cloth_stretch, 0, 'f', 2);
   return text;
@@ -343,7 +343,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("mostStretched"),
        QVariantMap{{QStringLiteral("vertices"), QVariantList{report.stretch_vertices[0], report.stretch_vertices[1]}},
                    {QStringLiteral("frame"), report.stretch_frame},
-                   {QStringLiteral("pinned"), report.stretch_pinned}}},
+                   {QStringLiteral("pinned"), report.stretch_pinned()}}},
       {QStringLiteral("initialPenetration"), report.initial_penetration},
       {QStringLiteral("nonFinite"), report.non_finite},
       {QStringLiteral("cancelled"), report.cancelled},

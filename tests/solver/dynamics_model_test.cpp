@@ -197,7 +197,7 @@ TEST(DynamicsModel, MostStretchedSaysWhetherThePinsSetIt) {
   x(19, 1) += 0.02;
   StretchPeak peak = most_stretched(m, x);
   EXPECT_NEAR(peak.strain, 0.5, 1e-12);
-  EXPECT_TRUE(peak.pinned);
+  EXPECT_TRUE(peak.pinned());
   EXPECT_EQ(std::min(peak.i, peak.j), 3);
   EXPECT_EQ(std::max(peak.i, peak.j), 4);
   EXPECT_NEAR(peak.pinned_strain, 0.5, 1e-12);
@@ -206,7 +206,7 @@ TEST(DynamicsModel, MostStretchedSaysWhetherThePinsSetIt) {
   x(19, 1) += 0.05;
   peak = most_stretched(m, x);
   EXPECT_NEAR(peak.strain, 0.7, 1e-12);
-  EXPECT_FALSE(peak.pinned);
+  EXPECT_FALSE(peak.pinned());
   EXPECT_NEAR(peak.cloth_strain, 0.7, 1e-12);
   EXPECT_NEAR(peak.pinned_strain, 0.5, 1e-12);
   // A spring from a pin to a free vertex is the cloth's: the solver moves
@@ -215,7 +215,7 @@ TEST(DynamicsModel, MostStretchedSaysWhetherThePinsSetIt) {
   x(9, 1) += 0.03;
   peak = most_stretched(m, x);
   EXPECT_NEAR(peak.strain, 0.3, 1e-12);
-  EXPECT_FALSE(peak.pinned);
+  EXPECT_FALSE(peak.pinned());
   EXPECT_EQ(std::min(peak.i, peak.j), 4);
   EXPECT_EQ(std::max(peak.i, peak.j), 9);
   EXPECT_NEAR(peak.cloth_strain, 0.3, 1e-12);
@@ -229,7 +229,7 @@ TEST(DynamicsModel, MostStretchedSaysWhetherThePinsSetIt) {
   EXPECT_NEAR(peak.cloth_strain, cloth, 1e-12);
   EXPECT_NEAR(peak.pinned_strain, held, 1e-12);
   EXPECT_EQ(peak.strain, std::max(peak.cloth_strain, peak.pinned_strain));
-  EXPECT_EQ(peak.pinned, held > cloth);
+  EXPECT_EQ(peak.pinned(), held > cloth);
 }
 
 // A T-node whose coarse edge's ends are both pinned follows the pins too:
@@ -249,7 +249,7 @@ TEST(DynamicsModel, TNodesBetweenPinsFollowThePins) {
   for (Eigen::Index v = 0; v < x.rows(); ++v) x.row(v) *= 1.0 + 0.1 * std::abs(std::sin(3.0 * v));
   const StretchPeak peak = most_stretched(m, x);
   ASSERT_GT(peak.strain, 0.0);
-  EXPECT_TRUE(peak.pinned);
+  EXPECT_TRUE(peak.pinned());
   EXPECT_EQ(peak.cloth_strain, 0.0);
   EXPECT_EQ(peak.pinned_strain, peak.strain);
 }
