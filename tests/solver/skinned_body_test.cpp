@@ -1309,17 +1309,20 @@ struct WaistBand {
   CharacterRunOptions options;
   Pose reference;
 };
-WaistBand waist_band(const SkinnedBody& body, const Motion& walk) {
+/// `around` vertices per ring, `rings` rings over `height` metres, centred
+/// `above` metres over the hips joint.
+WaistBand waist_band(const SkinnedBody& body, const Motion& walk, int around = 16, int rings = 3,
+                     double height = 0.08, double above = 0.05) {
   WaistBand band;
   band.options.frames = 4;
   band.options.preroll_seconds = 0.2;
   band.options.garment_pose = mesh_pose(body, walk.skeleton);
   band.reference = reference_pose(walk, band.options);
-  QuadMesh tube = test::make_tube(16, 3, 0.16, 0.08);
-  const Vector3d centre = band.reference.position(walk.skeleton.find("Hips")) + Vector3d(0, 0.05, 0);
+  QuadMesh tube = test::make_tube(around, rings, 0.16, height);
+  const Vector3d centre = band.reference.position(walk.skeleton.find("Hips")) + Vector3d(0, above, 0);
   for (auto v : tube.vertices()) tube.point(v) += QuadMesh::Point(centre.x(), centre.y(), centre.z());
   DynamicsOptions d;
-  for (int i = 0; i < 16; ++i) d.pinned.push_back(2 * 16 + i);  // the top ring
+  for (int i = 0; i < around; ++i) d.pinned.push_back((rings - 1) * around + i);  // the top ring
   band.model = build_dynamics(tube, d);
   return band;
 }
@@ -1429,14 +1432,8 @@ TEST_F(SkinnedBodyTest, SkinnedWaistMovesAsTheSkinUnderIt) {
 TEST_F(SkinnedBodyTest, ASmoothedWaistKeepsTheBandsLength) {
   SKIP_WITHOUT_BODY();
   const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
-  WaistBand band = waist_band(*body_, walk);
+  WaistBand band = waist_band(*body_, walk, 96, 2, 0.04, 0.0);
   band.options.frames = 30;
-  QuadMesh tube = test::make_tube(96, 2, 0.16, 0.04);
-  const Vector3d centre = band.reference.position(walk.skeleton.find("Hips")) + Vector3d(0, 0.0, 0);
-  for (auto v : tube.vertices()) tube.point(v) += QuadMesh::Point(centre.x(), centre.y(), centre.z());
-  DynamicsOptions d;
-  for (int i = 0; i < 96; ++i) d.pinned.push_back(96 + i);  // the top ring
-  band.model = build_dynamics(tube, d);
   CapsulePosedBody nothing(CapsuleRig{}, walk.skeleton);
   const auto band_stretch = [&](double smoothing) {
     band.options.waist_smoothing = smoothing;
