@@ -168,12 +168,15 @@ void HostLog::onSetJobState(QString jobId, int value) {
                                                          QString(kBarWidth - filled, QLatin1Char('.')))
                .arg(done).arg(total).arg(100.0 * done / total, 0, 'f', 0);
   }
-  // Rate from the first state on, so that set-up before it (a factorisation)
-  // does not make the estimate pessimistic; from the start until then.
+  // Rate from the first state on, so that set-up before it (a factorisation,
+  // a simulation's pre-roll) does not make the estimate pessimistic; until a
+  // second state there is none (a 30-frame pre-roll before the first of 200
+  // frames made the first line's ETA 4 min for a 13 s job), and the last
+  // line of a job with one state measures from the start.
   const bool since_first = value > job.first_state && now > job.first_state_ns;
   const double steps = since_first ? value - job.first_state : done;
   const double seconds = static_cast<double>(since_first ? now - job.first_state_ns : now) / 1e9;
-  if (steps > 0 && seconds > 0) {
+  if ((since_first || last) && steps > 0 && seconds > 0) {
     const double rate = steps / seconds;
     text += QStringLiteral(", %1/s").arg(formatRate(rate));
     if (!last) text += QStringLiteral(", ETA %1").arg(formatDuration((job.max - value) / rate));
