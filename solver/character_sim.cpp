@@ -280,6 +280,10 @@ Pose character_pose(const Motion& motion, double time, const CharacterRunOptions
   return pose;
 }
 
+int preroll_frame_count(const CharacterRunOptions& options) {
+  return static_cast<int>(std::lround(options.preroll_seconds * options.fps));
+}
+
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
                                          PosedBody& body, const CharacterRunOptions& options,
                                          const SimulationProgress& progress, std::vector<Positions>* frames_out) {
@@ -350,14 +354,18 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   sim.fps = options.fps;
   sim.substeps = std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
 
-  const int preroll_frames = static_cast<int>(std::lround(options.preroll_seconds * options.fps));
+  const int preroll_frames = preroll_frame_count(options);
+  const int total_frames = preroll_frames + options.frames;
   if (preroll_frames > 0) {
     SimulationOptions warmup = sim;
     warmup.frames = preroll_frames;
     warmup.cache_path.clear();
-    report.preroll = simulate(model, state, warmup, pins, {}, nullptr, bodies);
-    if (report.preroll.non_finite) {
-      report.motion.non_finite = true;
+    SimulationProgress preroll_progress;
+    if (progress) preroll_progress = [&](int done, int) { return progress(done, total_frames); };
+    report.preroll = simulate(model, state, warmup, pins, preroll_progress, nullptr, bodies);
+    if (report.preroll.non_finite || report.preroll.cancelled) {
+      report.motion.non_finite = report.preroll.non_finite;
+      report.motion.cancelled = report.preroll.cancelled;
       return report;
     }
   }
@@ -365,7 +373,9 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   std::vector<Positions> local_frames;
   std::vector<Positions>* frames = frames_out ? frames_out : &local_frames;
   const std::size_t first = frames->size();
-  report.motion = simulate(model, state, sim, pins, progress, frames, bodies);
+  SimulationProgress motion_progress;
+  if (progress) motion_progress = [&](int done, int) { return progress(preroll_frames + done, total_frames); };
+  report.motion = simulate(model, state, sim, pins, motion_progress, frames, bodies);
 
   // The waist error is measured on what was recorded, against the targets
   // the pins were given: it is exact by construction, and this checks it.

@@ -214,10 +214,18 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
 Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options,
                     double* arm_angle = nullptr);
 
+/// The output frames the pre-roll of options.preroll_seconds takes (at
+/// options.fps): simulated before the motion's frames, and counted first
+/// by simulate_on_character's progress.
+int preroll_frame_count(const CharacterRunOptions& options);
+
 /// Runs the pre-roll and the motion. The model's rest shape must sit on the
 /// reference pose (place_garment in character_setup.h puts it there); its pinned vertices follow the pelvis
 /// joint rigidly from there. `state` starts at rest and is advanced.
 /// The cache (options.simulation.cache_path) holds the motion frames only.
+/// `progress` is called after every pre-roll frame and every motion frame,
+/// with frames done and preroll_frame_count(options) + options.frames;
+/// returning false cancels either phase (report.motion.cancelled).
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
                                          PosedBody& body, const CharacterRunOptions& options,
                                          const SimulationProgress& progress = {},

@@ -614,14 +614,18 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   std::vector<Positions> frames;  // kept only for an OBJ sequence
   CharacterRunReport report;
   {
+    // One job over the pre-roll's frames and the motion's, so that a long
+    // pre-roll shows progress and can be cancelled like the rest.
+    const int preroll_frames = preroll_frame_count(run);
     JobScope job(*this, slot,
-                 QStringLiteral("simulation of %1 on %2 (%3, %4 body): %5 vertices, pre-roll %6 s, then %7 frames at %8 fps x %9 "
-                                "substeps, %10, waist %11")
+                 QStringLiteral("simulation of %1 on %2 (%3, %4 body): %5 vertices, pre-roll %6 s (%7 frames), then %8 frames "
+                                "at %9 fps x %10 substeps, %11, waist %12")
                      .arg(describeObject(input), QFileInfo(wanted.motionPath).fileName(), wanted.motionUnits,
                           bodyTypeName(wanted.setup.body))
-                     .arg(model.num_vertices).arg(wanted.setup.preroll_seconds).arg(run.frames).arg(run.fps).arg(substeps)
+                     .arg(model.num_vertices).arg(wanted.setup.preroll_seconds).arg(preroll_frames).arg(run.frames)
+                     .arg(run.fps).arg(substeps)
                      .arg(QString::fromStdString(request.dynamics.material.name), request.pinsText),
-                 run.frames);
+                 preroll_frames + run.frames);
     const SimulationProgress progress = [&](int frames_done, int) {
       job.progress(frames_done);
       return !cancelRequested();
@@ -673,7 +677,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
                                      "thickness); it is pushed out on the first step: check option 'place'")
                           .arg(slot).arg(1000.0 * report.preroll.initial_penetration, 0, 'f', 1));
-  if (motion_report.cancelled)
+  if (report.preroll.cancelled)
+    emit log(LOGWARN, QStringLiteral("%1: cancelled during the pre-roll, after %2 of its %3 frames; nothing was written")
+                          .arg(slot).arg(report.preroll.frames).arg(preroll_frame_count(run)));
+  else if (motion_report.cancelled)
     emit log(LOGWARN, QStringLiteral("%1: cancelled after %2 of %3 frames; nothing was written")
                           .arg(slot).arg(motion_report.frames).arg(run.frames));
   else if (motion_report.non_finite)

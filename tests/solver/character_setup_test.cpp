@@ -8,12 +8,16 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/uniform_refine.h"
+#include "solver/character_sim.h"
 #include "solver/dynamics_model.h"
+#include "solver/implicit_integrator.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mrcloth {
 namespace {
@@ -103,6 +107,52 @@ TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedEx
   EXPECT_EQ(run.motion_start, 1.5);
   EXPECT_EQ(run.preroll_seconds, setup.preroll_seconds);
   EXPECT_TRUE(run.waist_weights.empty());
+}
+
+// One progress over the pre-roll's frames and then the motion's (so a
+// long pre-roll shows progress), and a cancel in the pre-roll stops the run
+// there: no motion frame is simulated.
+TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
+  const Motion full = walk();
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup setup;
+  setup.place = GarmentPlacement::first_frame;
+  setup.preroll_seconds = 0.2;
+  Character character = make_character(full, setup, skirt);
+  const PlacedGarment placed = place_garment(character, setup, skirt);
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed.mesh, "top");
+  const DynamicsModel model = build_dynamics(placed.mesh, d);
+  SimulationOptions simulation;
+  simulation.frames = 3;
+  const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
+  ASSERT_EQ(preroll_frame_count(run), 6) << "0.2 s at 30 fps";
+
+  std::vector<std::pair<int, int>> calls;
+  ClothState state = rest_state(model);
+  const CharacterRunReport whole = simulate_on_character(model, state, *character.motion, *character.body, run,
+                                                         [&](int done, int total) {
+                                                           calls.emplace_back(done, total);
+                                                           return true;
+                                                         });
+  ASSERT_EQ(calls.size(), 9u);
+  for (std::size_t k = 0; k < calls.size(); ++k)
+    EXPECT_EQ(calls[k], std::make_pair(static_cast<int>(k) + 1, 9)) << "call " << k;
+  EXPECT_EQ(whole.preroll.frames, 6);
+  EXPECT_EQ(whole.motion.frames, 3);
+  EXPECT_FALSE(whole.motion.cancelled);
+
+  int seen = 0;
+  ClothState stopped = rest_state(model);
+  const CharacterRunReport cancelled = simulate_on_character(model, stopped, *character.motion, *character.body, run,
+                                                             [&](int done, int) {
+                                                               seen = done;
+                                                               return done < 4;
+                                                             });
+  EXPECT_EQ(seen, 4) << "no call after the one that cancelled";
+  EXPECT_TRUE(cancelled.preroll.cancelled);
+  EXPECT_TRUE(cancelled.motion.cancelled);
+  EXPECT_EQ(cancelled.motion.frames, 0);
 }
 
 TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {

@@ -1,19 +1,39 @@
 #!/bin/sh
 # Ctrl-C during multirescloth.simulate: the host exits with 130, the
 # simulation reports "cancelled", and no cache (nor a temporary file) is left.
+# With <resources>, the run is the embedded skirt on the embedded mannequin
+# interrupted in a long pre-roll, which is one job with the motion's frames
+# and cancels as they do.
 #
-# simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder>
+# simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder> [<resources>]
 set -u
-host=$1 data=$2 tmp=$3
+host=$1 data=$2 tmp=$3 resources=${4:-}
 rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
 script="$tmp/long_simulation.js"
-cat > "$script" <<'JS'
+if [ -z "$resources" ]; then
+  cat > "$script" <<'JS'
 "use strict";
 const [dataDir, tmpDir] = core.scriptArguments();
 const grid = multirescloth.refineUniform(core.loadObject(dataDir + "/grid3x3.obj"), 2);
 multirescloth.simulate(grid, {frames: 1000000, pins: [12, 13, 14, 15], output: tmpDir + "/never.pc2"});
 print("not reached: the simulation finished");
 JS
+  cancelled='simulate: cancelled after [0-9]* of 1000000 frames'
+  stopped='^\[job\] simulate: stopped at [0-9]*/1000000'
+else
+  cat > "$script" <<'JS'
+"use strict";
+const [resources, tmpDir] = core.scriptArguments();
+const skirt = core.loadObject(resources + "/garments/default_skirt.obj");
+multirescloth.simulate(skirt, {motion: {path: resources + "/characters/walk_instance.bvh", units: "m"},
+                               body: {type: "capsules"}, place: "firstFrame", preroll: 1000, frames: 10,
+                               output: tmpDir + "/never.pc2"});
+print("not reached: the simulation finished");
+JS
+  data=$resources
+  cancelled='simulate: cancelled during the pre-roll, after [0-9]* of its 30000 frames'
+  stopped='^\[job\] simulate: stopped at [0-9]*/30010'
+fi
 "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
 pid=$!
 # Wait until the simulation is running (its job line), at most 60 s.
@@ -32,8 +52,8 @@ code=$?
 echo "--- stderr"; cat "$tmp/stderr"; echo "--- stdout"; cat "$tmp/stdout"; echo "---"
 failed=0
 [ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }
-grep -q 'simulate: cancelled after [0-9]* of 1000000 frames' "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
-grep -q '^\[job\] simulate: stopped at [0-9]*/1000000' "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
+grep -q "$cancelled" "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
+grep -q "$stopped" "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
 grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
 grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }
 leftovers=$(ls "$tmp" | grep -v -e '^stdout$' -e '^stderr$' -e '^long_simulation\.js$')
