@@ -295,12 +295,22 @@ class Stages {
 
 // --- The run ---------------------------------------------------------------------
 
-const options = parseOptions(core.scriptArguments());
-if (options.help) {
-  print(USAGE);
-} else {
-  checkInputs(options);
-  runPipeline(options);
+// Users of the command meet its errors as a command's: the message (which
+// names the option, file or line at fault), not this script's stack. Errors
+// of other kinds (a TypeError is a bug here) keep their stack.
+const REPORTED_ERRORS = ["ArgumentError", "InputError", "OutputError", "Error"];
+try {
+  const options = parseOptions(core.scriptArguments());
+  if (options.help) {
+    print(USAGE);
+  } else {
+    checkInputs(options);
+    runPipeline(options);
+  }
+} catch (error) {
+  if (!(error instanceof Error) || !REPORTED_ERRORS.includes(error.name)) throw error;
+  console.error(error.name + ": " + error.message);
+  core.exitApplication(1);
 }
 
 function runPipeline(options) {

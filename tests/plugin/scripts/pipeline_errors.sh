@@ -1,6 +1,6 @@
 #!/bin/sh
 # Bad pipeline inputs stop before any work: exit code 1, a message naming
-# the option or file, and no output folder created.
+# the option or file (and no script stack), and no output folder created.
 #
 # pipeline_errors.sh <mrcloth> <resources> <tmp folder>
 set -u
@@ -21,6 +21,8 @@ refused() {
     echo "FAILED ($*): stderr does not match '$pattern':"; cat "$tmp/stderr$n"; failed=1
   fi
   if [ -e "$out" ]; then echo "FAILED ($*): $out was created"; failed=1; fi
+  # A command's user gets the message, not the pipeline script's stack.
+  if grep -q '^    at ' "$tmp/stderr$n"; then echo "FAILED ($*): a script stack on stderr:"; cat "$tmp/stderr$n"; failed=1; fi
 }
 refused "unknown option \"--frobnicate\"" --frobnicate
 refused "unexpected argument \"stray\"" stray
@@ -61,7 +63,9 @@ n=$((n + 1))
 "$host" pipeline --garment "$tmp/broken.obj" --out "$tmp/out$n" > /dev/null 2> "$tmp/stderr$n"
 code=$?
 [ "$code" -eq 1 ] || { echo "FAILED (broken garment): exit code $code"; failed=1; }
-grep -q "broken.obj" "$tmp/stderr$n" || { echo "FAILED (broken garment): $(cat "$tmp/stderr$n")"; failed=1; }
+grep -q "^\[error\] InputError: .*broken.obj: face 0 (line 3) refers to vertex 9" "$tmp/stderr$n" ||
+  { echo "FAILED (broken garment): $(cat "$tmp/stderr$n")"; failed=1; }
+grep -q '^    at ' "$tmp/stderr$n" && { echo "FAILED (broken garment): a script stack on stderr"; failed=1; }
 # --help prints the options and does nothing else.
 "$host" pipeline --help --out "$tmp/help" > "$tmp/help.out" 2>&1 || { echo "FAILED: --help exit code $?"; failed=1; }
 grep -q "^Usage: mrcloth pipeline" "$tmp/help.out" || { echo "FAILED: --help text"; failed=1; }
