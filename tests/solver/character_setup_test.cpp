@@ -29,6 +29,21 @@ Motion walk() { return read_bvh(resource("characters/walk_new.bvh"), {}); }
 
 QuadMesh default_skirt() { return load_garment(resource("garments/default_skirt.obj"), {}).mesh; }
 
+/// The placed garment's model, its top loop pinned (the waist).
+DynamicsModel waist_pinned(const QuadMesh& placed) {
+  DynamicsOptions d;
+  d.pinned = boundary_loop_by_name(placed, "top");
+  return build_dynamics(placed, d);
+}
+
+/// simulate_on_character's settings for `frames` output frames.
+CharacterRunOptions run_options(const Character& character, const CharacterSetup& setup, const DynamicsModel& model,
+                                int frames) {
+  SimulationOptions simulation;
+  simulation.frames = frames;
+  return character_run_options(character, setup, model, simulation);
+}
+
 TEST(CharacterSetup, WithoutFirstFrameDropsExactlyTheFirst) {
   const Motion full = walk();
   const Motion clip = without_first_frame(full);
@@ -97,12 +112,8 @@ TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedEx
     const auto& q = placed.mesh.point(v);
     EXPECT_EQ(Eigen::Vector3d(q[0], q[1], q[2]), expected) << "vertex " << v.idx();
   }
-  DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  SimulationOptions simulation;
-  simulation.frames = 7;
-  const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
+  const DynamicsModel model = waist_pinned(placed.mesh);
+  const CharacterRunOptions run = run_options(character, setup, model, 7);
   EXPECT_EQ(run.frames, 7);
   EXPECT_EQ(run.motion_start, 1.5);
   EXPECT_EQ(run.preroll_seconds, setup.preroll_seconds);
@@ -119,13 +130,8 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
   setup.place = GarmentPlacement::first_frame;
   setup.preroll_seconds = 0.2;
   Character character = make_character(full, setup, skirt);
-  const PlacedGarment placed = place_garment(character, setup, skirt);
-  DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  SimulationOptions simulation;
-  simulation.frames = 3;
-  const CharacterRunOptions run = character_run_options(character, setup, model, simulation);
+  const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
+  const CharacterRunOptions run = run_options(character, setup, model, 3);
   ASSERT_EQ(preroll_frame_count(run), 6) << "0.2 s at 30 fps";
 
   std::vector<std::pair<int, int>> calls;
@@ -180,10 +186,8 @@ TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {
     deepest = std::max(deepest, scene.penetration(Eigen::Vector3d(p[0], p[1], p[2])));
   }
   EXPECT_LT(deepest, 1e-6);
-  DynamicsOptions d;
-  d.pinned = boundary_loop_by_name(placed.mesh, "top");
-  const DynamicsModel model = build_dynamics(placed.mesh, d);
-  const CharacterRunOptions run = character_run_options(character, setup, model, SimulationOptions{});
+  const DynamicsModel model = waist_pinned(placed.mesh);
+  const CharacterRunOptions run = run_options(character, setup, model, SimulationOptions{}.frames);
   EXPECT_EQ(run.waist_weights.size(), model.pinned_vertices.size()) << "the waist follows the skin";
 }
 
