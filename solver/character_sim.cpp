@@ -63,6 +63,14 @@ class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
   double depth(const Eigen::Vector3d& p) const override {
     return std::max(mesh_.depth(p), bridges_ ? bridges_->depth(p) : 0.0);
   }
+  PointDepths depths(const Eigen::Vector3d& p, int* hint) const override {
+    PointDepths deepest = mesh_.depths(p, hint);
+    if (bridges_) {
+      deepest.penetration = std::max(deepest.penetration, bridges_->penetration(p));
+      deepest.depth = std::max(deepest.depth, bridges_->depth(p));
+    }
+    return deepest;
+  }
   bool empty() const override { return false; }
 
  private:

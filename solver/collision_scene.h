@@ -34,6 +34,13 @@ struct ContactMemo {
 /// lower bound on the clearance).
 constexpr double kNearbyReach = 0.01;
 
+/// What measuring a point found: how far it is inside the thickened
+/// surfaces and inside the surfaces themselves (metres, 0 outside).
+struct PointDepths {
+  double penetration = 0.0;  ///< as CollisionScene::penetration
+  double depth = 0.0;        ///< as CollisionScene::depth
+};
+
 class CollisionScene {
  public:
   virtual ~CollisionScene() = default;
@@ -53,6 +60,15 @@ class CollisionScene {
   /// Depth of p below the surface itself, thickness not counted (0 when
   /// outside), metres: how far cloth is inside the body.
   virtual double depth(const Eigen::Vector3d& p) const = 0;
+  /// penetration(p) and depth(p) together, from one search where a scene
+  /// can. `hint`, if given, is the caller's int for this point, -1 at first:
+  /// a scene may keep there what it found (MeshBody: the nearest triangle)
+  /// to start the point's next measurement from it, which gives the same
+  /// answers sooner (up to which of two triangles meeting at the closest
+  /// point is named).
+  virtual PointDepths depths(const Eigen::Vector3d& p, int* /*hint*/ = nullptr) const {
+    return {penetration(p), depth(p)};
+  }
   /// True when there is nothing to collide with (the integrator skips work).
   virtual bool empty() const = 0;
 };
@@ -130,6 +146,20 @@ class CompositeScene : public CollisionScene {
   double depth(const Eigen::Vector3d& p) const override {
     double deepest = 0.0;
     for (const CollisionScene* s : scenes_) deepest = std::max(deepest, s->depth(p));
+    return deepest;
+  }
+  /// The deepest of each; the hint goes to the one scene that is not empty,
+  /// and to none when several are (each would read another's).
+  PointDepths depths(const Eigen::Vector3d& p, int* hint = nullptr) const override {
+    int active = 0;
+    for (const CollisionScene* s : scenes_) active += s->empty() ? 0 : 1;
+    PointDepths deepest;
+    for (const CollisionScene* s : scenes_) {
+      if (s->empty()) continue;
+      const PointDepths here = s->depths(p, active == 1 ? hint : nullptr);
+      deepest.penetration = std::max(deepest.penetration, here.penetration);
+      deepest.depth = std::max(deepest.depth, here.depth);
+    }
     return deepest;
   }
   bool empty() const override {

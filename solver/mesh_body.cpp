@@ -123,6 +123,7 @@ struct MeshBody::Impl {
   /// left out, the side comes from the whole mesh (inside_whole_mesh),
   /// metres: well outside the thickness layer, where pushes are decided.
   static constexpr double kWholeMeshSideBeyond = 0.01;
+  static_assert(kWholeMeshSideBeyond < kMargin, "beyond the bounded search, the side is always the whole mesh's");
   /// A resolve's search looks twice this far (metres) beyond the nearest
   /// surface for triangles the point is behind, so it vouches for the
   /// point's side at most this far (SurfaceNearby::flip).
@@ -1303,6 +1304,38 @@ double MeshBody::depth(const Eigen::Vector3d& p) const {
   Impl::Contact c;
   if (!impl_->contact(p, impl_->reach2, true, c)) return 0.0;
   return std::max(0.0, -c.distance);
+}
+
+PointDepths MeshBody::depths(const Eigen::Vector3d& p, int* hint) const {
+  // As penetration() and depth(), which share one contact(p, reach2, deep):
+  // the nearest triangle within reach, else, inside the root box, the
+  // nearest of all, which counts where p is inside. The hint's triangle
+  // bounds whichever search runs, as a memo's does in resolve.
+  const Impl& m = *impl_;
+  Impl::Closest seed;
+  if (hint && *hint >= 0 && static_cast<std::size_t>(*hint) < m.triangles.size() &&
+      !(m.any_ignored && m.ignored[static_cast<std::size_t>(*hint)])) {
+    const int t = *hint;
+    seed.triangle = t;
+    seed.at = closest_on_triangle(p, m.corner(t, 0), m.corner(t, 1), m.corner(t, 2));
+    seed.d2 = (p - seed.at.point).squaredNorm();
+  }
+  Impl::Closest nearest = seed.d2 < m.reach2 ? seed : Impl::Closest{};
+  bool within = m.closest(p, nearest.triangle >= 0 ? nearest.d2 : m.reach2, nearest);
+  if (!within) {
+    if (!m.inside_root(p)) return {};
+    // Beyond reach, with triangles left out, the side is the whole mesh's
+    // parity (signed_contact's rule beyond kWholeMeshSideBeyond): a point
+    // outside needs no search for its nearest triangle.
+    if (m.any_ignored && !m.inside_whole_mesh(p)) return {};
+    nearest = seed;
+    if (!m.closest(p, nearest.triangle >= 0 ? nearest.d2 : std::numeric_limits<double>::infinity(), nearest))
+      return {};
+  }
+  if (hint) *hint = nearest.triangle;
+  const Impl::Contact c = m.signed_contact(p, nearest);
+  if (!within && !(c.distance < 0.0)) return {};  // outside, beyond reach
+  return {std::max(0.0, m.thickness - c.distance), std::max(0.0, -c.distance)};
 }
 
 MeshBody::SurfacePoint MeshBody::nearest_point(const Eigen::Vector3d& p) const {

@@ -47,6 +47,8 @@ class MeshBody : public CollisionScene {
                  ContactMemo* memo = nullptr, SurfaceNearby* nearby = nullptr) const override;
   double penetration(const Eigen::Vector3d& p) const override;
   double depth(const Eigen::Vector3d& p) const override;
+  /// Both from one search, starting from the hint's triangle when it holds one.
+  PointDepths depths(const Eigen::Vector3d& p, int* hint = nullptr) const override;
   bool empty() const override { return false; }
   /// Signed distance to the surface (negative inside) and outward normal, ignoring thickness.
   SurfaceQuery query(const Eigen::Vector3d& p) const;

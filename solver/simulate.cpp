@@ -30,8 +30,15 @@ double deepest_penetration(const CollisionScene& scene, const Positions& x) {
 // `pool` (null: one thread) measures the vertices in parts; the worst is
 // the same as one thread finds (parts merged in order, the first vertex
 // wins a tie).
+/// Per measured point (each vertex, then each face centre), the scene's
+/// hint from the frame before (CollisionScene::depths): each point starts
+/// its search where the last frame's ended.
+struct MeasureHints {
+  std::vector<int> vertices, faces;
+};
+
 void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const ContactSurface& surface,
-                   const Positions& x, int frame, SimulationReport& report, WorkerPool* pool) {
+                   const Positions& x, int frame, SimulationReport& report, WorkerPool* pool, MeasureHints& hints) {
   report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x, pool));
   const StretchPeak peak = most_stretched(model, x);
   report.max_tear_opening = std::max(report.max_tear_opening, peak.tear_opening);
@@ -53,21 +60,22 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
     Worst& worst = parts[static_cast<std::size_t>(part)];
     for (auto v = static_cast<Eigen::Index>(begin); v < static_cast<Eigen::Index>(end); ++v) {
       const Eigen::Vector3d p = x.row(v).transpose();
-      const double penetration = scene.penetration(p);
-      if (penetration <= 0.0) continue;  // outside surface + thickness, so outside the surface
-      worst.depth = std::max(worst.depth, scene.depth(p));
-      if (penetration > worst.penetration) {
-        worst.penetration = penetration;
+      const PointDepths inside = scene.depths(p, &hints.vertices[static_cast<std::size_t>(v)]);
+      if (inside.penetration <= 0.0) continue;  // outside surface + thickness, so outside the surface
+      worst.depth = std::max(worst.depth, inside.depth);
+      if (inside.penetration > worst.penetration) {
+        worst.penetration = inside.penetration;
         worst.vertex = static_cast<int>(v);
       }
     }
   };
   if (pool) pool->run(static_cast<std::size_t>(x.rows()), measure);
   else measure(0, 0, static_cast<std::size_t>(x.rows()));
-  for (const auto& face : model.corners) {
+  for (std::size_t f = 0; f < model.corners.size(); ++f) {
+    const auto& face = model.corners[f];
     const Eigen::Vector3d centre =
         0.25 * (x.row(face[0]) + x.row(face[1]) + x.row(face[2]) + x.row(face[3])).transpose();
-    report.max_face_depth = std::max(report.max_face_depth, scene.depth(centre));  // 0 outside
+    report.max_face_depth = std::max(report.max_face_depth, scene.depths(centre, &hints.faces[f]).depth);  // 0 outside
   }
   for (const Worst& worst : parts) {
     report.max_depth = std::max(report.max_depth, worst.depth);
@@ -120,6 +128,8 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   report.initial_penetration = deepest_penetration(scene, full_positions(model, state.positions, state.pinned));
   const Positions rest_pinned = pinned_rows(model, model.rest);
   const ContactSurface surface = contact_surface(model);
+  MeasureHints hints{std::vector<int>(static_cast<std::size_t>(model.num_vertices), -1),
+                     std::vector<int>(model.corners.size(), -1)};
   Positions pinned_next = rest_pinned;
   for (int frame = 0; frame < options.frames; ++frame) {
     FrameTiming timing;
@@ -150,7 +160,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     }
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
-    measure_frame(scene, model, surface, x, report.frames, report, integrator.pool());
+    measure_frame(scene, model, surface, x, report.frames, report, integrator.pool(), hints);
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);

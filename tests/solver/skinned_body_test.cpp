@@ -721,6 +721,48 @@ TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
   EXPECT_NEAR(body.query(centre).distance, 0.01, 1e-12);
 }
 
+TEST(MeshBody, DepthsAreBothMeasuresWithOrWithoutAHint) {
+  // depths() is penetration() and depth() from one search, started from the
+  // hint a point's last measurement left. Points all over the cube (inside
+  // deep and shallow, near, beyond the bounded search's reach, outside the
+  // root box), measured with a hint each over three poses, with a patch of
+  // the top face left out in the last two (the side beyond reach is then the
+  // whole mesh's): each answer must be the two measures' exactly.
+  std::mt19937 rng(17);
+  Mesh cube = subdivided_cube(6);
+  const double thickness = 0.004;
+  MeshBody body(cube.vertices, cube.triangles, thickness, 0.3);
+  std::vector<char> ignored(cube.triangles.size(), 0);
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t) {
+    const Vector3d c = (cube.vertex(cube.triangles[t](0)) + cube.vertex(cube.triangles[t](1)) + cube.vertex(cube.triangles[t](2))) / 3.0;
+    if (c.y() > 0.99 && std::abs(c.x()) < 0.5 && std::abs(c.z()) < 0.5) ignored[t] = 1;
+  }
+  std::vector<Vector3d> points = sample_points(cube, rng, 400, 0.02);
+  const std::vector<Vector3d> far = sample_points(cube, rng, 400, 0.4);
+  points.insert(points.end(), far.begin(), far.end());
+  std::vector<int> hints(points.size(), -1);
+  int inside = 0, penetrating = 0, hinted = 0;
+  for (int pose = 0; pose < 3; ++pose) {
+    Mesh moved = cube;
+    moved.vertices.rowwise() += Eigen::RowVector3d(0.004 * pose, -0.003 * pose, 0.002 * pose);
+    body.update(moved.vertices, pose == 0 ? std::vector<char>{} : ignored);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      hinted += hints[i] >= 0;
+      const PointDepths both = body.depths(points[i], &hints[i]);
+      ASSERT_EQ(both.penetration, body.penetration(points[i])) << "pose " << pose << ", point " << i;
+      ASSERT_EQ(both.depth, body.depth(points[i])) << "pose " << pose << ", point " << i;
+      const PointDepths unhinted = body.depths(points[i]);
+      ASSERT_EQ(unhinted.penetration, both.penetration) << "pose " << pose << ", point " << i;
+      ASSERT_EQ(unhinted.depth, both.depth) << "pose " << pose << ", point " << i;
+      inside += both.depth > 0.0;
+      penetrating += both.penetration > 0.0 && both.depth == 0.0;
+    }
+  }
+  EXPECT_GT(inside, 300) << "points inside the cube";
+  EXPECT_GT(penetrating, 20) << "points within the thickness outside";
+  EXPECT_GT(hinted, 1000) << "most later measurements start from a hint";
+}
+
 TEST(MeshBody, AMemoNearIgnoredTrianglesNeverChangesAnAnswer) {
   // Ignored (turned) triangles leave the seen surface open: a point can
   // pass from outside to what the tree calls inside without meeting a seen
