@@ -764,8 +764,12 @@ struct MeshBody::Impl {
       return true;
     }
     // Nothing within reach: outside (no contact), or deep inside. Only a
-    // point inside the root box can be inside; search without bound.
+    // point inside the root box can be inside; search without bound. (With
+    // triangles left out and a reach beyond kWholeMeshSideBeyond, the side
+    // is the whole mesh's parity, signed_contact's rule there: outside
+    // needs no search.)
     if (!deep || !inside_root(p)) return false;
+    if (any_ignored && search2 >= kWholeMeshSideBeyond * kWholeMeshSideBeyond && !inside_whole_mesh(p)) return false;
     if (!closest(p, std::numeric_limits<double>::infinity(), c)) return false;
     out = signed_contact(p, c);
     return out.distance < 0.0;
@@ -981,7 +985,11 @@ struct MeshBody::Impl {
       return true;
     }
     if (recently_outside(memo) && segment_clear(memo->centre, p)) return false;
-    if (!inside_root(p) || !closest(p, std::numeric_limits<double>::infinity(), c)) return false;
+    if (!inside_root(p)) return false;
+    // Beyond reach, with triangles left out, the side is the whole mesh's
+    // parity (signed_contact's rule): outside needs no nearest search.
+    if (any_ignored && !inside_whole_mesh(p)) return false;
+    if (!closest(p, std::numeric_limits<double>::infinity(), c)) return false;
     out = signed_contact(p, c);
     if (behind) *behind = -out.distance;  // inside: no side to vouch for
     return out.distance < 0.0;
