@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -146,20 +147,37 @@ std::uint64_t cell_key(int i, int j, int k) {
 }
 
 // Boxes filed by cell; `candidates` calls back each pair (query, item) once:
-// in the lowest cell both boxes cover.
+// in the lowest cell both boxes cover. The cells the boxes span are indexed
+// densely (an array of runs, filled in item order) when they are few, as on
+// any garment; else by a hash of their keys. Either visits the same pairs in
+// the same order.
 class BoxGrid {
  public:
   BoxGrid(const std::vector<Box>& items, double cell) : items_(items), cell_(cell) {
     ranges_.reserve(items.size());
+    Eigen::Array3i lo = Eigen::Array3i::Constant(std::numeric_limits<int>::max());
+    Eigen::Array3i hi = Eigen::Array3i::Constant(std::numeric_limits<int>::min());
     for (std::size_t i = 0; i < items.size(); ++i) {
       const CellRange r = cells_of(items[i], cell);
       ranges_.push_back(r);
-      if (((r.hi - r.lo) > 64).any()) continue;  // a runaway element: not filed (it is non-finite or huge)
+      if (!filed(r)) continue;
+      lo = lo.min(r.lo);
+      hi = hi.max(r.hi);
+    }
+    if ((lo <= hi).all() && ((hi - lo + 1).cast<double>().prod() <= kMaxDenseCells)) {
+      build_dense(lo, hi);
+      return;
+    }
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const CellRange& r = ranges_[i];
+      if (!filed(r)) continue;
       for (int x = r.lo[0]; x <= r.hi[0]; ++x)
         for (int y = r.lo[1]; y <= r.hi[1]; ++y)
           for (int z = r.lo[2]; z <= r.hi[2]; ++z) entries_.emplace_back(cell_key(x, y, z), static_cast<int>(i));
     }
     std::sort(entries_.begin(), entries_.end());
+    hashed_items_.reserve(entries_.size());
+    for (const auto& entry : entries_) hashed_items_.push_back(entry.second);
     cells_.reserve(entries_.size());
     for (std::size_t i = 0; i < entries_.size();) {
       std::size_t j = i;
@@ -172,33 +190,84 @@ class BoxGrid {
   template <class F>
   void candidates(const Box& query, F&& visit, int after = -1) const {
     const CellRange r = cells_of(query, cell_);
-    if (((r.hi - r.lo) > 64).any()) return;
+    if (!filed(r)) return;
+    const auto visit_run = [&](int x, int y, int z, const int* first, const int* last) {
+      for (const int* it = first; it != last; ++it) {
+        if (*it <= after) continue;
+        const Box& item = items_[static_cast<std::size_t>(*it)];
+        if (!overlap(query, item)) continue;
+        // Only in the lowest cell common to both, so each pair once.
+        const CellRange& ir = ranges_[static_cast<std::size_t>(*it)];
+        if (std::max(r.lo[0], ir.lo[0]) != x || std::max(r.lo[1], ir.lo[1]) != y || std::max(r.lo[2], ir.lo[2]) != z)
+          continue;
+        visit(*it);
+      }
+    };
+    if (dense_) {
+      // Cells outside the indexed block hold nothing.
+      const Eigen::Array3i from = r.lo.max(lo_), to = r.hi.min(lo_ + dims_ - 1);
+      for (int x = from[0]; x <= to[0]; ++x)
+        for (int y = from[1]; y <= to[1]; ++y)
+          for (int z = from[2]; z <= to[2]; ++z) {
+            const std::size_t c = dense_index(x, y, z);
+            visit_run(x, y, z, dense_items_.data() + dense_start_[c], dense_items_.data() + dense_start_[c + 1]);
+          }
+      return;
+    }
     for (int x = r.lo[0]; x <= r.hi[0]; ++x)
       for (int y = r.lo[1]; y <= r.hi[1]; ++y)
         for (int z = r.lo[2]; z <= r.hi[2]; ++z) {
-          const std::uint64_t key = cell_key(x, y, z);
-          const auto cell = cells_.find(key);
+          const auto cell = cells_.find(cell_key(x, y, z));
           if (cell == cells_.end()) continue;
-          for (auto it = entries_.begin() + cell->second.first; it != entries_.begin() + cell->second.second; ++it) {
-            if (it->second <= after) continue;
-            const Box& item = items_[static_cast<std::size_t>(it->second)];
-            if (!overlap(query, item)) continue;
-            // Only in the lowest cell common to both, so each pair once.
-            const CellRange& ir = ranges_[static_cast<std::size_t>(it->second)];
-            if (std::max(r.lo[0], ir.lo[0]) != x || std::max(r.lo[1], ir.lo[1]) != y ||
-                std::max(r.lo[2], ir.lo[2]) != z)
-              continue;
-            visit(it->second);
-          }
+          visit_run(x, y, z, hashed_items_.data() + cell->second.first, hashed_items_.data() + cell->second.second);
         }
   }
 
  private:
+  /// At most this many cells are indexed densely (4 bytes each).
+  static constexpr double kMaxDenseCells = 1 << 21;
+  /// A runaway element (non-finite or huge) is not filed.
+  static bool filed(const CellRange& r) { return !((r.hi - r.lo) > 64).any(); }
+  std::size_t dense_index(int x, int y, int z) const {
+    return (static_cast<std::size_t>(x - lo_[0]) * static_cast<std::size_t>(dims_[1]) +
+            static_cast<std::size_t>(y - lo_[1])) * static_cast<std::size_t>(dims_[2]) +
+           static_cast<std::size_t>(z - lo_[2]);
+  }
+  /// A counting sort of (cell, item) by cell, items in order within a cell.
+  void build_dense(const Eigen::Array3i& lo, const Eigen::Array3i& hi) {
+    dense_ = true;
+    lo_ = lo;
+    dims_ = hi - lo + 1;
+    const std::size_t count = static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
+                              static_cast<std::size_t>(dims_[2]);
+    dense_start_.assign(count + 1, 0);
+    const auto each_cell = [&](const auto& f) {
+      for (std::size_t i = 0; i < ranges_.size(); ++i) {
+        const CellRange& r = ranges_[i];
+        if (!filed(r)) continue;
+        for (int x = r.lo[0]; x <= r.hi[0]; ++x)
+          for (int y = r.lo[1]; y <= r.hi[1]; ++y)
+            for (int z = r.lo[2]; z <= r.hi[2]; ++z) f(dense_index(x, y, z), static_cast<int>(i));
+      }
+    };
+    each_cell([&](std::size_t c, int) { ++dense_start_[c + 1]; });
+    for (std::size_t c = 0; c < count; ++c) dense_start_[c + 1] += dense_start_[c];
+    dense_items_.resize(static_cast<std::size_t>(dense_start_[count]));
+    std::vector<int> next(dense_start_.begin(), dense_start_.end() - 1);
+    each_cell([&](std::size_t c, int item) { dense_items_[static_cast<std::size_t>(next[c]++)] = item; });
+  }
+
   const std::vector<Box>& items_;
   double cell_;
   std::vector<CellRange> ranges_;  // per item
-  std::vector<std::pair<std::uint64_t, int>> entries_;  // (cell, item), sorted
-  std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;  // cell -> its run in entries_
+  // Dense: per cell of the block lo_ .. lo_ + dims_ - 1, its run of items.
+  bool dense_ = false;
+  Eigen::Array3i lo_{0, 0, 0}, dims_{0, 0, 0};
+  std::vector<int> dense_start_, dense_items_;
+  // Hashed: (cell, item) sorted, and per cell its run in them.
+  std::vector<std::pair<std::uint64_t, int>> entries_;
+  std::vector<int> hashed_items_;
+  std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;
 };
 
 double mean_edge_length(const ContactSurface& s, const Positions& x) {
