@@ -43,8 +43,11 @@ TEST(LumpedMass, HangingVerticesPassTheirMassToTheirParents) {
   ASSERT_EQ(count_hanging(mesh), 1u);
   const auto m = lumped_mass(mesh, 1.0);
   const auto hanging = get_layers(mesh).hanging;
-  for (auto v : mesh.vertices())
-    if (mesh.property(hanging, v)) EXPECT_EQ(m[v.idx()], 0.0);
+  for (auto v : mesh.vertices()) {
+    if (mesh.property(hanging, v)) {
+      EXPECT_EQ(m[v.idx()], 0.0);
+    }
+  }
   // Vertex 1 (shared, bottom): a quarter of the right quad (0.25) + a quarter
   // of one left child (1/16) + half of the hanging midpoint's two child
   // quarters (0.5 * 2/16).
