@@ -25,11 +25,6 @@ double deepest_penetration(const CollisionScene& scene, const Positions& x) {
   return deepest;
 }
 
-// Stretch, penetration (against surface + thickness) and depth (below the
-// surface) of one output frame, keeping where the worst of the run was.
-// `pool` (null: one thread) measures the vertices in parts; the worst is
-// the same as one thread finds (parts merged in order, the first vertex
-// wins a tie).
 /// Per measured point (each vertex, then each face centre), the scene's
 /// hint from the frame before (CollisionScene::depths): each point starts
 /// its search where the last frame's ended.
@@ -37,6 +32,11 @@ struct MeasureHints {
   std::vector<int> vertices, faces;
 };
 
+// Stretch, penetration (against surface + thickness) and depth (below the
+// surface) of one output frame, keeping where the worst of the run was.
+// `pool` (null: one thread) measures the vertices in parts; the worst is
+// the same as one thread finds (parts merged in order, the first vertex
+// wins a tie).
 void measure_frame(const CollisionScene& scene, const DynamicsModel& model, const ContactSurface& surface,
                    const Positions& x, int frame, SimulationReport& report, WorkerPool* pool, MeasureHints& hints) {
   report.max_self_crossings = std::max(report.max_self_crossings, count_self_crossings(surface, x, pool));
