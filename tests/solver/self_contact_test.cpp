@@ -133,6 +133,16 @@ TEST(CountSelfCrossings, AgreesWithTheBruteForceOracle) {
   Positions apart = m.rest;
   for (int v = 64; v < m.num_vertices; ++v) apart(v, 1) += 0.2;
   EXPECT_EQ(count_self_crossings(s, apart), 0);
+  // A crumpled copy 500 m off along each axis: the cells between span too
+  // large a block to index densely, so the grid hashes them; the same count.
+  Positions far = m.rest;
+  for (Eigen::Index i = 0; i < far.size(); ++i) far.data()[i] += noise(rng);
+  const int near_count = count_self_crossings(s, far);
+  EXPECT_EQ(near_count, brute_force_crossings(s, far));
+  for (int v = 64; v < m.num_vertices; ++v) far.row(v).array() += 500.0;
+  EXPECT_EQ(count_self_crossings(s, far), brute_force_crossings(s, far));
+  for (int v = 64; v < m.num_vertices; ++v) far.row(v).array() -= 500.0;
+  EXPECT_EQ(count_self_crossings(s, far), near_count);
 }
 
 IntegratorOptions contact_options(double thickness) {
