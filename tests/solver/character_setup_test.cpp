@@ -124,12 +124,11 @@ TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedEx
 // long pre-roll shows progress), and a cancel in the pre-roll stops the run
 // there: no motion frame is simulated.
 TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
-  const Motion full = walk();
   const QuadMesh skirt = default_skirt();
   CharacterSetup setup;
   setup.place = GarmentPlacement::first_frame;
   setup.preroll_seconds = 0.2;
-  Character character = make_character(full, setup, skirt);
+  Character character = make_character(walk(), setup, skirt);
   const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
   const CharacterRunOptions run = run_options(character, setup, model, 3);
   ASSERT_EQ(preroll_frame_count(run), 6) << "0.2 s at 30 fps";
