@@ -208,9 +208,9 @@ std::vector<std::pair<std::string, QuadMesh>> curtain_models(int levels) {
   for (int j = 0; j < kQuads; ++j)
     for (int i = 0; i < kQuads; ++i) coarse.add_face(vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1));
   init_forest(coarse);
-  const auto refined = [&](int levels) {
+  const auto refined = [&](int times) {
     QuadMesh mesh = coarse;
-    uniform_refine(mesh, levels);
+    uniform_refine(mesh, times);
     return mesh;
   };
   const auto with_patch = [&](QuadMesh mesh) {  // level 3 within 15 cm of the middle, balanced

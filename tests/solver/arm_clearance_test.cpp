@@ -90,9 +90,10 @@ TEST(ArmClearance, OnlyTheArmsMoveAndRigidly) {
     }
     // Rotations stay rotations, bones keep their lengths, the shoulder stays put.
     EXPECT_LT((after.global[j].linear() * after.global[j].linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
-    if (parent >= 0)
+    if (parent >= 0) {
       EXPECT_NEAR((after.position(static_cast<int>(j)) - after.position(parent)).norm(),
                   (before.position(static_cast<int>(j)) - before.position(parent)).norm(), 1e-12);
+    }
   }
   for (const ArmClearance::Side& side : check.sides)
     EXPECT_LT((after.position(side.shoulder) - before.position(side.shoulder)).norm(), 1e-12);
@@ -114,7 +115,9 @@ TEST(ArmClearance, ClearPosesAreUntouchedAndTheAngleIsContinuous) {
   for (double push = 0.0; push <= 30.0; push += 0.5) {
     Pose pose = arms_in(skeleton, frame, push);
     const double angle = clear_arms(check, skeleton, pose);
-    if (previous >= 0.0) EXPECT_LT(std::abs(angle - previous), 0.5 * M_PI / 180.0 + 2e-4) << "push " << push;
+    if (previous >= 0.0) {
+      EXPECT_LT(std::abs(angle - previous), 0.5 * M_PI / 180.0 + 2e-4) << "push " << push;
+    }
     previous = angle;
   }
   EXPECT_GT(previous, 0.0) << "a 30 degree push should bring the hands into the hips";
