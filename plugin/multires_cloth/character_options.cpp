@@ -243,12 +243,13 @@ void parseBody(const Fields& top, CharacterRequest& request) {
 QStringList characterOptionKeys() {
   return {QStringLiteral("motion"), QStringLiteral("body"),    QStringLiteral("place"),
           QStringLiteral("waist"),  QStringLiteral("preroll"), QStringLiteral("stepRate"),
-          QStringLiteral("skipFirst"), QStringLiteral("bodyOutput")};
+          QStringLiteral("skipFirst"), QStringLiteral("bodyOutput"), QStringLiteral("fitWarning")};
 }
 
 CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   CharacterRequest request;
   request.setup.skip_first = fields.boolean(QStringLiteral("skipFirst"), request.setup.skip_first);
+  request.fitWarning = fields.boolean(QStringLiteral("fitWarning"), request.fitWarning);
   parseMotion(fields, request);
   parseBody(fields, request);
 

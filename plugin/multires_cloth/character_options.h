@@ -26,12 +26,13 @@ struct CharacterRequest {
   ClipConventions conventions;  ///< motion.joints and motion.axes
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
+  bool fitWarning = true;       ///< log a warning when the fit check finds the garment too narrow (the report's fit has it either way)
 };
 
 /// The top-level keys only a character run accepts (each needs `motion`).
 QStringList characterOptionKeys();
 
-/// Reads motion, body, place, preroll, stepRate and skipFirst from the top
+/// Reads motion, body, place, preroll, stepRate, skipFirst and fitWarning from the top
 /// level of the options (`fields`); `fps` is the run's output rate (stepRate
 /// must be at least that). Input files must exist (InputError naming the
 /// option); errors name the option.

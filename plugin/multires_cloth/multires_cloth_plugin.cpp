@@ -591,7 +591,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
     const int worst_level = most_demanding_level(levels);
     const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
-    if (worst && worst->demand() > request.dynamics.material.stretch_limit)
+    if (worst && worst->demand() > request.dynamics.material.stretch_limit && wanted.fitWarning)
       emit log(LOGWARN, QStringLiteral("%1: the body needs %2 % more girth than the garment has %3 m below its top "
                                        "(level %4 of %5, output frame %6), and material '%7' stretches %8 % at "
                                        "most: expect the garment stretched or torn there (a wider garment or a "
@@ -857,7 +857,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
             "steps per second >= fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
-            "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool). With output, the rest mesh "
+            "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool), fitWarning: bool = true (log a "
+            "warning when a tube garment is too narrow for the motion; the report's fit has it either way). With "
+            "output, the rest mesh "
             "is written beside the cache as <name>.obj (restMesh in the report)")}},
       {QStringLiteral("extractModes(int id, string cachePath, object options = {}) -> object"),
        QStringLiteral("Learns the deformation modes of a mesh from a recorded instance (paper section 4): per "
