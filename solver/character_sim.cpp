@@ -66,8 +66,9 @@ class SkinnedPosedBody::MeshAndBridges : public CollisionScene {
   PointDepths depths(const Eigen::Vector3d& p, int* hint) const override {
     PointDepths deepest = mesh_.depths(p, hint);
     if (bridges_) {
-      deepest.penetration = std::max(deepest.penetration, bridges_->penetration(p));
-      deepest.depth = std::max(deepest.depth, bridges_->depth(p));
+      const PointDepths bridged = bridges_->depths(p);
+      deepest.penetration = std::max(deepest.penetration, bridged.penetration);
+      deepest.depth = std::max(deepest.depth, bridged.depth);
     }
     return deepest;
   }

@@ -764,12 +764,8 @@ struct MeshBody::Impl {
       return true;
     }
     // Nothing within reach: outside (no contact), or deep inside. Only a
-    // point inside the root box can be inside; search without bound. (With
-    // triangles left out and a reach beyond kWholeMeshSideBeyond, the side
-    // is the whole mesh's parity, signed_contact's rule there: outside
-    // needs no search.)
+    // point inside the root box can be inside; search without bound.
     if (!deep || !inside_root(p)) return false;
-    if (any_ignored && search2 >= kWholeMeshSideBeyond * kWholeMeshSideBeyond && !inside_whole_mesh(p)) return false;
     if (!closest(p, std::numeric_limits<double>::infinity(), c)) return false;
     out = signed_contact(p, c);
     return out.distance < 0.0;
@@ -1302,23 +1298,15 @@ double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position
   return finish(c, largest);
 }
 
-double MeshBody::penetration(const Eigen::Vector3d& p) const {
-  Impl::Contact c;
-  if (!impl_->contact(p, impl_->reach2, true, c)) return 0.0;
-  return std::max(0.0, impl_->thickness - c.distance);
-}
+double MeshBody::penetration(const Eigen::Vector3d& p) const { return depths(p).penetration; }
 
-double MeshBody::depth(const Eigen::Vector3d& p) const {
-  Impl::Contact c;
-  if (!impl_->contact(p, impl_->reach2, true, c)) return 0.0;
-  return std::max(0.0, -c.distance);
-}
+double MeshBody::depth(const Eigen::Vector3d& p) const { return depths(p).depth; }
 
 PointDepths MeshBody::depths(const Eigen::Vector3d& p, int* hint) const {
-  // As penetration() and depth(), which share one contact(p, reach2, deep):
-  // the nearest triangle within reach, else, inside the root box, the
-  // nearest of all, which counts where p is inside. The hint's triangle
-  // bounds whichever search runs, as a memo's does in resolve.
+  // The nearest triangle within reach (thickness + kMargin), else, inside
+  // the root box, the nearest of all, which counts where p is inside. The
+  // hint's triangle bounds whichever search runs, as a memo's does in
+  // resolve.
   const Impl& m = *impl_;
   Impl::Closest seed;
   if (hint && *hint >= 0 && static_cast<std::size_t>(*hint) < m.triangles.size() &&

@@ -722,12 +722,15 @@ TEST(MeshBody, PointsFarOutsideAreClearAndDeepInsideAreFound) {
 }
 
 TEST(MeshBody, DepthsAreBothMeasuresWithOrWithoutAHint) {
-  // depths() is penetration() and depth() from one search, started from the
+  // depths() is penetration and depth from one search, started from the
   // hint a point's last measurement left. Points all over the cube (inside
   // deep and shallow, near, beyond the bounded search's reach, outside the
   // root box), measured with a hint each over three poses, with a patch of
   // the top face left out in the last two (the side beyond reach is then the
-  // whole mesh's): each answer must be the two measures' exactly.
+  // whole mesh's). Each answer is the signed distance's (query(), an
+  // unbounded search of the seen surface): max(0, thickness - d) and
+  // max(0, -d); on the closed cube also brute force's (distance to every
+  // triangle, the winding number's side); and the same without the hint.
   std::mt19937 rng(17);
   Mesh cube = subdivided_cube(6);
   const double thickness = 0.004;
@@ -741,23 +744,37 @@ TEST(MeshBody, DepthsAreBothMeasuresWithOrWithoutAHint) {
   const std::vector<Vector3d> far = sample_points(cube, rng, 400, 0.4);
   points.insert(points.end(), far.begin(), far.end());
   std::vector<int> hints(points.size(), -1);
-  int inside = 0, penetrating = 0, hinted = 0;
+  int inside = 0, penetrating = 0, hinted = 0, brute_checked = 0;
   for (int pose = 0; pose < 3; ++pose) {
     Mesh moved = cube;
     moved.vertices.rowwise() += Eigen::RowVector3d(0.004 * pose, -0.003 * pose, 0.002 * pose);
     body.update(moved.vertices, pose == 0 ? std::vector<char>{} : ignored);
     for (std::size_t i = 0; i < points.size(); ++i) {
+      const std::string where = "pose " + std::to_string(pose) + ", point " + std::to_string(i);
       hinted += hints[i] >= 0;
       const PointDepths both = body.depths(points[i], &hints[i]);
-      ASSERT_EQ(both.penetration, body.penetration(points[i])) << "pose " << pose << ", point " << i;
-      ASSERT_EQ(both.depth, body.depth(points[i])) << "pose " << pose << ", point " << i;
+      const double signed_distance = body.query(points[i]).distance;
+      ASSERT_NEAR(both.penetration, std::max(0.0, thickness - signed_distance), 1e-12) << where;
+      ASSERT_NEAR(both.depth, std::max(0.0, -signed_distance), 1e-12) << where;
+      if (pose == 0) {
+        const double distance = brute_distance(moved, points[i]);
+        if (distance > 1e-9) {
+          const double brute = winding_number(moved, points[i]) > 0.5 ? -distance : distance;
+          ASSERT_NEAR(both.penetration, std::max(0.0, thickness - brute), 1e-12) << where;
+          ASSERT_NEAR(both.depth, std::max(0.0, -brute), 1e-12) << where;
+          ++brute_checked;
+        }
+      }
       const PointDepths unhinted = body.depths(points[i]);
-      ASSERT_EQ(unhinted.penetration, both.penetration) << "pose " << pose << ", point " << i;
-      ASSERT_EQ(unhinted.depth, both.depth) << "pose " << pose << ", point " << i;
+      ASSERT_EQ(unhinted.penetration, both.penetration) << where;
+      ASSERT_EQ(unhinted.depth, both.depth) << where;
+      ASSERT_EQ(body.penetration(points[i]), both.penetration) << where;
+      ASSERT_EQ(body.depth(points[i]), both.depth) << where;
       inside += both.depth > 0.0;
       penetrating += both.penetration > 0.0 && both.depth == 0.0;
     }
   }
+  EXPECT_GT(brute_checked, 700) << "the closed pose's points against brute force";
   EXPECT_GT(inside, 300) << "points inside the cube";
   EXPECT_GT(penetrating, 20) << "points within the thickness outside";
   EXPECT_GT(hinted, 1000) << "most later measurements start from a hint";
