@@ -168,21 +168,16 @@ class BoxGrid {
       build_dense(lo, hi);
       return;
     }
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const CellRange& r = ranges_[i];
-      if (!filed(r)) continue;
-      for (int x = r.lo[0]; x <= r.hi[0]; ++x)
-        for (int y = r.lo[1]; y <= r.hi[1]; ++y)
-          for (int z = r.lo[2]; z <= r.hi[2]; ++z) entries_.emplace_back(cell_key(x, y, z), static_cast<int>(i));
-    }
-    std::sort(entries_.begin(), entries_.end());
-    hashed_items_.reserve(entries_.size());
-    for (const auto& entry : entries_) hashed_items_.push_back(entry.second);
-    cells_.reserve(entries_.size());
-    for (std::size_t i = 0; i < entries_.size();) {
+    std::vector<std::pair<std::uint64_t, int>> entries;  // (cell, item), sorted
+    each_filed_cell([&](int x, int y, int z, int item) { entries.emplace_back(cell_key(x, y, z), item); });
+    std::sort(entries.begin(), entries.end());
+    hashed_items_.reserve(entries.size());
+    for (const auto& entry : entries) hashed_items_.push_back(entry.second);
+    cells_.reserve(entries.size());
+    for (std::size_t i = 0; i < entries.size();) {
       std::size_t j = i;
-      while (j < entries_.size() && entries_[j].first == entries_[i].first) ++j;
-      cells_.emplace(entries_[i].first, std::make_pair(static_cast<int>(i), static_cast<int>(j)));
+      while (j < entries.size() && entries[j].first == entries[i].first) ++j;
+      cells_.emplace(entries[i].first, std::make_pair(static_cast<int>(i), static_cast<int>(j)));
       i = j;
     }
   }
@@ -241,20 +236,24 @@ class BoxGrid {
     const std::size_t count = static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
                               static_cast<std::size_t>(dims_[2]);
     dense_start_.assign(count + 1, 0);
-    const auto each_cell = [&](const auto& f) {
-      for (std::size_t i = 0; i < ranges_.size(); ++i) {
-        const CellRange& r = ranges_[i];
-        if (!filed(r)) continue;
-        for (int x = r.lo[0]; x <= r.hi[0]; ++x)
-          for (int y = r.lo[1]; y <= r.hi[1]; ++y)
-            for (int z = r.lo[2]; z <= r.hi[2]; ++z) f(dense_index(x, y, z), static_cast<int>(i));
-      }
-    };
-    each_cell([&](std::size_t c, int) { ++dense_start_[c + 1]; });
+    each_filed_cell([&](int x, int y, int z, int) { ++dense_start_[dense_index(x, y, z) + 1]; });
     for (std::size_t c = 0; c < count; ++c) dense_start_[c + 1] += dense_start_[c];
     dense_items_.resize(static_cast<std::size_t>(dense_start_[count]));
     std::vector<int> next(dense_start_.begin(), dense_start_.end() - 1);
-    each_cell([&](std::size_t c, int item) { dense_items_[static_cast<std::size_t>(next[c]++)] = item; });
+    each_filed_cell([&](int x, int y, int z, int item) {
+      dense_items_[static_cast<std::size_t>(next[dense_index(x, y, z)]++)] = item;
+    });
+  }
+  /// f(x, y, z, item) for every cell of every filed item, items in order.
+  template <class F>
+  void each_filed_cell(F&& f) const {
+    for (std::size_t i = 0; i < ranges_.size(); ++i) {
+      const CellRange& r = ranges_[i];
+      if (!filed(r)) continue;
+      for (int x = r.lo[0]; x <= r.hi[0]; ++x)
+        for (int y = r.lo[1]; y <= r.hi[1]; ++y)
+          for (int z = r.lo[2]; z <= r.hi[2]; ++z) f(x, y, z, static_cast<int>(i));
+    }
   }
 
   const std::vector<Box>& items_;
@@ -264,8 +263,7 @@ class BoxGrid {
   bool dense_ = false;
   Eigen::Array3i lo_{0, 0, 0}, dims_{0, 0, 0};
   std::vector<int> dense_start_, dense_items_;
-  // Hashed: (cell, item) sorted, and per cell its run in them.
-  std::vector<std::pair<std::uint64_t, int>> entries_;
+  // Hashed: the items sorted by cell, and per cell its run in them.
   std::vector<int> hashed_items_;
   std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;
 };
