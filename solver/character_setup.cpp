@@ -1,5 +1,6 @@
 #include "character_setup.h"
 
+#include "figure_size.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 
@@ -95,8 +96,17 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
   character.motion = std::make_unique<Motion>(std::move(clip));
   const Skeleton& skeleton = character.motion->skeleton;
 
+  // A figure in the wrong units runs to the end with absurd numbers: refused
+  // here, against an adult's size before the body is read, then against it.
+  const auto require_plausible = [&](const FigureScale& figure) {
+    if (!plausible(figure)) throw FigureSizeError(describe(figure) + ": the motion's units look wrong", figure);
+  };
+  require_plausible(figure_scale(skeleton));
   std::optional<SkinnedBody> skinned;
-  if (setup.makehuman) skinned = load_makehuman_body(*setup.makehuman, skeleton);
+  if (setup.makehuman) {
+    skinned = load_makehuman_body(*setup.makehuman, skeleton);
+    require_plausible(figure_scale(skeleton, leg_length(skeleton, skinned->joint_rest)));
+  }
   if (setup.place == GarmentPlacement::makehuman) {
     if (!skinned) throw ArgumentError("a garment placed on MakeHuman's base.obj needs the MakeHuman files");
     // Modelled on base.obj: in the body's A-pose, where the pre-roll starts.

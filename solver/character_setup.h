@@ -122,7 +122,10 @@ void recentre_root(Motion& motion, const Eigen::Vector3d& root_at_start);
 /// the clip as read (`full`, frame 0 kept). Throws ArgumentError for a clip
 /// without frames, without the pelvis joint, too short for skip_first or
 /// motion_start, a radius for a joint the skeleton lacks, or a mesh body
-/// without the MakeHuman files; InputError for unreadable MakeHuman files.
+/// without the MakeHuman files; FigureSizeError (an ArgumentError) for a
+/// figure whose size says its units are wrong (figure_size.h: against an
+/// adult's legs, and the MakeHuman body's when it is given); InputError for
+/// unreadable MakeHuman files.
 Character make_character(const Motion& full, const CharacterSetup& setup, const QuadMesh& garment);
 
 /// The garment as the run uses it: a copy in the skeleton's rest space

@@ -10,6 +10,7 @@
 #include "mesh_ops/uniform_refine.h"
 #include "solver/character_sim.h"
 #include "solver/dynamics_model.h"
+#include "solver/figure_size.h"
 #include "solver/implicit_integrator.h"
 
 #include <gtest/gtest.h>
@@ -84,6 +85,39 @@ TEST(CharacterSetup, RefusesWhatItCannotBuild) {
   Motion no_pelvis = full;
   no_pelvis.skeleton.joints.front().name = "Root";
   EXPECT_THROW(make_character(no_pelvis, CharacterSetup{}, skirt), ArgumentError);
+}
+
+TEST(CharacterSetup, RefusesAFigureInTheWrongUnits) {
+  const QuadMesh skirt = default_skirt();
+  BvhReadOptions centimetres;
+  centimetres.scale = 0.01;  // the walk is in metres
+  const Motion tiny = read_bvh(resource("characters/walk_new.bvh"), centimetres);
+  try {
+    make_character(tiny, CharacterSetup{}, skirt);
+    FAIL() << "a figure with legs of 8 mm was accepted";
+  } catch (const FigureSizeError& error) {
+    EXPECT_NEAR(error.scale.legs, 0.01 * figure_scale(walk().skeleton).legs, 1e-12);
+    EXPECT_FALSE(error.scale.against_body);
+    EXPECT_NE(std::string(error.what()).find("the motion's units look wrong"), std::string::npos) << error.what();
+  }
+  // Against the MakeHuman body's legs: CMU 07_06 read in inches (a toddler's
+  // 0.36 m) passes as a figure, not as that body's skeleton.
+  const std::string clip = shared("motions/cmu_mb/07_06.bvh");
+  if (!std::filesystem::exists(clip)) GTEST_SKIP() << "shared data absent (" << clip << ")";
+  BvhReadOptions inches;
+  inches.scale = 0.0254;
+  const Motion small = read_bvh(clip, inches);
+  EXPECT_NO_THROW(make_character(small, CharacterSetup{}, skirt));
+  CharacterSetup on_body;
+  on_body.makehuman = makehuman_files(shared("bodies/makehuman"));
+  try {
+    make_character(small, on_body, skirt);
+    FAIL() << "a figure with half the MakeHuman body's legs was accepted on it";
+  } catch (const FigureSizeError& error) {
+    EXPECT_TRUE(error.scale.against_body);
+    EXPECT_NEAR(error.scale.expected, 0.81, 0.02) << "the MakeHuman body's legs";
+    EXPECT_NEAR(error.scale.factor(), 0.45, 0.02);
+  }
 }
 
 TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedExactly) {
