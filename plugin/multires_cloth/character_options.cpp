@@ -3,6 +3,7 @@
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/units.h"
 #include "solver/body_capsules.h"
+#include "solver/figure_size.h"
 
 #include <QDir>
 #include <QFileInfo>
@@ -24,11 +25,14 @@ constexpr double kCmuMetresPerUnit = 0.056444;
 
 /// Runs `body`; an InputError or ArgumentError escaping it is rethrown as
 /// the same type with "<label>: " in front, so the error names the option.
+/// A FigureSizeError passes unchanged: loadCharacter words it with the file.
 template <class Body>
 auto naming(const QString& label, Body&& body) -> decltype(body()) {
   const std::string prefix = label.toStdString() + ": ";
   try {
     return body();
+  } catch (const FigureSizeError&) {
+    throw;
   } catch (const InputError& error) {
     throw InputError(prefix + error.what());
   } catch (const ArgumentError& error) {
@@ -44,6 +48,27 @@ QStringList unitNames() {
 double metresPerUnit(const QString& units) {
   if (units == QLatin1String("cmu")) return kCmuMetresPerUnit;
   return metres_per_unit(units.toStdString());
+}
+
+/// "auto": the units are chosen from the clip's figure (resolveMotionUnits).
+const QString kAutoUnits = QStringLiteral("auto");
+
+/// Of unitNames(), the units in which a figure whose legs measure
+/// `legs_in_units` (its file's units) comes nearest (by ratio) to
+/// `expected_legs` metres; `legs` receives that length in metres.
+QString nearestUnits(double legs_in_units, double expected_legs, double* legs = nullptr) {
+  QString best;
+  double best_error = std::numeric_limits<double>::infinity();
+  for (const QString& units : unitNames()) {
+    const double metres = legs_in_units * metresPerUnit(units);
+    const double error = std::abs(std::log(metres / expected_legs));
+    if (error < best_error) {
+      best_error = error;
+      best = units;
+      if (legs) *legs = metres;
+    }
+  }
+  return best;
 }
 
 /// motion.joints: "auto" (a known convention renamed onto CMU names),
@@ -95,8 +120,8 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
     request.motionScale = fields.numberFrom(QStringLiteral("scale"), 1.0, 0.0, true);
     request.motionUnits = QStringLiteral("scale %1").arg(request.motionScale);
   } else {
-    request.motionUnits = fields.choice(QStringLiteral("units"), QStringLiteral("m"), unitNames());
-    request.motionScale = metresPerUnit(request.motionUnits);
+    request.motionUnits = fields.choice(QStringLiteral("units"), QStringLiteral("m"), unitNames() << kAutoUnits);
+    request.motionScale = request.motionUnits == kAutoUnits ? 0.0 : metresPerUnit(request.motionUnits);
   }
   if (fields.has(QStringLiteral("skipFirst"))) {
     if (top.has(QStringLiteral("skipFirst")))
@@ -276,6 +301,8 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
 Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes) {
   const CharacterSetup& setup = request.setup;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
+  if (!(request.motionScale > 0.0))
+    throw ArgumentError("loadCharacter: the motion's units are \"auto\"; resolve them first (resolveMotionUnits)");
   BvhReadOptions read_options;
   read_options.scale = request.motionScale;
   read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
@@ -309,7 +336,67 @@ Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment
     if (full.skeleton.find(name) < 0)
       fail(QStringLiteral("option 'body.radii.%1': the motion's skeleton has no joint of that name")
                .arg(QString::fromStdString(name)));
-  return naming(optionLabel(QStringLiteral("body")), [&] { return make_character(full, setup, garment); });
+  try {
+    return naming(optionLabel(QStringLiteral("body")), [&] { return make_character(full, setup, garment); });
+  } catch (const FigureSizeError& error) {
+    throw InputError(figureRefusal(request, error.scale).toStdString());
+  }
+}
+
+MotionReading readMotion(const QVariant& motion) {
+  MotionReading reading;
+  parseMotion(Fields(QVariantMap{{QStringLiteral("motion"), motion}}, QString(), {QStringLiteral("motion")},
+                     QStringLiteral("motionInfo")),
+              reading.request);
+  reading.request = resolveMotionUnits(reading.request);
+  const QString motion_label = optionLabel(QStringLiteral("motion"));
+  BvhReadOptions read_options;
+  read_options.scale = reading.request.motionScale;
+  reading.clip = naming(motion_label, [&] { return read_bvh(reading.request.motionPath.toStdString(), read_options); });
+  reading.changes = naming(motion_label, [&] { return standardise_clip(reading.clip, reading.request.conventions); });
+  reading.figure = figure_scale(reading.clip.skeleton);
+  if (!plausible(reading.figure)) throw InputError(figureRefusal(reading.request, reading.figure).toStdString());
+  return reading;
+}
+
+QString figureRefusal(const CharacterRequest& request, const FigureScale& figure) {
+  // Said with the file and its units, and the units that would fit.
+  double fitting_legs = 0.0;
+  const QString fitting = nearestUnits(figure.legs / request.motionScale, figure.expected, &fitting_legs);
+  FigureScale refitted = figure;
+  refitted.legs = fitting_legs;
+  const QString hint = fitting != request.motionUnits && plausible(refitted)
+                           ? QStringLiteral("; in '%1' they are %2 m (units \"auto\" picks that)")
+                                 .arg(fitting).arg(fitting_legs, 0, 'f', 2)
+                           : QString();
+  const QString expected = figure.against_body
+                               ? QStringLiteral("%1-%2").arg(1.0 / kBodyFactorLimit, 0, 'f', 2).arg(kBodyFactorLimit)
+                               : QStringLiteral("%1-%2").arg(kReferenceFactorLow).arg(kReferenceFactorHigh);
+  const QString read_in = request.motionUnits.startsWith(QLatin1String("scale"))
+                              ? QStringLiteral("at scale %1 m per unit").arg(request.motionScale)
+                              : QStringLiteral("in units '%1' (%2 m per unit)").arg(request.motionUnits).arg(request.motionScale);
+  return QStringLiteral("%1: %2 read %3: %4; expected %5 times: check the units%6")
+      .arg(optionLabel(QStringLiteral("motion")), QDir::toNativeSeparators(request.motionPath), read_in,
+           QString::fromStdString(describe(figure)), expected, hint);
+}
+
+CharacterRequest resolveMotionUnits(const CharacterRequest& request) {
+  if (request.motionUnits != kAutoUnits) return request;
+  const QString motion_label = optionLabel(QStringLiteral("motion"));
+  BvhReadOptions unscaled;
+  Motion clip = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), unscaled); });
+  naming(motion_label, [&] { return standardise_clip(clip, request.conventions); });
+  const FigureScale figure = figure_scale(clip.skeleton);
+  if (!(figure.legs > 0.0))
+    throw InputError(QStringLiteral("%1: %2 has no legs to measure (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, "
+                                    "after renaming), so units \"auto\" cannot choose; give the units")
+                         .arg(motion_label, QDir::toNativeSeparators(request.motionPath))
+                         .toStdString());
+  CharacterRequest resolved = request;
+  const QString units = nearestUnits(figure.legs, kReferenceLegs);
+  resolved.motionUnits = QStringLiteral("auto: %1").arg(units);
+  resolved.motionScale = metresPerUnit(units);
+  return resolved;
 }
 
 QString bodyTypeName(CharacterBodyKind type) {

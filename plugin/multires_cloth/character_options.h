@@ -9,6 +9,7 @@
 #include "mesh_ops/quad_mesh.h"
 #include "solver/character_setup.h"
 #include "solver/character_sim.h"
+#include "solver/figure_size.h"
 #include "solver/garment_fit.h"
 
 #include <QString>
@@ -21,8 +22,8 @@ namespace mrcloth {
 /// where the motion and the body's cache come from.
 struct CharacterRequest {
   QString motionPath;
-  double motionScale = 1.0;     ///< metres per BVH unit
-  QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01")
+  double motionScale = 1.0;     ///< metres per BVH unit (0 while the units are "auto": resolveMotionUnits)
+  QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01", "auto" / resolved "auto: cm")
   ClipConventions conventions;  ///< motion.joints and motion.axes
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
@@ -38,10 +39,40 @@ QStringList characterOptionKeys();
 /// option); errors name the option.
 CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
 
+/// The request with motion units "auto" resolved: of m, cmu, dm, cm, mm
+/// and inch, the units that give the clip's figure (its joints renamed as
+/// motion.joints says) legs nearest an adult's (figure_size.h), reported as
+/// "auto: cm"; any other request as it is. InputError for a clip without
+/// legs to measure. Reads the BVH.
+CharacterRequest resolveMotionUnits(const CharacterRequest& request);
+
+/// A clip read on its own (multirescloth.motionInfo), as a run on a
+/// character reads it.
+struct MotionReading {
+  CharacterRequest request;  ///< the motion's options, units resolved
+  Motion clip;               ///< read in metres, joints renamed and axes turned; frame 0 kept
+  ClipChanges changes;       ///< what standardise_clip did
+  FigureScale figure;        ///< its legs against an adult's
+};
+
+/// Reads `motion` (simulate's `motion` option: a path or {path, units or
+/// scale, skipFirst, start, joints, axes}) and checks its figure against an
+/// adult's (figure_size.h). Errors name the option; a figure too big or
+/// small for its units is an InputError saying which units would fit.
+MotionReading readMotion(const QVariant& motion);
+
+/// What a figure too big or small for the units it was read in is told:
+/// the option, file, units, its legs against the expected ones, and the
+/// units that would fit.
+QString figureRefusal(const CharacterRequest& request, const FigureScale& figure);
+
 /// Reads the BVH, renames its joints and turns its axes as motion.joints
 /// and motion.axes say (standardise_clip; `changes`, if given, receives what
 /// it did) and builds the character (make_character). Errors name the option they
-/// come from ("option 'motion': <file>:<line>: ...").
+/// come from ("option 'motion': <file>:<line>: ..."); a figure too big or
+/// small for its units is an InputError naming the file, its units and the
+/// units that would fit. `request` must have its units resolved
+/// (resolveMotionUnits).
 Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes = nullptr);
 
 QString bodyTypeName(CharacterBodyKind type);

@@ -558,9 +558,32 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   });
 }
 
+QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
+  return guarded("motionInfo", [&] {
+    const MotionReading reading = readMotion(motion);
+    const Motion& clip = reading.clip;
+    QVariantList joints;
+    for (const Joint& joint : clip.skeleton.joints)
+      if (!joint.end_site) joints.append(QString::fromStdString(joint.name));
+    QVariantMap renamed;
+    for (const auto& [from, to] : reading.changes.renamed) renamed.insert(QString::fromStdString(from), QString::fromStdString(to));
+    return QVariantMap{{QStringLiteral("path"), reading.request.motionPath},
+                       {QStringLiteral("units"), reading.request.motionUnits},
+                       {QStringLiteral("metresPerUnit"), reading.request.motionScale},
+                       {QStringLiteral("joints"), joints},
+                       {QStringLiteral("frames"), static_cast<int>(clip.frames.rows())},
+                       {QStringLiteral("frameTime"), clip.frame_time},
+                       {QStringLiteral("duration"), clip.duration()},
+                       {QStringLiteral("legs"), reading.figure.legs},
+                       {QStringLiteral("legsFactor"), reading.figure.factor()},
+                       {QStringLiteral("jointsRenamed"), renamed},
+                       {QStringLiteral("axesTurned"), QString::fromStdString(reading.changes.turned.describe())}};
+  });
+}
+
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
-  const CharacterRequest& wanted = *request.character;
+  const CharacterRequest wanted = resolveMotionUnits(*request.character);
   ClipChanges changes;
   Character character = loadCharacter(wanted, *input.mesh, &changes);
   const JointRenaming& renamed = changes.renamed;
@@ -797,6 +820,17 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("output file; the extension picks the format"),
         QStringLiteral("{colorBy: \"level\" | \"mode\" | \"curvature\" (mean curvature after extractModes, viridis "
                        "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false}")}},
+      {QStringLiteral("motionInfo(object motion) -> object"),
+       QStringLiteral("Reads a BVH clip as a run on a character would (joints renamed, axes turned, units resolved) "
+                      "and returns path, units (resolved: \"auto: cm\"), metresPerUnit, joints (names, End Sites "
+                      "left out), frames (frame 0 included), frameTime (s), duration (s), legs (m, hip joint to ankle "
+                      "in the rest pose, 0: no legs by CMU names), legsFactor (legs / an adult's 0.79 m), "
+                      "jointsRenamed, axesTurned. A figure whose legs are not 0.4-2 times an adult's is refused "
+                      "(InputError naming the units that would fit): its units look wrong. For checking clips "
+                      "before a long batch."),
+       {QStringLiteral("motion")},
+       {QStringLiteral("simulate's `motion` option: a BVH path or {path, units: \"m\" | \"cmu\" | \"dm\" | "
+                       "\"cm\" | \"mm\" | \"inch\" | \"auto\" = \"m\" or scale, skipFirst, start, joints, axes}")}},
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
@@ -852,7 +886,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "(<prefix>_0000.obj ...) = none, updateObject: bool = false (store the last frame as a new "
             "object)}; lengths in m. On a character (all of these need `motion`; `substeps` is refused): "
             "motion: BVH file or {path, units: \"m\" | \"cmu\" (0.056444 m, CMU files) | \"dm\" | \"cm\" | "
-            "\"mm\" | \"inch\" = \"m\" or scale: metres per unit, skipFirst: bool = true (drop frame 0, "
+            "\"mm\" | \"inch\" | \"auto\" (those giving the figure an adult's legs) = \"m\" or scale: metres "
+            "per unit (a figure whose legs are not within 1.5 times the MakeHuman body's, or 0.4-2 times an "
+            "adult's 0.79 m, is refused: its units look wrong), skipFirst: bool = true (drop frame 0, "
             "CMU's added T-pose), start: s = 0, joints: \"auto\" | \"asIs\" | {name in the file: CMU name} = "
             "\"auto\" (the joints renamed onto the CMU MotionBuilder names the waist, rig and capsules read; auto "
             "knows the DAZ/Poser and Mixamo names; joint names in other options are the renamed ones), axes: \"auto\" | "

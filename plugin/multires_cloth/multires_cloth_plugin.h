@@ -65,6 +65,7 @@ class MultiresClothPlugin : public QObject,
   void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
   QVariantMap simulate(QVariant id, QVariant options = QVariant());
   QVariantMap recordInstance(QVariant id, QVariant options = QVariant());
+  QVariantMap motionInfo(QVariant motion);
   QVariantMap extractModes(QVariant id, QVariant cachePath, QVariant options = QVariant());
   QVariantMap mapModes(QVariant refinedId, QVariant coarseId, QVariant options = QVariant());
   QVariantMap compareResults(QVariant id, QVariant cachePath, QVariant referenceId, QVariant referenceCachePath,

@@ -36,7 +36,8 @@ const USAGE = [
   "                         skin; 0: each pin as the skin under it (body.waistSmoothing; README) [0.02]",
   "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
   "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
-  "  --motion-units U       m, cmu, dm, cm, mm, inch: the BVH files' units [m]",
+  "  --motion-units U       m, cmu, dm, cm, mm, inch, or auto (per file, the units giving an adult's legs):",
+  "                         the BVH files' units [m]",
   "Method:",
   "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
   "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
@@ -73,9 +74,9 @@ const USAGE = [
 
 // --- Options -----------------------------------------------------------------
 
-function pipelineError(message) {
+function pipelineError(message, name = "ArgumentError") {
   const error = new Error("pipeline: " + message);
-  error.name = "ArgumentError";
+  error.name = name;
   return error;
 }
 
@@ -172,7 +173,7 @@ function parseOptions(args) {
         }
         break;
       case "units": options.units = choiceOption(name, text, UNITS); break;
-      case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch"]); break;
+      case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
       case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
       case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
@@ -221,6 +222,16 @@ function checkInputs(options) {
   for (const [name, path] of inputs) {
     if (!core.fileExists(path)) throw pipelineError("option " + name + ": no such file: " + path);
     if (!core.fileReadable(path)) throw pipelineError("option " + name + ": cannot read " + path);
+  }
+  // Every clip read and its figure sized now, not after the instance's hours:
+  // a clip in the wrong units is refused with the units that would fit.
+  for (const [name, path] of inputs.filter(([name]) => name === "--instance" || name === "--test")) {
+    try {
+      multirescloth.motionInfo({path: path, units: options.motionUnits});
+    } catch (error) {
+      throw pipelineError("option " + name + ": " + error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, ""),
+                          error.name);
+    }
   }
 }
 

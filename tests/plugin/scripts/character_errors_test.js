@@ -56,7 +56,23 @@ expectThrows(sim({motion: missing}), "InputError", "option 'motion': ", "no_such
 expectThrows(sim({motion: {path: missing, units: "cmu"}}), "InputError", "option 'motion.path': ", "no such file");
 expectThrows(sim({motion: dataDir + "/grid3x3.obj"}), "InputError", "option 'motion': ", "grid3x3.obj");
 expectThrows(sim({motion: {path: walk, units: "feet"}}), "ArgumentError",
-             "option 'motion.units' must be one of \"m\", \"cmu\", \"dm\", \"cm\", \"mm\", \"inch\", got the string \"feet\"");
+             "option 'motion.units' must be one of \"m\", \"cmu\", \"dm\", \"cm\", \"mm\", \"inch\", \"auto\", got the string \"feet\"");
+// A figure too small or big for its units (the embedded walks are in metres).
+expectThrows(sim({motion: {path: walk, units: "cm"}}), "InputError", "multirescloth.simulate: option 'motion': ",
+             "walk_instance.bvh read in units 'cm' (0.01 m per unit): the figure's legs are 0.01 m long (hip to ankle in "
+             + "its rest pose), 0.01 times an adult's 0.79 m; expected 0.4-2 times: check the units; in 'm' they are "
+             + "0.79 m (units \"auto\" picks that)");
+expectThrows(sim({motion: {path: walk, scale: 100}}), "InputError",
+             "walk_instance.bvh read at scale 100 m per unit: the figure's legs are 79.01 m long",
+             "in 'm' they are 0.79 m");
+expectThrows(record({motion: {path: walk, units: "mm"}, output: tmpDir + "/x.pc2"}), "InputError",
+             "multirescloth.recordInstance: option 'motion': ", "read in units 'mm'");
+expectThrows(() => multirescloth.motionInfo({path: walk, units: "dm"}), "InputError",
+             "multirescloth.motionInfo: option 'motion': ", "read in units 'dm' (0.1 m per unit)", "in 'm' they are 0.79 m");
+expectThrows(() => multirescloth.motionInfo({path: walk, fps: 30}), "ArgumentError", "unknown option 'fps' in option 'motion'");
+expectThrows(() => multirescloth.motionInfo(missing), "InputError", "option 'motion': ", "no such file");
+expectThrows(() => multirescloth.motionInfo({path: dataDir + "/grid3x3.obj", units: "auto"}), "InputError",
+             "option 'motion': ", "grid3x3.obj");
 expectThrows(sim({motion: {path: walk, units: "m", scale: 1}}), "ArgumentError",
              "option 'motion': give either 'units' or 'scale', not both");
 expectThrows(sim({motion: {path: walk, scale: 0}}), "ArgumentError", "option 'motion.scale' must be a number > 0");
@@ -105,6 +121,16 @@ expectThrows(() => multirescloth.recordInstance(99, {}), "ArgumentError", "no ob
 // a hanging-node or out-of-range waist id is refused by the model.
 expectThrows(() => multirescloth.recordInstance(grid, {motion: walk, waist: [99], output: tmpDir + "/grid.pc2"}),
              "ArgumentError", "pinned vertex 99 is out of range");
+
+// motionInfo: the clip as a run reads it, units "auto" resolved.
+const info = multirescloth.motionInfo({path: walk, units: "auto"});
+expectEqual([info.units, info.metresPerUnit, info.joints[0], info.axesTurned, Object.keys(info.jointsRenamed).length],
+            ["auto: m", 1, "Hips", "", 0], "motionInfo of the embedded walk");
+expectAtMost(Math.abs(info.legs - 0.790142), 1e-6, "the mannequin's legs (m)");
+expectAtMost(Math.abs(info.legsFactor - 0.790142 / 0.79), 1e-6, "legs against an adult's");
+expectAtMost(Math.abs(info.duration - (info.frames - 1) * info.frameTime), 1e-12, "duration");
+const autoRun = multirescloth.simulate(skirt, {motion: {path: walk, units: "auto"}, frames: 1, preroll: 0});
+expectEqual(autoRun.motionUnits, "auto: m", "a run's report says the units auto chose");
 
 for (const file of ["x.pc2", "x.obj", "grid.pc2", "grid.obj"])
   if (core.fileExists(tmpDir + "/" + file)) throw new Error("a failed call wrote " + file);

@@ -3,7 +3,8 @@
 // drives the shared skirt on the skinned MakeHuman body and on capsules
 // fitted to it. `motion.joints` "auto" renames its joints onto the CMU
 // names the rig, the waist and the capsules read; "asIs" leaves them, and
-// the run is refused with the way out named. A CMU clip given Mixamo's
+// the run is refused with the way out named. Units "auto" read it in
+// centimetres; in CMU units it is refused. A CMU clip given Mixamo's
 // names, or written Z up, runs as the clip itself. Skipped (exit 77) when
 // ../shared/data is absent. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
@@ -62,6 +63,30 @@ expectEqual([manual.maxStretch, manual.maxPenetration], [reports.mesh.maxStretch
             "a hand-written renaming runs as auto");
 expectEqual(core.filesEqual(tmpDir + "/daz_mesh_by_hand.pc2", tmpDir + "/daz_mesh.pc2"), true, "the same cache");
 
+// Units: "auto" reads the centimetre clip in centimetres (the same run, to
+// the bit); read in CMU units its figure is refused before the run, naming
+// the units that fit, and nothing is written.
+const runIn = (units, output) => {
+  const skirt = core.loadObject(garment, {units: "dm"});
+  try {
+    return multirescloth.simulate(skirt, {motion: {path: daz, units: units}, body: Object.assign({}, files, {type: "mesh"}),
+                                          place: "makehuman", preroll: 0.5, frames: frames, output: output});
+  } finally {
+    core.deleteObject(skirt);
+  }
+};
+const automatic = runIn("auto", tmpDir + "/daz_mesh_auto.pc2");
+expectEqual(automatic.motionUnits, "auto: cm", "auto units on the DAZ clip");
+expectEqual(core.filesEqual(tmpDir + "/daz_mesh_auto.pc2", tmpDir + "/daz_mesh.pc2"), true, "auto runs as cm");
+expectThrows(() => runIn("cmu", tmpDir + "/never.pc2"), "InputError", "option 'motion': ",
+             "16_15_daz.bvh read in units 'cmu' (0.056444 m per unit): the figure's legs are 4.63 m long",
+             "5.9 times an adult's 0.79 m; expected 0.4-2 times", "in 'cm' they are 0.82 m");
+expectEqual(core.fileExists(tmpDir + "/never.pc2"), false, "nothing written for a figure in the wrong units");
+const info = multirescloth.motionInfo({path: daz, units: "auto"});
+expectEqual([info.units, info.metresPerUnit, info.frames, info.joints.length, info.jointsRenamed.lThigh],
+            ["auto: cm", 0.01, 472, 43, "LeftUpLeg"], "motionInfo of the DAZ clip");
+expectAtMost(Math.abs(info.legs - 0.8205), 0.001, "the DAZ figure's legs (m)");
+
 // Left as they are, the names are refused, naming the option that renames them.
 expectThrows(() => run("mesh", "asIs", tmpDir + "/never.pc2"), "InputError", "has no joint 'Hips'",
              "option 'motion.joints'", "{\"hip\": \"Hips\"}");
@@ -94,6 +119,15 @@ const walkRun = (path, output) => {
   }
 };
 const asCmu = walkRun(walk, tmpDir + "/07_06.pc2");
+// In inches the CMU figure has a toddler's legs, plausible alone but not as
+// the MakeHuman body's skeleton: refused against the body.
+expectThrows(() => multirescloth.simulate(core.loadObject(garment, {units: "dm"}), {
+               motion: {path: walk, units: "inch"}, body: Object.assign({}, files, {type: "mesh"}), place: "makehuman",
+               frames: 1, output: tmpDir + "/never.pc2"}),
+             "InputError", "07_06.bvh read in units 'inch' (0.0254 m per unit): the figure's legs are 0.36 m long",
+             "times the MakeHuman body's 0.8", "expected 0.67-1.5 times: check the units; in 'cmu' they are 0.81 m");
+expectEqual(multirescloth.motionInfo({path: walk, units: "inch"}).units, "inch", "alone, a toddler passes");
+expectEqual(core.fileExists(tmpDir + "/never.pc2"), false, "nothing written for a figure in the wrong units");
 const asMixamo = walkRun(tmpDir + "/07_06_mixamo.bvh", tmpDir + "/07_06_mixamo.pc2");
 expectEqual(Object.keys(asCmu.jointsRenamed).length, 0, "CMU names are kept");
 expectEqual([Object.keys(asMixamo.jointsRenamed).length, asMixamo.jointsRenamed["mixamorig:Spine2"]], [31, "Spine1"],

@@ -52,6 +52,11 @@ refused "option --test: .*walk_new.bvh and .*other/walk_new.bvh share the name \
 refused "option --body mesh needs --makehuman DIR" --body mesh
 refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp"
 refused "option --resume takes no value" --resume=yes
+# A clip in the wrong units (the embedded walks are in metres) is refused
+# before any work, with the units that would fit; "auto" is one of the choices.
+refused "InputError: pipeline: option --instance: .*walk_instance.bvh read in units 'cm' \(0.01 m per unit\): the figure's legs are 0.01 m long .* expected 0.4-2 times: check the units; in 'm' they are 0.79 m" \
+  --motion-units cm
+refused "option --motion-units: expected one of m, cmu, dm, cm, mm, inch, auto, got \"feet\"" --motion-units feet
 # An unreadable input (skipped when running as root, who reads everything).
 touch "$tmp/locked.obj" && chmod 000 "$tmp/locked.obj"
 if ! cat "$tmp/locked.obj" > /dev/null 2>&1; then
