@@ -122,6 +122,16 @@ expectThrows(() => multirescloth.recordInstance(99, {}), "ArgumentError", "no ob
 expectThrows(() => multirescloth.recordInstance(grid, {motion: walk, waist: [99], output: tmpDir + "/grid.pc2"}),
              "ArgumentError", "pinned vertex 99 is out of range");
 
+// "auto" needs legs to measure; a clip without them is read as given.
+const legless = tmpDir + "/legless.bvh";
+core.writeTextFile(legless, "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xposition Yposition Zposition\n" +
+                            " End Site\n {\n  OFFSET 0 10 0\n }\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n0 0 0\n0 0 1\n");
+expectThrows(() => multirescloth.motionInfo({path: legless, units: "auto"}), "InputError", "option 'motion': ",
+             "legless.bvh has no legs to measure (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, after renaming), so "
+             + "units \"auto\" cannot choose; give the units");
+expectEqual([multirescloth.motionInfo({path: legless, units: "cm"}).legs, multirescloth.motionInfo(legless).frames],
+            [0, 2], "a clip without legs, units given");
+
 // motionInfo: the clip as a run reads it, units "auto" resolved.
 const info = multirescloth.motionInfo({path: walk, units: "auto"});
 expectEqual([info.units, info.metresPerUnit, info.joints[0], info.axesTurned, Object.keys(info.jointsRenamed).length],
