@@ -360,11 +360,50 @@ int count_self_crossings(const ContactSurface& s, const Positions& x, WorkerPool
   return crossings;
 }
 
+double sheet_neighbourhood(const SelfContactOptions& options) {
+  return options.neighbourhood < 0.0 ? 2.0 * (options.thickness + options.reach) : options.neighbourhood;
+}
+
+std::vector<std::vector<int>> sheet_supports(const DynamicsModel& model, const ContactSurface& surface,
+                                             double radius) {
+  const auto n = static_cast<std::size_t>(model.num_vertices);
+  std::vector<std::vector<int>> adjacent(n);
+  for (const auto& e : surface.edges) {
+    adjacent[static_cast<std::size_t>(e[0])].push_back(e[1]);
+    adjacent[static_cast<std::size_t>(e[1])].push_back(e[0]);
+  }
+  std::vector<std::vector<int>> near(n);
+  std::vector<int> seen(n, -1), reached;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (surface.support[v].empty()) continue;
+    // Breadth first from v, through vertices within radius of it.
+    reached.assign(1, static_cast<int>(v));
+    seen[v] = static_cast<int>(v);
+    for (std::size_t k = 0; k < reached.size(); ++k)
+      for (const int w : adjacent[static_cast<std::size_t>(reached[k])]) {
+        const auto wi = static_cast<std::size_t>(w);
+        if (seen[wi] == static_cast<int>(v) || !((model.rest.row(w) - model.rest.row(static_cast<Eigen::Index>(v))).norm() < radius))
+          continue;
+        seen[wi] = static_cast<int>(v);
+        reached.push_back(w);
+      }
+    std::vector<int>& supports = near[v];
+    for (const int u : reached)
+      supports.insert(supports.end(), surface.support[static_cast<std::size_t>(u)].begin(),
+                      surface.support[static_cast<std::size_t>(u)].end());
+    std::sort(supports.begin(), supports.end());
+    supports.erase(std::unique(supports.begin(), supports.end()), supports.end());
+  }
+  return near;
+}
+
 void SelfContact::precompute(const DynamicsModel& model, const SelfContactOptions& options) {
   if (!(options.thickness >= 0.0) || !std::isfinite(options.thickness))
     throw ArgumentError("self-contact thickness must be >= 0 metres");
   if (!(options.reach >= 0.0) || !std::isfinite(options.reach))
     throw ArgumentError("self-contact reach must be >= 0 metres");
+  if (!std::isfinite(options.neighbourhood))
+    throw ArgumentError("self-contact neighbourhood must be a finite number of metres (< 0: the default)");
   if (options.passes < 1) throw ArgumentError("self-contact passes must be >= 1");
   model_ = &model;
   options_ = options;
@@ -375,6 +414,12 @@ void SelfContact::precompute(const DynamicsModel& model, const SelfContactOption
   // Twice a widened element: of 0.5x, 1x and 2x this was fastest on the
   // MakeHuman trousers (the same pairs, fewer cells visited per query).
   cell_ = 2.0 * (mean_edge_length(surface_, model.rest) + options.thickness + options.reach);
+  near_support_ = sheet_supports(model, surface_, sheet_neighbourhood(options));
+  near_edge_support_.clear();
+  near_edge_support_.reserve(surface_.edges.size());
+  for (const auto& e : surface_.edges)
+    near_edge_support_.push_back(
+        merged({&near_support_[static_cast<std::size_t>(e[0])], &near_support_[static_cast<std::size_t>(e[1])]}));
 }
 
 void SelfContact::gather(const Positions& x0, const Positions& x1) {
@@ -411,7 +456,7 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
 
   const BoxGrid triangles(triangle_boxes, cell_);
   for (int v = 0; v < model_->num_vertices; ++v) {
-    const auto& vertex_support = s.support[static_cast<std::size_t>(v)];
+    const auto& vertex_support = near_support_[static_cast<std::size_t>(v)];  // its sheet's, its own included
     if (vertex_support.empty()) continue;
     triangles.candidates(box_of(x0, x1, {v}, near), [&](int ti) {
       const auto& t = s.triangles[static_cast<std::size_t>(ti)];
@@ -430,7 +475,7 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
     query.lo.array() -= near;
     query.hi.array() += near;
     edges.candidates(query, [&](int other) {  // each pair once, from its lower edge (the widening is symmetric)
-      if (share_support(edge_support[e], edge_support[static_cast<std::size_t>(other)])) return;
+      if (share_support(near_edge_support_[e], edge_support[static_cast<std::size_t>(other)])) return;
       const auto& second = s.edges[static_cast<std::size_t>(other)];
       const EdgeEdge e0 = edge_edge(corner(x0, first[0]), corner(x0, first[1]), corner(x0, second[0]), corner(x0, second[1]));
       const EdgeEdge e1 = edge_edge(corner(x1, first[0]), corner(x1, first[1]), corner(x1, second[0]), corner(x1, second[1]));

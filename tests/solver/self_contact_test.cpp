@@ -11,6 +11,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -229,12 +231,107 @@ TEST(SelfContact, AStripFallingAcrossAnotherIsHeldByItsEdges) {
   EXPECT_LT(without.bottomRows(4).col(1).mean(), 0.5 * (without(10, 1) + without(31, 1)) - 0.05);
 }
 
+// A strip `width` wide along z, its long axis along the polyline `path` in
+// the x-y plane, `across` vertices across: vertex ids row by row (path
+// point by path point).
+QuadMesh strip_along(const std::vector<Eigen::Vector2d>& path, double width, int across) {
+  QuadMesh mesh;
+  for (const Eigen::Vector2d& p : path)
+    for (int j = 0; j < across; ++j) mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), width * j / (across - 1)));
+  const auto vid = [&](int i, int j) { return mesh.vertex_handle(i * across + j); };
+  for (int i = 0; i + 1 < static_cast<int>(path.size()); ++i)
+    for (int j = 0; j + 1 < across; ++j) mesh.add_face(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1));
+  init_forest(mesh);
+  return mesh;
+}
+
+// A hairpin: along x at y = 0 for `length`, round a fold of `gap`, back
+// along x at y = gap; `step` between path points on the straight parts.
+std::vector<Eigen::Vector2d> hairpin(double length, double gap, double step) {
+  std::vector<Eigen::Vector2d> path;
+  const int n = static_cast<int>(std::lround(length / step));
+  for (int i = 0; i <= n; ++i) path.emplace_back(i * step, 0.0);
+  for (int k = 1; k < 4; ++k) {
+    const double a = M_PI * k / 4;  // round the fold, centre (length, gap / 2)
+    path.emplace_back(length + 0.5 * gap * std::sin(a), 0.5 * gap * (1.0 - std::cos(a)));
+  }
+  for (int i = n; i >= 0; --i) path.emplace_back(i * step, gap);
+  return path;
+}
+
+TEST(SheetSupports, OnAFlatGridAreEveryVertexWithinTheBall) {
+  const double h = 0.01;
+  const QuadMesh mesh = test::make_grid(6, 6, h);
+  const DynamicsModel m = build_dynamics(mesh, {});
+  const ContactSurface s = contact_surface(m);
+  for (const double radius : {0.0, 0.5 * h, 1.01 * h, 1.5 * h, 2.3 * h, 4.0 * h}) {
+    const std::vector<std::vector<int>> near = sheet_supports(m, s, radius);
+    for (int v = 0; v < m.num_vertices; ++v) {
+      // The oracle: a flat grid's vertices within a ball of at least one
+      // edge are joined inside it, so all of them (only v in a smaller one).
+      std::vector<int> within{v};
+      for (int u = 0; u < m.num_vertices; ++u)
+        if (u != v && radius >= h && (m.rest.row(u) - m.rest.row(v)).norm() < radius) within.push_back(u);
+      std::sort(within.begin(), within.end());
+      EXPECT_EQ(near[v], within) << "vertex " << v << ", radius " << radius;
+    }
+  }
+}
+
+TEST(SheetSupports, LeaveOutALayerJoinedOnlyFarAlongTheSheet) {
+  // Two layers 2 mm apart, joined by a fold 30 cm away.
+  const QuadMesh mesh = strip_along(hairpin(0.3, 0.002, 0.01), 0.02, 3);
+  const DynamicsModel m = build_dynamics(mesh, {});
+  const ContactSurface s = contact_surface(m);
+  const std::vector<std::vector<int>> near = sheet_supports(m, s, 0.026);
+  const int middle_lower = 15 * 3 + 1;  // x = 0.15, y = 0, the middle of the width
+  for (const int u : near[middle_lower]) {
+    EXPECT_LT(m.rest(u, 1), 1e-12) << "vertex " << u << " of the upper layer";
+    EXPECT_LT((m.rest.row(u) - m.rest.row(middle_lower)).norm(), 0.026);
+  }
+  // Its own layer within the ball: x = 0.13 .. 0.17, three across, and
+  // the neighbours' neighbours across the width (z within 2.6 cm).
+  EXPECT_EQ(near[middle_lower].size(), 5u * 3);
+}
+
+// The point of the neighbourhood: pleats whose faces lie closer than the
+// thickness, joined a few millimetres along the sheet, are one sheet and
+// left alone; the same cloth folded back on itself, joined 30 cm away, is
+// two layers held a thickness apart.
+TEST(SelfContact, APleatIsOneSheetAndAFoldTwoLayers) {
+  const auto moved = [](const QuadMesh& mesh, double neighbourhood) {
+    const DynamicsModel m = build_dynamics(mesh, {});
+    SelfContactOptions options;
+    options.thickness = 0.003;
+    options.neighbourhood = neighbourhood;
+    SelfContact contact;
+    contact.precompute(m, options);
+    Positions q(static_cast<Eigen::Index>(m.free_vertices.size()), 3);
+    for (std::size_t f = 0; f < m.free_vertices.size(); ++f) q.row(static_cast<Eigen::Index>(f)) = m.rest.row(m.free_vertices[f]);
+    contact.gather(m.rest, m.rest);
+    return contact.project(q, Positions::Zero(m.num_vertices, 3));
+  };
+  // Accordion pleats 1.5 mm apart along x, 6 mm deep: neighbouring faces
+  // (6.2 mm wide) 2.9 mm apart, joined within 13 mm.
+  std::vector<Eigen::Vector2d> pleats;
+  for (int i = 0; i < 10; ++i) pleats.emplace_back(0.0015 * i, 0.006 * (i % 2));
+  const QuadMesh pleated = strip_along(pleats, 0.01, 3);
+  EXPECT_GT(moved(pleated, 0.0), 0.0) << "without a neighbourhood the pleats push each other apart";
+  EXPECT_EQ(moved(pleated, -1.0), 0.0) << "the default neighbourhood (26 mm) holds them";
+  const QuadMesh folded = strip_along(hairpin(0.3, 0.002, 0.01), 0.02, 3);
+  EXPECT_NEAR(moved(folded, -1.0), 0.001, 1e-9) << "the layers 2 mm apart are pushed to the 3 mm thickness";
+  // Without it the fold's own elements, a millimetre apart round its bend,
+  // push each other too, and farther.
+  EXPECT_GT(moved(folded, 0.0), 0.002);
+}
+
 TEST(SelfContact, RefusesBadOptions) {
   const DynamicsModel m = build_dynamics(test::make_sheet(3, 0.1), {});
   SelfContact contact;
   EXPECT_THROW(contact.precompute(m, {-0.001, 0.01, 2}), ArgumentError);
   EXPECT_THROW(contact.precompute(m, {0.001, -0.01, 2}), ArgumentError);
   EXPECT_THROW(contact.precompute(m, {0.001, 0.01, 0}), ArgumentError);
+  EXPECT_THROW(contact.precompute(m, {0.001, 0.01, 1, std::numeric_limits<double>::quiet_NaN()}), ArgumentError);
 }
 
 }  // namespace
