@@ -115,9 +115,9 @@ int run_table(int argc, char** argv) {
               w.run.simulation.strain_limit_sweeps, w.run.simulation.limiter_acceleration,
               w.run.simulation.limiter_mass_exponent, bench::solve_description(w.run.simulation).c_str(),
               w.run.simulation.threads);
-  std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %9s | %8s | %8s | %8s | %8s |\n", "garment", "walk", "kind", "vertices",
-              "depth mm", "stretch", "tear mm", "dyn ms/f", "coll ms/f", "faces mm");
-  std::printf("|----------|-------|-----------------|----------|----------|-----------|----------|----------|----------|----------|\n");
+  std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %9s | %8s | %8s | %8s | %8s | %9s |\n", "garment", "walk", "kind",
+              "vertices", "depth mm", "stretch", "tear mm", "dyn ms/f", "coll ms/f", "faces mm", "crossings");
+  std::printf("|----------|-------|-----------------|----------|----------|-----------|----------|----------|----------|----------|-----------|\n");
   std::vector<Result> results;
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& garment : w.garments)
@@ -125,10 +125,10 @@ int run_table(int argc, char** argv) {
       for (const std::string& walk : w.walks) {
         Result r = run(garment, walk, kind, w);
         const SimulationReport& m = r.motion;
-        std::printf("| %-8s | %-5s | %-15s | %8zu | %8.1f | %7.0f %% | %8.1f | %8.1f | %8.1f | %8.1f |%s\n", garment.c_str(),
-                    walk.c_str(), kind.c_str(), r.vertices, 1000.0 * m.max_depth, 100.0 * m.max_stretch,
+        std::printf("| %-8s | %-5s | %-15s | %8zu | %8.1f | %7.0f %% | %8.1f | %8.1f | %8.1f | %8.1f | %9d |%s\n",
+                    garment.c_str(), walk.c_str(), kind.c_str(), r.vertices, 1000.0 * m.max_depth, 100.0 * m.max_stretch,
                     1000.0 * m.max_tear_opening, m.mean_frame.dynamics_ms, m.mean_frame.collision_ms,
-                    1000.0 * m.max_face_depth, m.non_finite ? " NaN!" : "");
+                    1000.0 * m.max_face_depth, m.max_self_crossings, m.non_finite ? " NaN!" : "");
         std::fflush(stdout);
         results.push_back(std::move(r));
       }

@@ -74,21 +74,22 @@ QVariantMap meshCounts(const QuadMesh& mesh) {
           {QStringLiteral("facesPerLevel"), script::toVariantList(faces_per_level(mesh))}};
 }
 
-/// A warning for cloth-cloth contact on a mesh finer than twice its reach
-/// (thickness + reach), empty otherwise: measured on refined garments it
-/// cost 7-20 times the body's collision and tangled the twice-refined skirt
-/// (README, Known limits), so a run asking for it hears so before it starts.
+/// A warning for cloth-cloth contact on a mesh finer than its reach
+/// (thickness + reach), empty otherwise: on the shared garments refined
+/// twice it cost 7-8 times the body's collision and tore the skirt on
+/// capsules (README, Known limits), so a run asking for it hears so before
+/// it starts. Refined once (16-20 mm edges) they run whole.
 QString selfContactWarning(const QString& slot, const QuadMesh& mesh, const SelfContactOptions& contact) {
   if (!(contact.thickness > 0.0) || mesh.n_edges() == 0) return {};
   double sum = 0.0;
   for (const auto edge : mesh.edges()) sum += mesh.calc_edge_length(edge);
   const double mean_edge = sum / static_cast<double>(mesh.n_edges());
   const double reach = contact.thickness + contact.reach;
-  if (mean_edge >= 2.0 * reach) return {};
-  return QStringLiteral("%1: cloth-cloth contact (selfContact) on edges of %2 mm on average, shorter than twice its "
-                        "reach (2 x %3 mm, thickness and gathering reach): on refined garments it has cost 7-20 times "
-                        "the body's collision and more once the cloth tangled, which it has done (README, Known "
-                        "limits); it is meant for coarse garments for now")
+  if (mean_edge >= reach) return {};
+  return QStringLiteral("%1: cloth-cloth contact (selfContact) on edges of %2 mm on average, shorter than its reach "
+                        "(%3 mm, thickness and gathering reach): on garments this fine it has cost 7-8 times the "
+                        "body's collision, and torn the shared skirt refined twice on capsules (README, Known limits); "
+                        "it is meant for garments refined at most once for now")
       .arg(slot).arg(1000.0 * mean_edge, 0, 'f', 1).arg(1000.0 * reach, 0, 'f', 1);
 }
 
@@ -872,7 +873,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "where the fine row beside it would put the T-node, not from the coarse edge's chord), "
             "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
-            "before the point is checked against the body again), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "
+            "before the point is checked against the body again), selfContact: false | thickness m in [0, 0.02] | "
+            "{thickness, neighbourhood: m >= 0 = 2 (thickness + 0.01)} = false (cloth-cloth contact: layers kept "
+            "that far apart; cloth joined at rest within the neighbourhood along the sheet is one sheet, never in "
+            "contact, so folds with less cloth than that between their layers are not held), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "
             "core; the same result for any count), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
             "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
             "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 2 (stiffness x "

@@ -243,13 +243,24 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
     const QString label = fields.label(QStringLiteral("selfContact"));
     const QVariant contact = fields.required(QStringLiteral("selfContact"));
     double metres = 0.0;
-    if (contact.typeId() == QMetaType::Bool) {
-      if (contact.toBool()) fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got true").arg(label));
+    QVariant thickness = contact;
+    QString thickness_label = label;
+    if (isObjectLike(contact) && contact.typeId() != QMetaType::QVariantList) {
+      // {thickness, neighbourhood}: the sheet's neighbourhood given too.
+      const Fields parts(contact, QStringLiteral("selfContact"),
+                         {QStringLiteral("thickness"), QStringLiteral("neighbourhood")});
+      thickness = parts.required(QStringLiteral("thickness"));
+      thickness_label = parts.label(QStringLiteral("thickness"));
+      sim.self_contact.neighbourhood = parts.numberFrom(QStringLiteral("neighbourhood"), -1.0, 0.0, false);
+    }
+    if (thickness.typeId() == QMetaType::Bool) {
+      if (thickness.toBool())
+        fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got true").arg(thickness_label));
     } else {
-      metres = script::toNumber(contact, label);
+      metres = script::toNumber(thickness, thickness_label);
       if (!(metres >= 0.0 && metres <= 0.02))
         fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got %2")
-                 .arg(label, script::describeValue(contact)));
+                 .arg(thickness_label, script::describeValue(thickness)));
     }
     sim.self_contact.thickness = metres;
   }

@@ -46,6 +46,13 @@ expectThrows(sim({selfContact: 0.05}), "ArgumentError",
 expectThrows(sim({selfContact: -0.001}), "ArgumentError", "option 'selfContact' must be false or a thickness");
 expectThrows(sim({selfContact: true}), "ArgumentError", "option 'selfContact' must be false or a thickness", "got true");
 expectThrows(sim({selfContact: "on"}), "ArgumentError", "option 'selfContact'");
+expectThrows(sim({selfContact: {neighbourhood: 0.02}}), "ArgumentError", "missing option 'selfContact.thickness'");
+expectThrows(sim({selfContact: {thickness: 0.05}}), "ArgumentError",
+             "option 'selfContact.thickness' must be false or a thickness from 0 to 0.02 m, got the number 0.05");
+expectThrows(sim({selfContact: {thickness: 0.003, neighbourhood: -1}}), "ArgumentError",
+             "option 'selfContact.neighbourhood' must be a number >= 0");
+expectThrows(sim({selfContact: {thickness: 0.003, radius: 1}}), "ArgumentError",
+             "unknown option 'radius' in option 'selfContact'", "thickness, neighbourhood");
 expectThrows(sim({gravity: [0, -9.81]}), "ArgumentError", "option 'gravity' must be an array of 3 numbers");
 expectThrows(sim({updateObject: 1}), "ArgumentError", "option 'updateObject' must be true or false, got the number 1");
 expectThrows(sim({tNodeSag: "yes"}), "ArgumentError", "option 'tNodeSag' must be true or false");
