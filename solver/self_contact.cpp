@@ -415,11 +415,7 @@ void SelfContact::precompute(const DynamicsModel& model, const SelfContactOption
   // MakeHuman trousers (the same pairs, fewer cells visited per query).
   cell_ = 2.0 * (mean_edge_length(surface_, model.rest) + options.thickness + options.reach);
   near_support_ = sheet_supports(model, surface_, sheet_neighbourhood(options));
-  near_edge_support_.clear();
-  near_edge_support_.reserve(surface_.edges.size());
-  for (const auto& e : surface_.edges)
-    near_edge_support_.push_back(
-        merged({&near_support_[static_cast<std::size_t>(e[0])], &near_support_[static_cast<std::size_t>(e[1])]}));
+  near_mark_.assign(static_cast<std::size_t>(model.num_vertices), -1);
 }
 
 void SelfContact::gather(const Positions& x0, const Positions& x1) {
@@ -454,14 +450,28 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
   };
   const auto corner = [](const Positions& x, int v) -> Vec3 { return x.row(v).transpose(); };
 
+  // The query's sheet neighbourhood (its own support included) marked with
+  // a tag of its own, so a candidate's supports are looked up, not merged
+  // (on the skirt refined twice a neighbourhood holds about 90 vertices).
+  int tag = 0;
+  const auto mark_near = [&](int v) {
+    for (const int u : near_support_[static_cast<std::size_t>(v)]) near_mark_[static_cast<std::size_t>(u)] = tag;
+  };
+  const auto near_query = [&](const std::vector<int>& support) {
+    return std::any_of(support.begin(), support.end(),
+                       [&](int u) { return near_mark_[static_cast<std::size_t>(u)] == tag; });
+  };
+  std::fill(near_mark_.begin(), near_mark_.end(), -1);
+
   const BoxGrid triangles(triangle_boxes, cell_);
   for (int v = 0; v < model_->num_vertices; ++v) {
-    const auto& vertex_support = near_support_[static_cast<std::size_t>(v)];  // its sheet's, its own included
-    if (vertex_support.empty()) continue;
+    if (near_support_[static_cast<std::size_t>(v)].empty()) continue;
+    ++tag;
+    mark_near(v);
     triangles.candidates(box_of(x0, x1, {v}, near), [&](int ti) {
       const auto& t = s.triangles[static_cast<std::size_t>(ti)];
       for (int k = 0; k < 3; ++k)
-        if (share_support(vertex_support, s.support[t[k]])) return;
+        if (near_query(s.support[t[k]])) return;
       const OverTriangle o0 = over_triangle(corner(x0, v), corner(x0, t[0]), corner(x0, t[1]), corner(x0, t[2]));
       const OverTriangle o1 = over_triangle(corner(x1, v), corner(x1, t[0]), corner(x1, t[1]), corner(x1, t[2]));
       if (!o0.valid || !o1.valid) return;
@@ -474,8 +484,11 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
     Box query = edge_boxes[e];
     query.lo.array() -= near;
     query.hi.array() += near;
+    ++tag;
+    mark_near(first[0]);
+    mark_near(first[1]);
     edges.candidates(query, [&](int other) {  // each pair once, from its lower edge (the widening is symmetric)
-      if (share_support(near_edge_support_[e], edge_support[static_cast<std::size_t>(other)])) return;
+      if (near_query(edge_support[static_cast<std::size_t>(other)])) return;
       const auto& second = s.edges[static_cast<std::size_t>(other)];
       const EdgeEdge e0 = edge_edge(corner(x0, first[0]), corner(x0, first[1]), corner(x0, second[0]), corner(x0, second[1]));
       const EdgeEdge e1 = edge_edge(corner(x1, first[0]), corner(x1, first[1]), corner(x1, second[0]), corner(x1, second[1]));
