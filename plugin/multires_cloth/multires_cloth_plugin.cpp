@@ -874,7 +874,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
             "before the point is checked against the body again), selfContact: false | thickness m in [0, 0.02] | "
-            "{thickness, neighbourhood: m >= 0 = 2 (thickness + 0.01)} = false (cloth-cloth contact: layers kept "
+            "{thickness, neighbourhood: m in [0, 0.1] = 2 (thickness + 0.01)} = false (cloth-cloth contact: layers kept "
             "that far apart; cloth joined at rest within the neighbourhood along the sheet is one sheet, never in "
             "contact, so folds with less cloth than that between their layers are not held), threads: int >= 0 = 1 (threads resolving collisions; 0: one per "
             "core; the same result for any count), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "

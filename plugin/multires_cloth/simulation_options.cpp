@@ -251,7 +251,13 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
                          {QStringLiteral("thickness"), QStringLiteral("neighbourhood")});
       thickness = parts.required(QStringLiteral("thickness"));
       thickness_label = parts.label(QStringLiteral("thickness"));
+      // Up to 10 cm: beyond, a garment's own folds are no longer held, and
+      // each vertex's neighbourhood (kept for the run) grows with its square.
       sim.self_contact.neighbourhood = parts.numberFrom(QStringLiteral("neighbourhood"), -1.0, 0.0, false);
+      if (sim.self_contact.neighbourhood > 0.1)
+        fail(QStringLiteral("%1 must be at most 0.1 m, got %2")
+                 .arg(parts.label(QStringLiteral("neighbourhood")))
+                 .arg(sim.self_contact.neighbourhood));
     }
     if (thickness.typeId() == QMetaType::Bool) {
       if (thickness.toBool())

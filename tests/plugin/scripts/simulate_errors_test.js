@@ -51,6 +51,8 @@ expectThrows(sim({selfContact: {thickness: 0.05}}), "ArgumentError",
              "option 'selfContact.thickness' must be false or a thickness from 0 to 0.02 m, got the number 0.05");
 expectThrows(sim({selfContact: {thickness: 0.003, neighbourhood: -1}}), "ArgumentError",
              "option 'selfContact.neighbourhood' must be a number >= 0");
+expectThrows(sim({selfContact: {thickness: 0.003, neighbourhood: 0.5}}), "ArgumentError",
+             "option 'selfContact.neighbourhood' must be at most 0.1 m, got 0.5");
 expectThrows(sim({selfContact: {thickness: 0.003, radius: 1}}), "ArgumentError",
              "unknown option 'radius' in option 'selfContact'", "thickness, neighbourhood");
 expectThrows(sim({gravity: [0, -9.81]}), "ArgumentError", "option 'gravity' must be an array of 3 numbers");
