@@ -582,6 +582,90 @@ QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
   });
 }
 
+namespace {
+
+/// A line for the log, kept until the slot emits it.
+struct LogLine {
+  Logtype type;
+  QString text;
+};
+
+/// What reading the clip changed (axes turned, joints renamed).
+std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest& wanted, const ClipChanges& changes) {
+  std::vector<LogLine> lines;
+  const JointRenaming& renamed = changes.renamed;
+  if (!changes.turned.identity())
+    lines.push_back({LOGINFO, QStringLiteral("%1: %2 stands upright with its axes turned (%3)")
+                          .arg(slot, QFileInfo(wanted.motionPath).fileName(),
+                               QString::fromStdString(changes.turned.describe()))});
+  if (!renamed.empty())
+    lines.push_back({LOGINFO, QStringLiteral("%1: %2 joints of %3 renamed onto CMU names (%4 -> %5, ...)")
+                          .arg(slot).arg(renamed.size()).arg(QFileInfo(wanted.motionPath).fileName(),
+                                                             QString::fromStdString(renamed.begin()->first),
+                                                             QString::fromStdString(renamed.begin()->second))});
+  return lines;
+}
+
+/// What a script author can act on before waiting for the run (cloth-cloth
+/// contact on a fine mesh, a waist far from the pelvis, shrunk capsules, a
+/// tube garment too narrow for the motion, a motion shorter than the
+/// frames), into `lines`; returns the report's `fit` (empty for a garment
+/// that is not a tube).
+QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest& request, const Character& character,
+                                    const CharacterRunOptions& run, const DynamicsModel& model,
+                                    const QuadMesh& garment, std::vector<LogLine>& lines) {
+  const QString contact_warning = selfContactWarning(slot, garment, request.simulation.self_contact);
+  if (!contact_warning.isEmpty()) lines.push_back({LOGWARN, contact_warning});
+  const Motion& motion = *character.motion;
+  const int pelvis = motion.skeleton.find(run.pelvis_joint);
+  if (!model.pinned_vertices.empty()) {
+    Eigen::Vector3d waist = Eigen::Vector3d::Zero();
+    for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
+    waist /= static_cast<double>(model.pinned_vertices.size());
+    const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
+    if (distance > 0.3)
+      lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: the garment "
+                                       "is probably not placed on the character (option 'place': \"makehuman\" for "
+                                       "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
+                            .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint))});
+  }
+  if (character.capsules_shrunk > 0)
+    lines.push_back({LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
+                                     "capsules stand out of the body where it is narrower than a taper)")
+                          .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules)});
+  // A tube garment (two boundary loops: a skirt or dress) too narrow for
+  // the motion cannot stay whole within its material's stretch limit:
+  // said now, with where, rather than found as a tear after the run.
+  QVariantMap fit;
+  if (is_tube_garment(garment)) {
+    const std::vector<HoopLevel> levels = run_hoop_demand(motion, *character.body, run, garment);
+    fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
+    const int worst_level = most_demanding_level(levels);
+    const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
+    if (worst && worst->demand() > request.dynamics.material.stretch_limit && request.character->fitWarning)
+      lines.push_back({LOGWARN, QStringLiteral("%1: the body needs %2 % more girth than the garment has %3 m below its top "
+                                       "(level %4 of %5, output frame %6), and material '%7' stretches %8 % at "
+                                       "most: expect the garment stretched or torn there (a wider garment or a "
+                                       "stretchier material fits; the report's 'fit' has every level)")
+                            .arg(slot).arg(100.0 * worst->demand(), 0, 'f', 0)
+                            .arg(model.rest.col(HoopDemandOptions{}.up_axis).maxCoeff() - worst->height, 0, 'f', 2)
+                            .arg(worst_level + 1).arg(levels.size())
+                            .arg(worst->frame)
+                            .arg(QString::fromStdString(request.dynamics.material.name))
+                            .arg(100.0 * request.dynamics.material.stretch_limit, 0, 'f', 0)});
+  }
+  const double end_time = run.motion_start + run.frames / run.fps;
+  if (end_time > motion.duration() + 0.5 / run.fps)
+    lines.push_back({LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
+                                     "frames hold its final pose")
+                          .arg(slot).arg(motion.duration(), 0, 'f', 2).arg(run.frames).arg(run.motion_start)
+                          .arg(end_time, 0, 'f', 2)});
+
+  return fit;
+}
+
+}  // namespace
+
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
   const CharacterRequest wanted = resolveMotionUnits(*request.character);
@@ -589,15 +673,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   Character character = loadCharacter(wanted, *input.mesh, &changes);
   const JointRenaming& renamed = changes.renamed;
   const Motion& motion = *character.motion;
-  if (!changes.turned.identity())
-    emit log(LOGINFO, QStringLiteral("%1: %2 stands upright with its axes turned (%3)")
-                          .arg(slot, QFileInfo(wanted.motionPath).fileName(),
-                               QString::fromStdString(changes.turned.describe())));
-  if (!renamed.empty())
-    emit log(LOGINFO, QStringLiteral("%1: %2 joints of %3 renamed onto CMU names (%4 -> %5, ...)")
-                          .arg(slot).arg(renamed.size()).arg(QFileInfo(wanted.motionPath).fileName(),
-                                                             QString::fromStdString(renamed.begin()->first),
-                                                             QString::fromStdString(renamed.begin()->second)));
+  for (const LogLine& line : clipChangeLines(slot, wanted, changes)) emit log(line.type, line.text);
 
   // The garment in the skeleton's rest space (on the skinned body, moved
   // clear of it); the object itself is untouched.
@@ -611,52 +687,9 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   ClothState state = rest_state(model);
   const CharacterRunOptions run = character_run_options(character, wanted.setup, model, request.simulation);
 
-  // Warnings a script author can act on before waiting for the run.
-  const QString contact_warning = selfContactWarning(slot, *garment, request.simulation.self_contact);
-  if (!contact_warning.isEmpty()) emit log(LOGWARN, contact_warning);
-  const int pelvis = motion.skeleton.find(run.pelvis_joint);
-  if (!model.pinned_vertices.empty()) {
-    Eigen::Vector3d waist = Eigen::Vector3d::Zero();
-    for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
-    waist /= static_cast<double>(model.pinned_vertices.size());
-    const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
-    if (distance > 0.3)
-      emit log(LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: the garment "
-                                       "is probably not placed on the character (option 'place': \"makehuman\" for "
-                                       "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
-                            .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint)));
-  }
-  if (character.capsules_shrunk > 0)
-    emit log(LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
-                                     "capsules stand out of the body where it is narrower than a taper)")
-                          .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules));
-  // A tube garment (two boundary loops: a skirt or dress) too narrow for
-  // the motion cannot stay whole within its material's stretch limit:
-  // said now, with where, rather than found as a tear after the run.
-  QVariantMap fit;
-  if (is_tube_garment(*garment)) {
-    const std::vector<HoopLevel> levels = run_hoop_demand(motion, *character.body, run, *garment);
-    fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
-    const int worst_level = most_demanding_level(levels);
-    const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
-    if (worst && worst->demand() > request.dynamics.material.stretch_limit && wanted.fitWarning)
-      emit log(LOGWARN, QStringLiteral("%1: the body needs %2 % more girth than the garment has %3 m below its top "
-                                       "(level %4 of %5, output frame %6), and material '%7' stretches %8 % at "
-                                       "most: expect the garment stretched or torn there (a wider garment or a "
-                                       "stretchier material fits; the report's 'fit' has every level)")
-                            .arg(slot).arg(100.0 * worst->demand(), 0, 'f', 0)
-                            .arg(model.rest.col(HoopDemandOptions{}.up_axis).maxCoeff() - worst->height, 0, 'f', 2)
-                            .arg(worst_level + 1).arg(levels.size())
-                            .arg(worst->frame)
-                            .arg(QString::fromStdString(request.dynamics.material.name))
-                            .arg(100.0 * request.dynamics.material.stretch_limit, 0, 'f', 0));
-  }
-  const double end_time = run.motion_start + run.frames / run.fps;
-  if (end_time > motion.duration() + 0.5 / run.fps)
-    emit log(LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
-                                     "frames hold its final pose")
-                          .arg(slot).arg(motion.duration(), 0, 'f', 2).arg(run.frames).arg(run.motion_start)
-                          .arg(end_time, 0, 'f', 2));
+  std::vector<LogLine> checks;
+  const QVariantMap fit = checkBeforeCharacterRun(slot, request, character, run, model, *garment, checks);
+  for (const LogLine& line : checks) emit log(line.type, line.text);
 
   const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
   std::vector<Positions> frames;  // kept only for an OBJ sequence
