@@ -1,4 +1,6 @@
 #include "garment_io.h"
+
+#include "texture_coords.h"
 #include "mode_painting.h"
 
 #include "atomic_file.h"
@@ -178,6 +180,12 @@ struct TextScan {
   bool binary = false;                  ///< binary OFF/PLY: OpenMesh's values are all there is
   std::vector<OpenMesh::Vec3d> points;  ///< in file order, unscaled
   FaceProblem face_problem;             ///< OBJ only
+  /// OBJ only: the `vt` lines, and per face its corners' (vertex, texture
+  /// coordinate) indices from 0 (-1: the corner names none); `uv_readable`
+  /// false when a corner's texture index could not be read.
+  std::vector<OpenMesh::Vec2d> texcoords;
+  std::vector<std::vector<std::pair<long, long>>> face_corners;
+  bool uv_readable = true;
   /// ASCII OFF without comments and blank lines, to be read instead of the
   /// file: OpenMesh's OFF reader misreads a comment after the header as
   /// element counts (garbage counts, then garbage or very slow reads).
@@ -192,6 +200,16 @@ std::vector<std::string> split_words(const std::string& line) {
 }
 
 std::string strip_comment(const std::string& line) { return line.substr(0, line.find('#')); }
+
+/// A finite number from a whole token, independently of the C locale;
+/// false when the token is not one.
+bool parse_number(const std::string& token, double& value) {
+  const char* begin = token.data();
+  const char* end = token.data() + token.size();
+  if (begin != end && *begin == '+') ++begin;  // from_chars does not take a plus sign
+  const auto [stop, error] = std::from_chars(begin, end, value);
+  return error == std::errc() && stop == end && std::isfinite(value);
+}
 
 /// Parses one coordinate independently of the C locale (a Qt host sets it
 /// from the environment, and strtod would then expect a decimal comma).
@@ -259,6 +277,38 @@ std::string obj_face_issue(const std::vector<std::string>& words, long n_defined
   return {};
 }
 
+/// A face's corners as (vertex, texture coordinate) indices from 0, given
+/// how many of each are defined before it (OBJ's negative indices count
+/// back from there); -1 where a corner names no texture coordinate. A
+/// texture index that cannot be read clears `readable` (the vertex indices
+/// are checked by obj_face_issue).
+std::vector<std::pair<long, long>> obj_face_corners(const std::vector<std::string>& words, long n_vertices,
+                                                    long n_texcoords, bool& readable) {
+  std::vector<std::pair<long, long>> corners;
+  const auto resolve = [](const std::string& text, long defined) {
+    long index = 0;
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, index);
+    if (error != std::errc() || stop != end || index == 0) return -2L;
+    const long resolved = index > 0 ? index - 1 : defined + index;
+    return resolved >= 0 && resolved < defined ? resolved : -2L;
+  };
+  for (std::size_t k = 1; k < words.size(); ++k) {
+    const std::string& word = words[k];
+    const std::size_t slash = word.find('/');
+    const long vertex = resolve(word.substr(0, slash), n_vertices);
+    long texcoord = -1;
+    if (slash != std::string::npos) {
+      const std::size_t next = word.find('/', slash + 1);
+      const std::string text = word.substr(slash + 1, next == std::string::npos ? std::string::npos : next - slash - 1);
+      if (!text.empty()) texcoord = resolve(text, n_texcoords);
+      if (texcoord == -2) readable = false;
+    }
+    corners.emplace_back(vertex, texcoord);
+  }
+  return corners;
+}
+
 TextScan scan_obj(const std::string& path, std::istream& in) {
   TextScan scan;
   long n_faces = 0;
@@ -269,8 +319,15 @@ TextScan scan_obj(const std::string& path, std::istream& in) {
     if (words.empty()) continue;
     if (words[0] == "v") {
       scan.points.push_back(parse_point(path, words, 1, scan.points.size(), at_line(line_number)));
+    } else if (words[0] == "vt") {
+      OpenMesh::Vec2d uv(0.0, 0.0);
+      for (int c = 0; c < 2 && c + 1 < static_cast<int>(words.size()); ++c)
+        if (!parse_number(words[static_cast<std::size_t>(c + 1)], uv[c])) scan.uv_readable = false;
+      scan.texcoords.push_back(uv);
     } else if (words[0] == "f") {
       const long face = n_faces++;
+      scan.face_corners.push_back(obj_face_corners(words, static_cast<long>(scan.points.size()),
+                                                   static_cast<long>(scan.texcoords.size()), scan.uv_readable));
       if (scan.face_problem.found()) continue;
       if (std::string issue = obj_face_issue(words, static_cast<long>(scan.points.size())); !issue.empty())
         scan.face_problem = {face, face_label(face) + at_line(line_number) + issue};
@@ -503,6 +560,35 @@ void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::str
                 std::to_string(mesh.n_faces()) + " faces"));
 }
 
+/// The OBJ's texture coordinates onto the new forest's records (record i is
+/// face i, as init_forest makes them), when every corner of every face has
+/// one and the faces are the file's; otherwise none, with a warning where
+/// the file had some.
+void read_texture_coords(const TextScan& scan, QuadMesh& mesh, std::size_t faces_read, const std::string& path,
+                         std::vector<std::string>& warnings) {
+  if (scan.texcoords.empty()) return;
+  const auto skip = [&](const std::string& why) {
+    warnings.push_back(with_path(path, "its texture coordinates (vt) are not kept: " + why));
+  };
+  if (!scan.uv_readable) return skip("a vt line or a face's texture index could not be read");
+  if (faces_read != mesh.n_faces())
+    return skip("faces were split into quads, and texture coordinates are kept for all-quad meshes only");
+  if (scan.face_corners.size() != mesh.n_faces()) return skip("the file's faces could not be matched to the mesh's");
+  const auto& forest = quadtree(mesh);
+  std::vector<RecordUV> uvs(forest.size());
+  for (std::size_t i = 0; i < forest.size(); ++i) {
+    const auto& corners = scan.face_corners[i];
+    for (int k = 0; k < 4; ++k) {
+      const auto found = std::find_if(corners.begin(), corners.end(),
+                                      [&](const auto& c) { return c.first == forest[i].corners[static_cast<std::size_t>(k)]; });
+      if (found == corners.end() || found->second < 0)
+        return skip("face " + std::to_string(i) + " has a corner without one; expected one at every corner");
+      uvs[i].corner[static_cast<std::size_t>(k)] = scan.texcoords[static_cast<std::size_t>(found->second)];
+    }
+  }
+  set_record_uvs(mesh, std::move(uvs));
+}
+
 }  // namespace
 
 LoadResult load_garment(const std::string& path, const LoadOptions& options) {
@@ -523,6 +609,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   if (*format == Format::om) {
     ensure_layers(mesh);
     ensure_analysis_layers(mesh);
+    ensure_record_uvs(mesh);
   }
 
   CheckingImporter importer(mesh);
@@ -562,8 +649,10 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   // A refined mesh saved by save_mesh: its forest and layers are the truth.
   if (*format == Format::om && !quadtree(mesh).empty()) return result;
 
+  const std::size_t faces_read = mesh.n_faces();
   make_all_quad(mesh, path, result.warnings);
   init_forest(mesh);
+  read_texture_coords(scan, mesh, faces_read, path, result.warnings);
   return result;
 }
 
@@ -584,6 +673,9 @@ struct Surface {
   std::vector<OpenMesh::Vec3d> points;
   std::vector<std::array<unsigned char, 3>> colors;  ///< one per point, or none
   std::vector<std::vector<int>> polygons;
+  /// Per polygon, the texture coordinates of its corners (a vertex on a
+  /// seam has one per side), or none.
+  std::vector<std::vector<OpenMesh::Vec2d>> uvs;
 };
 
 Surface active_surface(const QuadMesh& mesh) {
@@ -597,6 +689,7 @@ Surface active_surface(const QuadMesh& mesh) {
     for (const auto v : f.vertices()) polygon.push_back(v.idx());
     surface.polygons.push_back(std::move(polygon));
   }
+  surface.uvs = active_face_uvs(mesh);
   return surface;
 }
 
@@ -611,10 +704,18 @@ double triangle_area(const OpenMesh::Vec3d& a, const OpenMesh::Vec3d& b, const O
 /// (coloured like the polygon's first vertex).
 void triangulate(Surface& surface) {
   std::vector<std::vector<int>> triangles;
-  for (const std::vector<int>& polygon : surface.polygons) {
+  std::vector<std::vector<OpenMesh::Vec2d>> triangle_uvs;
+  const bool textured = !surface.uvs.empty();
+  for (std::size_t p = 0; p < surface.polygons.size(); ++p) {
+    const std::vector<int>& polygon = surface.polygons[p];
     const std::size_t n = polygon.size();
+    // The triangle of polygon corners i, j, k, with their texture coordinates.
+    const auto add = [&](std::size_t i, std::size_t j, std::size_t k) {
+      triangles.push_back({polygon[i], polygon[j], polygon[k]});
+      if (textured) triangle_uvs.push_back({surface.uvs[p][i], surface.uvs[p][j], surface.uvs[p][k]});
+    };
     if (n == 3) {
-      triangles.push_back(polygon);
+      add(0, 1, 2);
       continue;
     }
     double longest = 0.0;
@@ -636,8 +737,7 @@ void triangulate(Surface& surface) {
       }
     }
     if (best_smallest > sliver) {
-      for (std::size_t k = 1; k + 1 < n; ++k)
-        triangles.push_back({polygon[best_apex], polygon[(best_apex + k) % n], polygon[(best_apex + k + 1) % n]});
+      for (std::size_t k = 1; k + 1 < n; ++k) add(best_apex, (best_apex + k) % n, (best_apex + k + 1) % n);
       continue;
     }
     OpenMesh::Vec3d centre(0.0, 0.0, 0.0);
@@ -645,9 +745,16 @@ void triangulate(Surface& surface) {
     const int c = static_cast<int>(surface.points.size());
     surface.points.push_back(centre / static_cast<double>(n));
     if (!surface.colors.empty()) surface.colors.push_back(surface.colors[static_cast<std::size_t>(polygon[0])]);
-    for (std::size_t k = 0; k < n; ++k) triangles.push_back({polygon[k], polygon[(k + 1) % n], c});
+    OpenMesh::Vec2d uv_centre(0.0, 0.0);
+    if (textured)
+      for (const OpenMesh::Vec2d& uv : surface.uvs[p]) uv_centre += uv / static_cast<double>(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      triangles.push_back({polygon[k], polygon[(k + 1) % n], c});
+      if (textured) triangle_uvs.push_back({surface.uvs[p][k], surface.uvs[p][(k + 1) % n], uv_centre});
+    }
   }
   surface.polygons = std::move(triangles);
+  surface.uvs = std::move(triangle_uvs);
 }
 
 void write_obj(std::ostream& out, const Surface& s) {
@@ -661,9 +768,17 @@ void write_obj(std::ostream& out, const Surface& s) {
     }
     out << '\n';
   }
+  // Texture coordinates one per polygon corner, in order: a seam needs
+  // no special case.
+  for (const auto& polygon : s.uvs)
+    for (const OpenMesh::Vec2d& uv : polygon) out << "vt " << exact(uv[0]) << ' ' << exact(uv[1]) << '\n';
+  std::size_t texcoord = 0;
   for (const std::vector<int>& polygon : s.polygons) {
     out << 'f';
-    for (const int v : polygon) out << ' ' << v + 1;
+    for (const int v : polygon) {
+      out << ' ' << v + 1;
+      if (!s.uvs.empty()) out << '/' << ++texcoord;
+    }
     out << '\n';
   }
 }

@@ -2,6 +2,7 @@
 
 #include "errors.h"
 #include "quadtree_forest.h"
+#include "texture_coords.h"
 
 namespace mrcloth {
 
@@ -83,6 +84,7 @@ QuadSplit QuadRefiner::split(int record) {
   }
   forest[record].active = 0;
   forest[record].children = s.children;
+  split_record_uvs(mesh_, record, s.children);
   return s;
 }
 

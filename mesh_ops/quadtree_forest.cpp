@@ -2,6 +2,7 @@
 
 #include "errors.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 namespace mrcloth {
@@ -34,6 +35,19 @@ void append_edge_interior(const std::unordered_map<std::uint64_t, int>& mids, in
   append_edge_interior(mids, a, m, out);
   out.push_back(m);
   append_edge_interior(mids, m, b, out);
+}
+
+// As append_edge_interior, the place along edge (a, b) of each vertex
+// appended, from ta at a to tb at b.
+void append_edge_interior_params(const std::unordered_map<std::uint64_t, int>& mids, int a, int b, double ta,
+                                 double tb, std::vector<double>& out) {
+  const auto it = mids.find(edge_key(a, b));
+  if (it == mids.end()) return;
+  const int m = it->second;
+  const double tm = 0.5 * (ta + tb);
+  append_edge_interior_params(mids, a, m, ta, tm, out);
+  out.push_back(tm);
+  append_edge_interior_params(mids, m, b, tm, tb, out);
 }
 
 std::vector<int> polygon_of(const std::unordered_map<std::uint64_t, int>& mids, const QuadRecord& q) {
@@ -80,6 +94,29 @@ void init_forest(QuadMesh& mesh) {
     mesh.property(l.parents, v) = OpenMesh::Vec2i(-1, -1);
   }
   mesh.property(l.quadtree) = std::move(forest);
+}
+
+std::vector<std::vector<double>> active_face_boundary_params(const QuadMesh& mesh) {
+  const Layers l = get_layers(mesh);
+  const auto mids = midpoints_from_parents(mesh, l);
+  const auto& forest = mesh.property(l.quadtree);
+  std::vector<std::vector<double>> all;
+  all.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces()) {
+    const QuadRecord& record = forest[static_cast<std::size_t>(mesh.property(l.quad, f))];
+    const std::vector<int> loop = polygon_of(mids, record);
+    std::vector<double> along;
+    for (int k = 0; k < 4; ++k) {
+      along.push_back(k);
+      append_edge_interior_params(mids, record.corners[k], record.corners[(k + 1) % 4], k, k + 1, along);
+    }
+    // In the face's own vertex order, which may start elsewhere on the loop.
+    std::vector<double> params;
+    for (const auto v : f.vertices())
+      params.push_back(along[static_cast<std::size_t>(std::find(loop.begin(), loop.end(), v.idx()) - loop.begin())]);
+    all.push_back(std::move(params));
+  }
+  return all;
 }
 
 std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record) {

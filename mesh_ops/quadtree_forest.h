@@ -10,6 +10,12 @@ namespace mrcloth {
 /// throws ArgumentError naming the first face that is not. Replaces any forest.
 void init_forest(QuadMesh& mesh);
 
+/// Per active face (face order), where each of its vertices (in the face's
+/// own order, as f.vertices() visits them) lies along its record's
+/// boundary: k + t on edge k (corner k to corner k + 1) at fraction t, so
+/// corner k is at k and a T-node at the midpoint k + 0.5.
+std::vector<std::vector<double>> active_face_boundary_params(const QuadMesh& mesh);
+
 /// Vertex loop of an active record as it appears in the mesh: its four corners
 /// with every vertex lying inside its edges (hanging nodes, recursively) inserted.
 std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record);

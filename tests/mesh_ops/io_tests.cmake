@@ -1,2 +1,3 @@
-# io tests (garment_io, units)
+# io tests (garment_io, units, texture coordinates)
 mrcloth_add_gtest(garment_io_test garment_io_test.cpp LIBS mrcloth::mesh_ops)
+mrcloth_add_gtest(texture_coords_test texture_coords_test.cpp LIBS mrcloth::mesh_ops)
