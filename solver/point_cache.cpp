@@ -173,7 +173,7 @@ void append_number(std::string& out, double value) {
   out.append(buffer, error == std::errc() ? end : buffer);
 }
 
-std::string obj_text(const FramePositions& positions, const std::vector<std::vector<int>>& faces) {
+std::string obj_text(const FramePositions& positions, const std::vector<std::vector<int>>& faces, const FaceUVs& uvs) {
   std::string text;
   text.reserve(static_cast<std::size_t>(positions.rows()) * 40 + faces.size() * 24);
   for (Eigen::Index i = 0; i < positions.rows(); ++i) {
@@ -184,11 +184,25 @@ std::string obj_text(const FramePositions& positions, const std::vector<std::vec
     }
     text += '\n';
   }
+  // One texture coordinate per face corner, in order (seams need nothing more).
+  for (const auto& face : uvs)
+    for (const Eigen::Vector2d& uv : face) {
+      text += "vt ";
+      append_number(text, uv.x());
+      text += ' ';
+      append_number(text, uv.y());
+      text += '\n';
+    }
+  std::size_t texcoord = 0;
   for (const std::vector<int>& face : faces) {
     text += 'f';
     for (const int v : face) {
       text += ' ';
       text += std::to_string(v + 1);  // OBJ counts from 1
+      if (!uvs.empty()) {
+        text += '/';
+        text += std::to_string(++texcoord);
+      }
     }
     text += '\n';
   }
@@ -196,7 +210,14 @@ std::string obj_text(const FramePositions& positions, const std::vector<std::vec
 }
 
 void check_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
-                        const std::vector<std::vector<int>>& faces) {
+                        const std::vector<std::vector<int>>& faces, const FaceUVs& uvs) {
+  if (!uvs.empty()) {
+    bool shaped = uvs.size() == faces.size();
+    for (std::size_t f = 0; shaped && f < faces.size(); ++f) shaped = uvs[f].size() == faces[f].size();
+    if (!shaped)
+      throw ArgumentError(prefix + ": texture coordinates for " + std::to_string(uvs.size()) +
+                          " faces, not one per corner of the " + std::to_string(faces.size()) + " faces");
+  }
   const Eigen::Index points = frames.front().rows();
   for (std::size_t k = 1; k < frames.size(); ++k) {
     if (frames[k].rows() != points) {
@@ -374,22 +395,23 @@ FramePositions Pc2Reader::frame(int frame) {
 // OBJ sequences
 
 std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
-                                            const std::vector<std::vector<int>>& faces) {
+                                            const std::vector<std::vector<int>>& faces, const FaceUVs& uvs) {
   std::vector<std::string> paths;
   if (frames.empty()) return paths;
-  check_obj_sequence(prefix, frames, faces);
+  check_obj_sequence(prefix, frames, faces, uvs);
   paths.reserve(frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::string path = sequence_path(prefix, k, frames.size());
-    write_obj(path, frames[k], faces);
+    write_obj(path, frames[k], faces, uvs);
     paths.push_back(path);
   }
   return paths;
 }
 
-void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces) {
-  check_obj_sequence(path, {positions}, faces);
-  const std::string text = obj_text(positions, faces);
+void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces,
+               const FaceUVs& uvs) {
+  check_obj_sequence(path, {positions}, faces, uvs);
+  const std::string text = obj_text(positions, faces, uvs);
   write_file_atomically(path, ".obj", [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));

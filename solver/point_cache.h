@@ -81,15 +81,24 @@ class Pc2Reader {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Texture coordinates per polygon corner (as the polygons' vertex lists),
+/// or empty for none.
+using FaceUVs = std::vector<std::vector<Eigen::Vector2d>>;
+
 /// Writes `frames` as an OBJ sequence `<prefix>_0000.obj`, ... sharing the
-/// faces of `faces` (each a vertex-index polygon, 0-based). Every file is
-/// written atomically. Returns the paths written.
+/// faces of `faces` (each a vertex-index polygon, 0-based) and their corners'
+/// texture coordinates `uvs` (written as vt, if given). Every file is
+/// written atomically. Returns the paths written. Throws ArgumentError for
+/// frames of unequal sizes, a face naming a missing vertex, or uvs not
+/// shaped as the faces.
 std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
-                                            const std::vector<std::vector<int>>& faces);
+                                            const std::vector<std::vector<int>>& faces, const FaceUVs& uvs = {});
 
 /// Writes one OBJ mesh (positions #points x 3, faces as 0-based vertex-index
-/// polygons) atomically: the rest mesh beside a cache. Throws OutputError.
-void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces);
+/// polygons, their corners' texture coordinates if given) atomically: the
+/// rest mesh beside a cache. Throws OutputError.
+void write_obj(const std::string& path, const FramePositions& positions, const std::vector<std::vector<int>>& faces,
+               const FaceUVs& uvs = {});
 
 /// An OBJ file's vertices and polygons (what write_obj writes).
 struct ObjMesh {

@@ -1,5 +1,7 @@
 #include "multires_cloth_plugin.h"
 
+#include "mesh_ops/texture_coords.h"
+
 #include "mesh_ops/adaptive_refine.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
@@ -58,6 +60,18 @@ QString restMeshPath(const std::string& cache_path) {
 
 /// The mesh a cache animates, as OBJ beside it (Blender's Mesh Cache
 /// modifier goes on this mesh); empty when there is no cache.
+/// The active faces' corner texture coordinates for an OBJ sequence (none
+/// for a mesh without them).
+FaceUVs faceUVs(const QuadMesh& mesh) {
+  FaceUVs uvs;
+  for (const auto& face : active_face_uvs(mesh)) {
+    std::vector<Eigen::Vector2d> corners;
+    for (const OpenMesh::Vec2d& uv : face) corners.emplace_back(uv[0], uv[1]);
+    uvs.push_back(std::move(corners));
+  }
+  return uvs;
+}
+
 QString writeRestMesh(const QuadMesh& mesh, const std::string& cache_path) {
   if (cache_path.empty()) return {};
   const QString path = restMeshPath(cache_path);
@@ -334,7 +348,8 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     // Like the PC2 cache, the other outputs exist only for a complete run.
     QStringList obj_files;
     if (complete && !request.objSequence.isEmpty())
-      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*input.mesh)))
+      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*input.mesh),
+                                                      faceUVs(*input.mesh)))
         obj_files << QString::fromStdString(file);
     const QString rest_mesh = complete ? writeRestMesh(*input.mesh, report.cache_path) : QString();
     int result = 0;
@@ -720,7 +735,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // Like the PC2 cache, the other outputs exist only for a complete run.
   QStringList obj_files;
   if (complete && !request.objSequence.isEmpty())
-    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*garment)))
+    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*garment),
+                                                      faceUVs(*garment)))
       obj_files << QString::fromStdString(file);
   const QString rest_mesh = complete ? writeRestMesh(*garment, motion_report.cache_path) : QString();
   QString body_mesh;

@@ -311,6 +311,31 @@ TEST(ObjSequence, WritesNumberedFilesThatLoadBack) {
   }
 }
 
+TEST(ObjSequence, TextureCoordinatesAreOnePerFaceCorner) {
+  const fs::path dir = empty_folder("obj_uv");
+  const std::vector<FramePositions> frames = random_frames(2, 5, 12);
+  const std::vector<std::vector<int>> faces = {{0, 1, 2, 3}, {1, 4, 2}};
+  // Vertices 1 and 2 lie on a seam: another UV in the second face.
+  const FaceUVs uvs = {{{0, 0}, {0.5, 0}, {0.5, 1}, {0, 1}}, {{0.75, 0}, {1, 0.5}, {0.75, 1}}};
+  const std::vector<std::string> paths = write_obj_sequence((dir / "cloth").string(), frames, faces, uvs);
+  for (const std::string& path : paths) {
+    const std::vector<std::string> lines = lines_of(path);
+    ASSERT_EQ(lines.size(), 5u + 7u + 2u) << path;
+    EXPECT_EQ(lines[5], "vt 0 0");
+    EXPECT_EQ(lines[6], "vt 0.5 0");
+    EXPECT_EQ(lines[9], "vt 0.75 0");
+    EXPECT_EQ(lines[11], "vt 0.75 1");
+    EXPECT_EQ(lines[12], "f 1/1 2/2 3/3 4/4");
+    EXPECT_EQ(lines[13], "f 2/5 5/6 3/7");
+    EXPECT_EQ(read_obj(path).faces, faces) << "read back as the same polygons";
+  }
+  expect_error<ArgumentError>([&] { write_obj_sequence((dir / "bad").string(), frames, faces, {uvs[0]}); },
+                              {"texture coordinates for 1 faces", "2 faces"});
+  expect_error<ArgumentError>(
+      [&] { write_obj_sequence((dir / "bad").string(), frames, faces, {uvs[0], {{0, 0}}}); },
+      {"not one per corner"});
+}
+
 TEST(ObjSequence, MoreThan10000FramesWidenTheNumber) {
   const fs::path dir = empty_folder("obj_wide");
   const std::vector<FramePositions> frames(10001, FramePositions::Zero(1, 3));

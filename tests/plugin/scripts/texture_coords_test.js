@@ -1,0 +1,59 @@
+// Texture coordinates reach what a DCC tool loads: the shared trousers (UV
+// seams included) refined once and simulated on the skinned MakeHuman body
+// write their UVs into the cache's rest OBJ and every OBJ of the sequence,
+// one per face corner, and a coarse vertex keeps the UVs the garment file
+// gave it. Skipped (exit 77) without ../shared/data.
+// Arguments: <tests/data> <shared data> <tmp>.
+"use strict";
+const [, sharedDir, tmpDir] = core.scriptArguments();
+core.include("test_asserts.js");
+const {garment, clip, body} = sharedMakeHuman(sharedDir, "male_casualsuit04_pants_on_base.obj", "mesh");
+core.makePath(tmpDir);
+
+// The OBJ's vt lines and, per face, its corners as [vertex, vt] (0-based).
+function readObj(path) {
+  const texcoords = [], faces = [];
+  for (const line of core.readTextFile(path).split("\n")) {
+    const words = line.trim().split(/\s+/);
+    if (words[0] === "vt") texcoords.push([Number(words[1]), Number(words[2])]);
+    if (words[0] === "f")
+      faces.push(words.slice(1).map((corner) => corner.split("/").map((index) => Number(index) - 1)));
+  }
+  return {texcoords, faces};
+}
+// Per vertex, the set of UVs its face corners give it ("u v" strings).
+function uvsByVertex(obj) {
+  const byVertex = new Map();
+  for (const face of obj.faces)
+    for (const [vertex, vt] of face) {
+      if (!byVertex.has(vertex)) byVertex.set(vertex, new Set());
+      byVertex.get(vertex).add(obj.texcoords[vt].join(" "));
+    }
+  return byVertex;
+}
+
+const coarse = core.loadObject(garment, {units: "dm"});
+const fine = multirescloth.refineUniform(coarse, 1);
+const report = multirescloth.simulate(fine, {
+  motion: {path: clip, units: "cmu"}, body: body, place: "makehuman", preroll: 0.1, frames: 2, fitWarning: false,
+  output: tmpDir + "/trousers.pc2", objSequence: tmpDir + "/trousers"});
+expectEqual([report.restMesh, report.objFiles.length], [tmpDir + "/trousers.obj", 2], "rest OBJ and sequence written");
+const source = uvsByVertex(readObj(garment));
+for (const path of [report.restMesh].concat(report.objFiles)) {
+  const obj = readObj(path);
+  const corners = obj.faces.reduce((sum, face) => sum + face.length, 0);
+  expectEqual([obj.texcoords.length, obj.faces.every((face) => face.every(([, vt]) => vt >= 0))], [corners, true],
+              path + ": one vt per face corner");
+  // The coarse vertices come first, in the file's order: each keeps its
+  // UVs (two or more on a seam).
+  const written = uvsByVertex(obj);
+  let checked = 0;
+  for (const [vertex, uvs] of source) {
+    const mine = written.get(vertex);
+    expectEqual([...mine].sort(), [...uvs].map((uv) => uv.split(" ").map(Number).join(" ")).sort(),
+                path + ": vertex " + vertex + "'s UVs");
+    ++checked;
+  }
+  if (checked < 800) throw new Error(path + ": only " + checked + " coarse vertices checked");
+}
+print("texture coordinates: ok");
