@@ -503,7 +503,17 @@ void require_input_file(const std::string& path) {
 /// vertex centroid. Splitting the quads too keeps the result conforming.
 /// Vertices: the input's (same indices), then one midpoint per edge in edge
 /// order, then one centre per face in face order.
-QuadMesh split_into_quads(const QuadMesh& in) {
+/// Where a quad of split_into_quads came from: input face `face`, around
+/// its vertex `corner` (between `previous` and `next` on that face), and
+/// its own vertices (corner, the midpoint towards next, the centre, the
+/// midpoint towards previous).
+struct SplitQuad {
+  int face = -1;
+  int previous = -1, corner = -1, next = -1;
+  std::array<int, 4> vertices{};
+};
+
+QuadMesh split_into_quads(const QuadMesh& in, std::vector<SplitQuad>* origins = nullptr) {
   QuadMesh out;
   out.reserve(in.n_vertices() + in.n_edges() + in.n_faces(), 4 * in.n_edges(), 2 * in.n_edges());
   for (const auto v : in.vertices()) out.add_vertex(in.point(v));
@@ -526,11 +536,14 @@ QuadMesh split_into_quads(const QuadMesh& in) {
       const auto& incoming = sides[(i + sides.size() - 1) % sides.size()];
       const auto& outgoing = sides[i];
       const VertexHandle corner = outgoing.from();
-      const OpenMesh::FaceHandle quad =
-          out.add_face(corner, midpoint[static_cast<std::size_t>(outgoing.edge().idx())],
-                       centre[static_cast<std::size_t>(f.idx())],
-                       midpoint[static_cast<std::size_t>(incoming.edge().idx())]);
+      const VertexHandle corners[4] = {corner, midpoint[static_cast<std::size_t>(outgoing.edge().idx())],
+                                       centre[static_cast<std::size_t>(f.idx())],
+                                       midpoint[static_cast<std::size_t>(incoming.edge().idx())]};
+      const OpenMesh::FaceHandle quad = out.add_face(corners[0], corners[1], corners[2], corners[3]);
       if (!quad.is_valid()) throw Error("split_into_quads: a quad of face " + std::to_string(f.idx()) + " was refused");
+      if (origins)
+        origins->push_back({f.idx(), incoming.from().idx(), corner.idx(), outgoing.to().idx(),
+                            {corners[0].idx(), corners[1].idx(), corners[2].idx(), corners[3].idx()}});
     }
   }
   return out;
@@ -540,8 +553,10 @@ std::string plural(std::size_t n, const std::string& word) {
   return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
 }
 
-/// Makes an all-quad mesh of any mesh, with a warning when it had to split.
-void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::string>& warnings) {
+/// Makes an all-quad mesh of any mesh, with a warning when it had to split;
+/// `origins` receives where each new quad came from (none when nothing was split).
+void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::string>& warnings,
+                   std::vector<SplitQuad>& origins) {
   std::size_t triangles = 0;
   std::size_t ngons = 0;
   for (const auto f : mesh.faces()) {
@@ -551,7 +566,7 @@ void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::str
   }
   if (triangles == 0 && ngons == 0) return;
   const std::size_t before = mesh.n_vertices();
-  mesh = split_into_quads(mesh);
+  mesh = split_into_quads(mesh, &origins);
   warnings.push_back(with_path(
       path, plural(triangles, "triangle") + " and " + plural(ngons, "n-gon") +
                 " (n > 4) found; every face was split into quads at its centre and edge midpoints, so the mesh "
@@ -564,26 +579,59 @@ void make_all_quad(QuadMesh& mesh, const std::string& path, std::vector<std::str
 /// face i, as init_forest makes them), when every corner of every face has
 /// one and the faces are the file's; otherwise none, with a warning where
 /// the file had some.
-void read_texture_coords(const TextScan& scan, QuadMesh& mesh, std::size_t faces_read, const std::string& path,
+void read_texture_coords(const TextScan& scan, QuadMesh& mesh, std::size_t faces_read,
+                         const std::vector<SplitQuad>& split, const std::string& path,
                          std::vector<std::string>& warnings) {
   if (scan.texcoords.empty()) return;
   const auto skip = [&](const std::string& why) {
     warnings.push_back(with_path(path, "its texture coordinates (vt) are not kept: " + why));
   };
   if (!scan.uv_readable) return skip("a vt line or a face's texture index could not be read");
-  if (faces_read != mesh.n_faces())
-    return skip("faces were split into quads, and texture coordinates are kept for all-quad meshes only");
-  if (scan.face_corners.size() != mesh.n_faces()) return skip("the file's faces could not be matched to the mesh's");
+  if (scan.face_corners.size() != faces_read) return skip("the file's faces could not be matched to the mesh's");
+  // The UV file face `face` gives its corner at vertex `vertex` (false: none).
+  const auto uv_at = [&](std::size_t face, int vertex, OpenMesh::Vec2d& uv) {
+    const auto& corners = scan.face_corners[face];
+    const auto found = std::find_if(corners.begin(), corners.end(), [&](const auto& c) { return c.first == vertex; });
+    if (found == corners.end() || found->second < 0) return false;
+    uv = scan.texcoords[static_cast<std::size_t>(found->second)];
+    return true;
+  };
   const auto& forest = quadtree(mesh);
   std::vector<RecordUV> uvs(forest.size());
   for (std::size_t i = 0; i < forest.size(); ++i) {
-    const auto& corners = scan.face_corners[i];
+    // Per quad vertex, its UV: the file's, or (a quad of a split face) the
+    // mean of its face's corners' at an edge midpoint or the centre, as its
+    // position was made.
+    std::array<std::pair<int, OpenMesh::Vec2d>, 4> known;
+    bool complete = true;
+    if (split.empty()) {
+      for (int k = 0; k < 4; ++k) {
+        const int v = forest[i].corners[static_cast<std::size_t>(k)];
+        known[static_cast<std::size_t>(k)].first = v;
+        complete = complete && uv_at(i, v, known[static_cast<std::size_t>(k)].second);
+      }
+    } else {
+      const SplitQuad& q = split[i];
+      const auto face = static_cast<std::size_t>(q.face);
+      OpenMesh::Vec2d previous, corner, next, centre(0.0, 0.0);
+      complete = uv_at(face, q.corner, corner) && uv_at(face, q.previous, previous) && uv_at(face, q.next, next);
+      const auto& corners = scan.face_corners[face];
+      for (const auto& c : corners) {
+        OpenMesh::Vec2d uv;
+        complete = complete && uv_at(face, static_cast<int>(c.first), uv);
+        centre += uv / static_cast<double>(corners.size());
+      }
+      known = {{{q.vertices[0], corner}, {q.vertices[1], 0.5 * (corner + next)}, {q.vertices[2], centre},
+                {q.vertices[3], 0.5 * (corner + previous)}}};
+    }
+    if (!complete)
+      return skip("face " + std::to_string(split.empty() ? i : static_cast<std::size_t>(split[i].face)) +
+                  " has a corner without one; expected one at every corner");
     for (int k = 0; k < 4; ++k) {
-      const auto found = std::find_if(corners.begin(), corners.end(),
-                                      [&](const auto& c) { return c.first == forest[i].corners[static_cast<std::size_t>(k)]; });
-      if (found == corners.end() || found->second < 0)
-        return skip("face " + std::to_string(i) + " has a corner without one; expected one at every corner");
-      uvs[i].corner[static_cast<std::size_t>(k)] = scan.texcoords[static_cast<std::size_t>(found->second)];
+      const int v = forest[i].corners[static_cast<std::size_t>(k)];
+      const auto at = std::find_if(known.begin(), known.end(), [&](const auto& entry) { return entry.first == v; });
+      if (at == known.end()) return skip("the file's faces could not be matched to the mesh's");
+      uvs[i].corner[static_cast<std::size_t>(k)] = at->second;
     }
   }
   set_record_uvs(mesh, std::move(uvs));
@@ -650,9 +698,10 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   if (*format == Format::om && !quadtree(mesh).empty()) return result;
 
   const std::size_t faces_read = mesh.n_faces();
-  make_all_quad(mesh, path, result.warnings);
+  std::vector<SplitQuad> split;
+  make_all_quad(mesh, path, result.warnings, split);
   init_forest(mesh);
-  read_texture_coords(scan, mesh, faces_read, path, result.warnings);
+  read_texture_coords(scan, mesh, faces_read, split, path, result.warnings);
   return result;
 }
 

@@ -158,15 +158,32 @@ TEST(TextureCoords, AnOmFileKeepsThemAndAMeshWithoutThemHasNone) {
   for (std::string line; std::getline(in, line);) EXPECT_NE(line.rfind("vt", 0), 0u) << line;
 }
 
+// A triangle and a pentagon are split into quads at their centres and edge
+// midpoints; their UVs (here the points' x, y) are split the same way.
+TEST(TextureCoords, FacesSplitIntoQuadsSplitTheirUvsAlike) {
+  const LoadResult split = load_garment(scratch(
+      "mixed.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0.5 0\nv 1.5 1.5 0\nv 0.5 2 0\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\nvt 2 0.5\nvt 1.5 1.5\nvt 0.5 2\n"
+      "f 1/1 2/2 3/3\nf 2/2 4/4 5/5 6/6 3/3\n"));
+  ASSERT_TRUE(has_texture_coords(split.mesh));
+  EXPECT_EQ(quadtree(split.mesh).size(), 3u + 5u);
+  QuadMesh mesh = split.mesh;
+  uniform_refine(mesh, 2);
+  const auto& forest = quadtree(mesh);
+  const auto& uvs = record_uvs(mesh);
+  for (std::size_t r = 0; r < forest.size(); ++r)
+    for (int k = 0; k < 4; ++k) {
+      const OpenMesh::Vec3d p = mesh.point(mesh.vertex_handle(forest[r].corners[static_cast<std::size_t>(k)]));
+      EXPECT_LT((uvs[r].corner[static_cast<std::size_t>(k)] - OpenMesh::Vec2d(p[0], p[1])).norm(), 1e-12)
+          << "record " << r << " corner " << k;
+    }
+}
+
 TEST(TextureCoords, UvsThatCannotBeKeptAreDroppedWithAWarning) {
   const auto warning_of = [](const LoadResult& loaded) {
     return loaded.warnings.empty() ? std::string() : loaded.warnings.back();
   };
-  // A triangle is split into quads: the file's UVs no longer fit the faces.
-  const LoadResult split = load_garment(scratch("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"));
-  EXPECT_FALSE(has_texture_coords(split.mesh));
-  EXPECT_NE(warning_of(split).find("texture coordinates (vt) are not kept: faces were split into quads"),
-            std::string::npos) << warning_of(split);
   // A corner without one.
   const LoadResult partial =
       load_garment(scratch("partial.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3 4\n"));
