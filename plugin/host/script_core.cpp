@@ -7,6 +7,7 @@
 #include "mesh_ops/lumped_mass.h"
 #include "mesh_ops/mode_layer.h"
 #include "mesh_ops/quad_mesh.h"
+#include "mesh_ops/texture_coords.h"
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
@@ -132,6 +133,7 @@ QVariantMap ScriptCore::objectInfo(QVariant id) {
         {QStringLiteral("verticesPerLevel"), script::toVariantList(vertices_per_level(mesh))},
         {QStringLiteral("verticesPerMode"), script::toVariantList(verticesPerMode(mesh))},
         {QStringLiteral("maxLevel"), highestLevel(faces_by_level)},
+        {QStringLiteral("textureCoordinates"), has_texture_coords(mesh)},
         {QStringLiteral("bbox"), boundingBox(mesh)}};
   });
 }
@@ -306,6 +308,7 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
       {QStringLiteral("objectInfo(int id) -> object"),
        QStringLiteral("Returns {id, name, path, vertices, faces, hangingNodes, area (m^2), arealDensity (kg/m^2), "
                       "totalMass (kg), facesPerLevel, verticesPerLevel, verticesPerMode, maxLevel, "
+                      "textureCoordinates (bool: UVs from the file, carried through refinement into OBJs written), "
                       "bbox: {min: [x, y, z], max: [x, y, z]} (m)}. Per-level lists: element L = level L "
                       "(coarse = 1, element 0 unused); verticesPerMode: element m = mode m."),
        {QStringLiteral("id")},

@@ -34,6 +34,10 @@ function uvsByVertex(obj) {
 
 const coarse = core.loadObject(garment, {units: "dm"});
 const fine = multirescloth.refineUniform(coarse, 1);
+expectEqual([core.objectInfo(coarse).textureCoordinates, core.objectInfo(fine).textureCoordinates], [true, true],
+            "objectInfo says the garment and its refinement have UVs");
+expectEqual(core.objectInfo(core.loadObject(core.resourcePath() + "/garments/default_skirt.obj")).textureCoordinates,
+            false, "the embedded skirt has none");
 const report = multirescloth.simulate(fine, {
   motion: {path: clip, units: "cmu"}, body: body, place: "makehuman", preroll: 0.1, frames: 2, fitWarning: false,
   output: tmpDir + "/trousers.pc2", objSequence: tmpDir + "/trousers"});
