@@ -1,11 +1,10 @@
 #include "garment_io.h"
-
-#include "texture_coords.h"
 #include "mode_painting.h"
 
 #include "atomic_file.h"
 #include "errors.h"
 #include "quadtree_forest.h"
+#include "texture_coords.h"
 #include "units.h"
 
 // MeshIO.hh pulls in the reader and writer modules, which register
@@ -499,10 +498,6 @@ void require_input_file(const std::string& path) {
     throw InputError(with_path(path, "the file is empty; expected a quad mesh"));
 }
 
-/// One midpoint split of every face: an n-gon becomes n quads around its
-/// vertex centroid. Splitting the quads too keeps the result conforming.
-/// Vertices: the input's (same indices), then one midpoint per edge in edge
-/// order, then one centre per face in face order.
 /// Where a quad of split_into_quads came from: input face `face`, around
 /// its vertex `corner` (between `previous` and `next` on that face), and
 /// its own vertices (corner, the midpoint towards next, the centre, the
@@ -513,6 +508,11 @@ struct SplitQuad {
   std::array<int, 4> vertices{};
 };
 
+/// One midpoint split of every face: an n-gon becomes n quads around its
+/// vertex centroid. Splitting the quads too keeps the result conforming.
+/// Vertices: the input's (same indices), then one midpoint per edge in edge
+/// order, then one centre per face in face order. `origins`, if given,
+/// receives each new quad's origin, in face order.
 QuadMesh split_into_quads(const QuadMesh& in, std::vector<SplitQuad>* origins = nullptr) {
   QuadMesh out;
   out.reserve(in.n_vertices() + in.n_edges() + in.n_faces(), 4 * in.n_edges(), 2 * in.n_edges());
