@@ -30,6 +30,11 @@ using Eigen::Vector3d;
 struct ObjData {
   std::vector<Vector3d> vertices;            ///< every 'v' line, file units
   std::vector<std::vector<int>> group_faces;  ///< 0-based vertex indices of the faces in the group
+  std::vector<Eigen::Vector2d> texcoords;     ///< every 'vt' line
+  /// Per group face, its corners' 0-based texcoord indices; empty when some
+  /// corner has none or a 'vt' could not be read (the body is drawn untextured).
+  std::vector<std::vector<int>> group_face_uvs;
+  bool uvs_complete = true;
 };
 
 std::vector<std::string_view> split_words(std::string_view line) {
@@ -70,12 +75,33 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
           obj_error(path, line, "vertex coordinate \"" + std::string(word) + "\" is not a finite number", "v x y z");
       }
       obj.vertices.push_back(v);
+    } else if (words[0] == "vt") {
+      Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+      for (int k = 0; k < 2 && static_cast<std::size_t>(k) + 1 < words.size(); ++k) {
+        const std::string_view word = words[static_cast<std::size_t>(k) + 1];
+        const auto result = std::from_chars(word.data(), word.data() + word.size(), uv(k));
+        if (result.ec != std::errc() || result.ptr != word.data() + word.size()) obj.uvs_complete = false;
+      }
+      obj.texcoords.push_back(uv);
     } else if (words[0] == "g" || words[0] == "o") {
       in_group = std::find(words.begin() + 1, words.end(), group) != words.end();
     } else if (words[0] == "f" && in_group) {
       if (words.size() < 4) obj_error(path, line, "a face with fewer than 3 vertices", "f v1 v2 v3 ...");
-      std::vector<int> face;
+      std::vector<int> face, face_uvs;
       for (std::size_t k = 1; k < words.size(); ++k) {
+        // The corner's texture coordinate: between the first and second '/'.
+        const std::size_t slash = words[k].find('/');
+        long uv_index = 0;
+        if (slash != std::string_view::npos) {
+          const std::string_view rest = words[k].substr(slash + 1);
+          const std::string_view uv_text = rest.substr(0, rest.find('/'));
+          const auto parsed = std::from_chars(uv_text.data(), uv_text.data() + uv_text.size(), uv_index);
+          if (parsed.ec != std::errc() || parsed.ptr != uv_text.data() + uv_text.size()) uv_index = 0;
+        }
+        const long uv_resolved = uv_index > 0 ? uv_index - 1 : static_cast<long>(obj.texcoords.size()) + uv_index;
+        if (uv_index == 0 || uv_resolved < 0 || uv_resolved >= static_cast<long>(obj.texcoords.size()))
+          obj.uvs_complete = false;
+        face_uvs.push_back(static_cast<int>(uv_resolved));
         const std::string_view word = words[k].substr(0, words[k].find('/'));
         long index = 0;
         const auto result = std::from_chars(word.data(), word.data() + word.size(), index);
@@ -87,6 +113,7 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
         face.push_back(static_cast<int>(resolved));
       }
       obj.group_faces.push_back(std::move(face));
+      obj.group_face_uvs.push_back(std::move(face_uvs));
       face_lines.push_back(line);
     }
   }
@@ -420,11 +447,17 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
 
   SkinnedBody body;
   body.obj_offset = offset;
-  for (const auto& face : obj.group_faces) {
+  for (std::size_t f = 0; f < obj.group_faces.size(); ++f) {
+    const auto& face = obj.group_faces[f];
     // Quads (and larger polygons) as fans from their first corner.
     for (std::size_t k = 1; k + 1 < face.size(); ++k) {
       body.triangles.emplace_back(body_index[static_cast<std::size_t>(face[0])], body_index[static_cast<std::size_t>(face[k])],
                                   body_index[static_cast<std::size_t>(face[k + 1])]);
+      if (obj.uvs_complete) {
+        const auto& uv = obj.group_face_uvs[f];
+        const auto at = [&](std::size_t corner) { return obj.texcoords[static_cast<std::size_t>(uv[corner])]; };
+        body.triangle_uvs.push_back({at(0), at(k), at(k + 1)});
+      }
     }
   }
 
@@ -645,6 +678,7 @@ SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton) {
   const std::vector<int> hand = hand_vertices(body, skeleton);
   SkinnedBody out = body;
   out.triangles.clear();
+  out.triangle_uvs.clear();  // a body for collisions: drawn from the body with its hands
   for (const Eigen::Vector3i& t : body.triangles)
     if (hand[static_cast<std::size_t>(t[0])] < 0 && hand[static_cast<std::size_t>(t[1])] < 0 &&
         hand[static_cast<std::size_t>(t[2])] < 0)

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <array>
 #include <vector>
 
 namespace mrcloth {
@@ -19,6 +20,9 @@ namespace mrcloth {
 struct SkinnedBody {
   Eigen::MatrixX3d rest_vertices;                       ///< #V x 3, metres: the body in the skeleton's rest (T-)pose
   std::vector<Eigen::Vector3i> triangles;               ///< the body's quads split into triangles
+  /// Per triangle, its corners' texture coordinates (the body file's `vt`);
+  /// empty when the file has none, or for a body made for collisions only.
+  std::vector<std::array<Eigen::Vector2d, 3>> triangle_uvs;
   std::vector<std::vector<std::pair<int, double>>> weights;  ///< per vertex (skeleton joint, weight), weights sum to 1
   /// Per skeleton joint, the point its bone turns about in rest space
   /// (metres): the body keeps its own proportions, so these are the mesh's

@@ -102,8 +102,15 @@ void append_surface(BodySurface& surface, const BodySurface& more) {
   const int base = static_cast<int>(surface.vertices.rows());
   surface.vertices.conservativeResize(base + more.vertices.rows(), 3);
   surface.vertices.bottomRows(more.vertices.rows()) = more.vertices;
-  for (std::vector<int> face : more.faces) {
+  const bool textured = !surface.uvs.empty();
+  for (std::size_t f = 0; f < more.faces.size(); ++f) {
+    std::vector<int> face = more.faces[f];
     for (int& v : face) v += base;
+    // A textured surface stays textured: what is appended without UVs (the
+    // bridges' capsules) gets the texture's corner.
+    if (textured)
+      surface.uvs.push_back(more.uvs.empty() ? std::vector<Eigen::Vector2d>(face.size(), Eigen::Vector2d::Zero())
+                                             : more.uvs[f]);
     surface.faces.push_back(std::move(face));
   }
 }

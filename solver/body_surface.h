@@ -12,6 +12,7 @@ namespace mrcloth {
 struct BodySurface {
   FramePositions vertices;               ///< #V x 3, metres
   std::vector<std::vector<int>> faces;   ///< 0-based polygons (quads and triangles), outward facing
+  FaceUVs uvs;                           ///< per face corner, its texture coordinates (the body file's); empty: none
 };
 
 /// The capsules among `colliders` (planes and spheres are skipped) as closed

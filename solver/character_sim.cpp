@@ -112,6 +112,8 @@ BodySurface SkinnedPosedBody::surface(const Pose& pose) const {
   surface.vertices = skin(shown, skeleton_, pose);
   surface.faces.reserve(shown.triangles.size());
   for (const Eigen::Vector3i& t : shown.triangles) surface.faces.push_back({t[0], t[1], t[2]});
+  if (shown.triangle_uvs.size() == shown.triangles.size())
+    for (const auto& uv : shown.triangle_uvs) surface.uvs.push_back({uv[0], uv[1], uv[2]});
   if (bridges_ && !bridges_->rig().bridges.empty()) {
     // The bridges stand for skin between the legs; the mittens stand in for
     // hands the drawn body has.
@@ -480,7 +482,7 @@ void write_body_cache(const Motion& motion, const PosedBody& body, const Charact
   if (!writer) return;
   writer->finish();
   // After the cache, so a failed cache leaves no rest mesh without it.
-  if (!obj_path.empty()) write_obj(obj_path, first.vertices, first.faces);
+  if (!obj_path.empty()) write_obj(obj_path, first.vertices, first.faces, first.uvs);
 }
 
 }  // namespace mrcloth

@@ -1188,6 +1188,42 @@ TEST_F(SkinnedBodyTest, LoadsTheBodyGroupWithNormalisedWeights) {
   EXPECT_GT(dominated_by(joint("LeftHandIndex1"), 0.5).size(), 100u) << "fingers are bound to the finger bone";
 }
 
+// Each triangle corner keeps the texture coordinate its quad's corner has
+// in base.obj (read here independently: the 'vt' lines and the body
+// group's faces, split from their first corner as the loader splits them).
+TEST_F(SkinnedBodyTest, CarriesTheFilesTextureCoordinatesPerTriangleCorner) {
+  SKIP_WITHOUT_BODY();
+  std::ifstream in(test::shared_data("bodies/makehuman/base.obj"));
+  std::vector<Eigen::Vector2d> texcoords;
+  std::vector<std::array<Eigen::Vector2d, 3>> expected;
+  bool in_body = false;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag == "vt") {
+      Eigen::Vector2d uv;
+      words >> uv.x() >> uv.y();
+      texcoords.push_back(uv);
+    } else if (tag == "g") {
+      std::string name;
+      words >> name;
+      in_body = name == "body";
+    } else if (tag == "f" && in_body) {
+      std::vector<Eigen::Vector2d> corners;
+      for (std::string corner; words >> corner;)
+        corners.push_back(texcoords[static_cast<std::size_t>(std::stol(corner.substr(corner.find('/') + 1)) - 1)]);
+      for (std::size_t k = 1; k + 1 < corners.size(); ++k) expected.push_back({corners[0], corners[k], corners[k + 1]});
+    }
+  }
+  ASSERT_EQ(expected.size(), body_->triangles.size());
+  ASSERT_EQ(body_->triangle_uvs.size(), body_->triangles.size());
+  for (std::size_t t = 0; t < expected.size(); ++t)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(body_->triangle_uvs[t][k], expected[t][k]) << "triangle " << t;
+  // The body made for collisions (hands capped) is drawn from this one: none.
+  EXPECT_TRUE(without_hands(*body_, skeleton()).triangle_uvs.empty());
+}
+
 TEST_F(SkinnedBodyTest, RestPoseReproducesRestVertices) {
   SKIP_WITHOUT_BODY();
   const Eigen::MatrixX3d posed = skin(*body_, skeleton(), rest_pose(skeleton()));

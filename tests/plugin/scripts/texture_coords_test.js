@@ -2,7 +2,7 @@
 // seams included) refined once and simulated on the skinned MakeHuman body
 // write their UVs into the cache's rest OBJ and every OBJ of the sequence,
 // one per face corner, and a coarse vertex keeps the UVs the garment file
-// gave it. Skipped (exit 77) without ../shared/data.
+// gave it; the body's cache's rest OBJ has base.obj's. Skipped (exit 77) without ../shared/data.
 // Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
 const [, sharedDir, tmpDir] = core.scriptArguments();
@@ -40,7 +40,7 @@ expectEqual(core.objectInfo(core.loadObject(core.resourcePath() + "/garments/def
             false, "the embedded skirt has none");
 const report = multirescloth.simulate(fine, {
   motion: {path: clip, units: "cmu"}, body: body, place: "makehuman", preroll: 0.1, frames: 2, fitWarning: false,
-  output: tmpDir + "/trousers.pc2", objSequence: tmpDir + "/trousers"});
+  output: tmpDir + "/trousers.pc2", objSequence: tmpDir + "/trousers", bodyOutput: tmpDir + "/body.pc2"});
 expectEqual([report.restMesh, report.objFiles.length], [tmpDir + "/trousers.obj", 2], "rest OBJ and sequence written");
 const source = uvsByVertex(readObj(garment));
 for (const path of [report.restMesh].concat(report.objFiles)) {
@@ -60,4 +60,11 @@ for (const path of [report.restMesh].concat(report.objFiles)) {
   }
   if (checked < 800) throw new Error(path + ": only " + checked + " coarse vertices checked");
 }
+// The body's rest OBJ carries base.obj's UVs too (its bridges' capsules the
+// texture's corner), one per face corner.
+const bodyObj = readObj(report.bodyMesh);
+const bodyCorners = bodyObj.faces.reduce((sum, face) => sum + face.length, 0);
+expectEqual([bodyObj.texcoords.length, bodyObj.faces.every((face) => face.every(([, vt]) => vt >= 0))],
+            [bodyCorners, true], report.bodyMesh + ": one vt per face corner");
+if (!(bodyObj.faces.length >= 26756)) throw new Error(report.bodyMesh + ": " + bodyObj.faces.length + " faces");
 print("texture coordinates: ok");
