@@ -38,7 +38,7 @@ inline constexpr const char* kRunOptionsUsage =
     "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--mass-exponent E] "
     "[--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--newton-cg K] [--stretch-stiffness N/M] "
-    "[--self-contact METRES] [--self-contact-neighbourhood METRES] [--mittens 0|1] [--waist-smoothing METRES] [--threads N]";
+    "[--self-contact METRES] [--self-contact-neighbourhood METRES] [--self-contact-reach METRES] [--mittens 0|1] [--waist-smoothing METRES] [--threads N]";
 
 /// Takes option `key` with `value` into `o` when it is one of
 /// kRunOptionsUsage's; false when it is not.
@@ -59,6 +59,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--stretch-stiffness") o.stretch_stiffness = std::atof(value);
   else if (key == "--self-contact") s.self_contact.thickness = std::atof(value);
   else if (key == "--self-contact-neighbourhood") s.self_contact.neighbourhood = std::atof(value);
+  else if (key == "--self-contact-reach") s.self_contact.reach = std::atof(value);
   else if (key == "--threads") s.threads = std::atoi(value);
   else if (key == "--mittens") o.hand_mittens = std::atoi(value) != 0;
   else if (key == "--waist-smoothing") o.waist_smoothing = std::atof(value);
