@@ -302,15 +302,39 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
     const StoredObject& object = store().get(script::toInt(id, QStringLiteral("id")));
     const QString file = script::toString(path, QStringLiteral("path"));
     const script::Options given(options, QStringLiteral("exportSurface options"),
-                                {QStringLiteral("colorBy"), QStringLiteral("triangulate")});
+                                {QStringLiteral("colorBy"), QStringLiteral("triangulate"), QStringLiteral("cache"),
+                                 QStringLiteral("frame")});
     ExportOptions settings;
     settings.color_by = toColorBy(given.choice(QStringLiteral("colorBy"), QStringLiteral("none"),
                                                {QStringLiteral("level"), QStringLiteral("mode"), QStringLiteral("curvature"),
                                                 QStringLiteral("none")}));
     settings.triangulate = given.boolean(QStringLiteral("triangulate"), settings.triangulate);
+    if (given.has(QStringLiteral("frame")) && !given.has(QStringLiteral("cache")))
+      options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
 
-    export_surface(*object.mesh, file.toStdString(), settings);
-    emit log(LOGINFO, QStringLiteral("exportSurface: wrote %1 (%2)").arg(file, describeObject(object)));
+    if (!given.has(QStringLiteral("cache"))) {
+      export_surface(*object.mesh, file.toStdString(), settings);
+      emit log(LOGINFO, QStringLiteral("exportSurface: wrote %1 (%2)").arg(file, describeObject(object)));
+      return;
+    }
+    // A frame of a simulation: the object's surface (its faces, layers and
+    // texture coordinates) at the cache's positions.
+    const QString cache = options::existingInputFile(
+        script::toString(given.required(QStringLiteral("cache")), options::optionLabel(QStringLiteral("cache"))),
+        options::optionLabel(QStringLiteral("cache")));
+    const int frame = given.has(QStringLiteral("frame"))
+                          ? script::toInt(given.required(QStringLiteral("frame")), options::optionLabel(QStringLiteral("frame")))
+                          : 0;
+    Pc2Reader reader(cache.toStdString());
+    if (reader.num_points() != static_cast<int>(object.mesh->n_vertices()))
+      options::fail(QStringLiteral("option 'cache': %1 has %2 points per frame; %3 has %4 vertices (a cache of "
+                                   "another mesh?)")
+                        .arg(cache).arg(reader.num_points()).arg(describeObject(object))
+                        .arg(object.mesh->n_vertices()));
+    const FramePositions positions = reader.frame(frame);
+    export_surface(mesh_at_positions(*object.mesh, positions), file.toStdString(), settings);
+    emit log(LOGINFO, QStringLiteral("exportSurface: wrote %1 (%2 at frame %3 of %4)")
+                          .arg(file, describeObject(object)).arg(frame).arg(QFileInfo(cache).fileName()));
   });
 }
 
@@ -865,11 +889,14 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {},
        {}},
       {QStringLiteral("exportSurface(int id, string path, object options = {})"),
-       QStringLiteral("Writes the active surface to .obj or .ply (atomically), optionally with vertex colours."),
+       QStringLiteral("Writes the active surface to .obj or .ply (atomically), optionally with vertex colours; an "
+                      "OBJ has the garment file's texture coordinates (vt) when it had them; with `cache`, the "
+                      "surface at a frame of that simulation."),
        {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
        {id_text, QStringLiteral("output file; the extension picks the format"),
         QStringLiteral("{colorBy: \"level\" | \"mode\" | \"curvature\" (mean curvature after extractModes, viridis "
-                       "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false}")}},
+                       "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false, cache: PC2 of "
+                       "this object (simulate's output) = none, frame: int >= 0 = 0 (of the cache)}")}},
       {QStringLiteral("motionInfo(object motion) -> object"),
        QStringLiteral("Reads a BVH clip as a run on a character would (joints renamed, axes turned, units resolved) "
                       "and returns path, units (resolved: \"auto: cm\"), metresPerUnit, joints (names, End Sites "

@@ -60,6 +60,26 @@ for (const path of [report.restMesh].concat(report.objFiles)) {
   }
   if (checked < 800) throw new Error(path + ": only " + checked + " coarse vertices checked");
 }
+// exportSurface at a frame of the cache: the sequence's frame, to the
+// cache's single precision, with the same texture coordinates.
+const points = (path) => core.readTextFile(path).split("\n").filter((line) => line.startsWith("v "))
+                             .map((line) => line.trim().split(/\s+/).slice(1).map(Number));
+multirescloth.exportSurface(fine, tmpDir + "/frame1.obj", {cache: report.output, frame: 1});
+const exported = points(tmpDir + "/frame1.obj"), sequenced = points(report.objFiles[1]);
+expectEqual(exported.length, sequenced.length, "vertices at frame 1");
+let farthest = 0;
+exported.forEach((p, i) => p.forEach((x, k) => { farthest = Math.max(farthest, Math.abs(x - sequenced[i][k])); }));
+expectAtMost(farthest, 1e-5, "exported frame against the sequence's (m; the PC2 holds floats)");
+expectEqual(readObj(tmpDir + "/frame1.obj").texcoords.length, readObj(report.objFiles[1]).texcoords.length,
+            "the exported frame's texture coordinates");
+expectThrows(() => multirescloth.exportSurface(fine, tmpDir + "/x.obj", {frame: 1}), "ArgumentError",
+             "option 'frame' needs option 'cache'");
+expectThrows(() => multirescloth.exportSurface(fine, tmpDir + "/x.obj", {cache: report.bodyCache}), "ArgumentError",
+             "option 'cache': ", "points per frame", "vertices (a cache of another mesh?)");
+expectThrows(() => multirescloth.exportSurface(fine, tmpDir + "/x.obj", {cache: report.output, frame: 9}), "ArgumentError",
+             "frame 9 is out of range (the cache has 2 frames)");
+expectEqual(core.fileExists(tmpDir + "/x.obj"), false, "nothing written by a refused export");
+
 // The body's rest OBJ carries base.obj's UVs too (its bridges' capsules the
 // texture's corner), one per face corner.
 const bodyObj = readObj(report.bodyMesh);
