@@ -26,36 +26,30 @@ std::unordered_map<std::uint64_t, int> midpoints_from_parents(const QuadMesh& me
   return map;
 }
 
-// Appends the vertices strictly inside edge (a, b), in order from a to b.
-void append_edge_interior(const std::unordered_map<std::uint64_t, int>& mids, int a, int b,
-                          std::vector<int>& out) {
-  const auto it = mids.find(edge_key(a, b));
-  if (it == mids.end()) return;
-  const int m = it->second;
-  append_edge_interior(mids, a, m, out);
-  out.push_back(m);
-  append_edge_interior(mids, m, b, out);
-}
-
-// As append_edge_interior, the place along edge (a, b) of each vertex
-// appended, from ta at a to tb at b.
-void append_edge_interior_params(const std::unordered_map<std::uint64_t, int>& mids, int a, int b, double ta,
-                                 double tb, std::vector<double>& out) {
+// Appends the vertices strictly inside edge (a, b), in order from a to b,
+// and, with `params`, each one's place along the edge (ta at a, tb at b).
+void append_edge_interior(const std::unordered_map<std::uint64_t, int>& mids, int a, int b, std::vector<int>& out,
+                          std::vector<double>* params = nullptr, double ta = 0.0, double tb = 1.0) {
   const auto it = mids.find(edge_key(a, b));
   if (it == mids.end()) return;
   const int m = it->second;
   const double tm = 0.5 * (ta + tb);
-  append_edge_interior_params(mids, a, m, ta, tm, out);
-  out.push_back(tm);
-  append_edge_interior_params(mids, m, b, tm, tb, out);
+  append_edge_interior(mids, a, m, out, params, ta, tm);
+  out.push_back(m);
+  if (params) params->push_back(tm);
+  append_edge_interior(mids, m, b, out, params, tm, tb);
 }
 
-std::vector<int> polygon_of(const std::unordered_map<std::uint64_t, int>& mids, const QuadRecord& q) {
+// The record's polygon: its corners with the vertices inside its edges;
+// with `params`, each one's place along the boundary (k + t on edge k).
+std::vector<int> polygon_of(const std::unordered_map<std::uint64_t, int>& mids, const QuadRecord& q,
+                            std::vector<double>* params = nullptr) {
   std::vector<int> loop;
   loop.reserve(8);
   for (int k = 0; k < 4; ++k) {
     loop.push_back(q.corners[k]);
-    append_edge_interior(mids, q.corners[k], q.corners[(k + 1) % 4], loop);
+    if (params) params->push_back(k);
+    append_edge_interior(mids, q.corners[k], q.corners[(k + 1) % 4], loop, params, k, k + 1);
   }
   return loop;
 }
@@ -104,12 +98,8 @@ std::vector<std::vector<double>> active_face_boundary_params(const QuadMesh& mes
   all.reserve(mesh.n_faces());
   for (const auto f : mesh.faces()) {
     const QuadRecord& record = forest[static_cast<std::size_t>(mesh.property(l.quad, f))];
-    const std::vector<int> loop = polygon_of(mids, record);
     std::vector<double> along;
-    for (int k = 0; k < 4; ++k) {
-      along.push_back(k);
-      append_edge_interior_params(mids, record.corners[k], record.corners[(k + 1) % 4], k, k + 1, along);
-    }
+    const std::vector<int> loop = polygon_of(mids, record, &along);
     // In the face's own vertex order, which may start elsewhere on the loop.
     std::vector<double> params;
     for (const auto v : f.vertices())
