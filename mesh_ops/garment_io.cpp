@@ -3,6 +3,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "obj_tokens.h"
 #include "quadtree_forest.h"
 #include "texture_coords.h"
 #include "units.h"
@@ -277,33 +278,18 @@ std::string obj_face_issue(const std::vector<std::string>& words, long n_defined
 }
 
 /// A face's corners as (vertex, texture coordinate) indices from 0, given
-/// how many of each are defined before it (OBJ's negative indices count
-/// back from there); -1 where a corner names no texture coordinate. A
-/// texture index that cannot be read clears `readable` (the vertex indices
-/// are checked by obj_face_issue).
+/// how many of each are defined before it; -1 where a corner names no
+/// texture coordinate. A texture index that is not one of those defined
+/// clears `readable` (the vertex indices are checked by obj_face_issue).
 std::vector<std::pair<long, long>> obj_face_corners(const std::vector<std::string>& words, long n_vertices,
                                                     long n_texcoords, bool& readable) {
   std::vector<std::pair<long, long>> corners;
-  const auto resolve = [](const std::string& text, long defined) {
-    long index = 0;
-    const char* end = text.data() + text.size();
-    const auto [stop, error] = std::from_chars(text.data(), end, index);
-    if (error != std::errc() || stop != end || index == 0) return -2L;
-    const long resolved = index > 0 ? index - 1 : defined + index;
-    return resolved >= 0 && resolved < defined ? resolved : -2L;
-  };
   for (std::size_t k = 1; k < words.size(); ++k) {
-    const std::string& word = words[k];
-    const std::size_t slash = word.find('/');
-    const long vertex = resolve(word.substr(0, slash), n_vertices);
-    long texcoord = -1;
-    if (slash != std::string::npos) {
-      const std::size_t next = word.find('/', slash + 1);
-      const std::string text = word.substr(slash + 1, next == std::string::npos ? std::string::npos : next - slash - 1);
-      if (!text.empty()) texcoord = resolve(text, n_texcoords);
-      if (texcoord == -2) readable = false;
-    }
-    corners.emplace_back(vertex, texcoord);
+    const std::string_view word = words[k];
+    const std::string_view texture = obj_corner_texture(word);
+    const long texcoord = texture.empty() ? -1 : resolve_obj_index(texture, n_texcoords);
+    if (!texture.empty() && texcoord < 0) readable = false;
+    corners.emplace_back(resolve_obj_index(word.substr(0, word.find('/')), n_vertices), texcoord);
   }
   return corners;
 }

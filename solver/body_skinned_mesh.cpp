@@ -2,6 +2,7 @@
 
 #include "json_lite.h"
 #include "mesh_ops/errors.h"
+#include "mesh_ops/obj_tokens.h"
 
 #include <Eigen/Geometry>
 
@@ -89,19 +90,9 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
       if (words.size() < 4) obj_error(path, line, "a face with fewer than 3 vertices", "f v1 v2 v3 ...");
       std::vector<int> face, face_uvs;
       for (std::size_t k = 1; k < words.size(); ++k) {
-        // The corner's texture coordinate: between the first and second '/'.
-        const std::size_t slash = words[k].find('/');
-        long uv_index = 0;
-        if (slash != std::string_view::npos) {
-          const std::string_view rest = words[k].substr(slash + 1);
-          const std::string_view uv_text = rest.substr(0, rest.find('/'));
-          const auto parsed = std::from_chars(uv_text.data(), uv_text.data() + uv_text.size(), uv_index);
-          if (parsed.ec != std::errc() || parsed.ptr != uv_text.data() + uv_text.size()) uv_index = 0;
-        }
-        const long uv_resolved = uv_index > 0 ? uv_index - 1 : static_cast<long>(obj.texcoords.size()) + uv_index;
-        if (uv_index == 0 || uv_resolved < 0 || uv_resolved >= static_cast<long>(obj.texcoords.size()))
-          obj.uvs_complete = false;
-        face_uvs.push_back(static_cast<int>(uv_resolved));
+        const long uv = resolve_obj_index(obj_corner_texture(words[k]), static_cast<long>(obj.texcoords.size()));
+        if (uv < 0) obj.uvs_complete = false;
+        face_uvs.push_back(static_cast<int>(uv));
         const std::string_view word = words[k].substr(0, words[k].find('/'));
         long index = 0;
         const auto result = std::from_chars(word.data(), word.data() + word.size(), index);

@@ -4,6 +4,7 @@
 // must have is known from where it lies and which coarse face it refines.
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
+#include "mesh_ops/obj_tokens.h"
 #include "mesh_ops/quad_refiner.h"
 #include "mesh_ops/quadtree_forest.h"
 #include "mesh_ops/texture_coords.h"
@@ -37,7 +38,7 @@ std::string scratch(const std::string& name, const std::string& text = {}) {
 const char* const kTwoQuads =
     "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 11 0\nvt 12 0\nvt 12 1\nvt 11 1\n"
-    "f 1/1 2/2 5/3 4/4\nf 2/5 3/6 6/7 5/8\n";
+    "f 1/1 2/2 5/3 4/4\nf 2/-4 3/-3 6/-2 5/-1\n";  // the second face's texture indices count back
 
 /// The UV of the point at `p` on coarse face `root` (0: u = x, 1: u = x + 10).
 OpenMesh::Vec2d expected_uv(const OpenMesh::Vec3d& p, int root) { return {p[0] + 10.0 * root, p[1]}; }
@@ -98,6 +99,18 @@ int expect_obj_uvs(const std::string& path) {
     }
   }
   return corners;
+}
+
+TEST(ObjTokens, IndicesCountFromOneOrBackFromTheEndAndCornersNameTheirTexture) {
+  EXPECT_EQ(resolve_obj_index("1", 5), 0);
+  EXPECT_EQ(resolve_obj_index("5", 5), 4);
+  EXPECT_EQ(resolve_obj_index("-1", 5), 4);
+  EXPECT_EQ(resolve_obj_index("-5", 5), 0);
+  for (const char* bad : {"0", "6", "-6", "", "x", "2x", "+1"}) EXPECT_EQ(resolve_obj_index(bad, 5), -1) << bad;
+  EXPECT_EQ(obj_corner_texture("3/7/2"), "7");
+  EXPECT_EQ(obj_corner_texture("3/-1"), "-1");
+  EXPECT_EQ(obj_corner_texture("3//2"), "");
+  EXPECT_EQ(obj_corner_texture("3"), "");
 }
 
 TEST(TextureCoords, AnObjsUvsReachEveryRecordCornerSeamIncluded) {
