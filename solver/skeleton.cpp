@@ -140,6 +140,17 @@ std::vector<Local> locals_of(const Skeleton& skeleton, const Pose& pose) {
 
 }  // namespace
 
+void scale_motion(Motion& motion, double scale) {
+  for (Joint& joint : motion.skeleton.joints) {
+    joint.offset *= scale;
+    for (std::size_t k = 0; k < joint.channels.size(); ++k) {
+      const Channel c = joint.channels[k];
+      if (c == Channel::x_position || c == Channel::y_position || c == Channel::z_position)
+        motion.frames.col(joint.first_channel + static_cast<Eigen::Index>(k)) *= scale;
+    }
+  }
+}
+
 Pose rest_pose(const Skeleton& skeleton) {
   check_skeleton(skeleton, "rest_pose");
   std::vector<Local> locals(skeleton.joints.size());

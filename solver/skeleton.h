@@ -49,6 +49,10 @@ struct BvhReadOptions {
 /// data, non-numeric values, truncated motion, or a frame time <= 0.
 Motion read_bvh(const std::string& path, const BvhReadOptions& options = {});
 
+/// Multiplies every length of the motion (offsets, position channels) by
+/// `scale`: the same numbers as reading its file with that scale.
+void scale_motion(Motion& motion, double scale);
+
 /// Writes a motion as BVH (offsets and positions divided by `scale`), atomically.
 void write_bvh(const std::string& path, const Motion& motion, double scale = 1.0);
 

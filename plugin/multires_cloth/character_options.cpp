@@ -50,7 +50,7 @@ double metresPerUnit(const QString& units) {
   return metres_per_unit(units.toStdString());
 }
 
-/// "auto": the units are chosen from the clip's figure (resolveMotionUnits).
+/// "auto": the units are chosen from the clip's figure (readClip).
 const QString kAutoUnits = QStringLiteral("auto");
 
 /// Of unitNames(), the units in which a figure whose legs measure
@@ -298,17 +298,42 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   return request;
 }
 
-Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes) {
+namespace {
+
+/// The request's clip in metres, its joints renamed and its axes turned
+/// (standardise_clip; `changes` receives what that did), frame 0 kept. Units
+/// "auto" are resolved here (the request then says "auto: cm"): the file is
+/// read once in its own units, measured, and scaled.
+Motion readClip(CharacterRequest& request, ClipChanges& changes) {
+  const QString motion_label = optionLabel(QStringLiteral("motion"));
+  const bool automatic = request.motionUnits == kAutoUnits;
+  BvhReadOptions read_options;
+  read_options.scale = automatic ? 1.0 : request.motionScale;
+  read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
+  Motion clip = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
+  // Every later step reads joints by their CMU names, the body standing Y up.
+  changes = naming(motion_label, [&] { return standardise_clip(clip, request.conventions); });
+  if (!automatic) return clip;
+  const FigureScale figure = figure_scale(clip.skeleton);
+  if (!(figure.legs > 0.0))
+    throw InputError(QStringLiteral("%1: %2 has no legs to measure (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, "
+                                    "after renaming), so units \"auto\" cannot choose; give the units")
+                         .arg(motion_label, QDir::toNativeSeparators(request.motionPath))
+                         .toStdString());
+  const QString units = nearestUnits(figure.legs, kReferenceLegs);
+  request.motionUnits = QStringLiteral("auto: %1").arg(units);
+  request.motionScale = metresPerUnit(units);
+  scale_motion(clip, request.motionScale);  // the same numbers as reading it in those units
+  return clip;
+}
+
+}  // namespace
+
+Character loadCharacter(CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes) {
   const CharacterSetup& setup = request.setup;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
-  if (!(request.motionScale > 0.0))
-    throw ArgumentError("loadCharacter: the motion's units are \"auto\"; resolve them first (resolveMotionUnits)");
-  BvhReadOptions read_options;
-  read_options.scale = request.motionScale;
-  read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
-  Motion full = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
-  // Every later step reads joints by their CMU names, the body standing Y up.
-  const ClipChanges changed = naming(motion_label, [&] { return standardise_clip(full, request.conventions); });
+  ClipChanges changed;
+  Motion full = readClip(request, changed);
   if (changes) *changes = changed;
 
   // What make_character refuses, said here with the file and the option.
@@ -348,12 +373,7 @@ MotionReading readMotion(const QVariant& motion) {
   parseMotion(Fields(QVariantMap{{QStringLiteral("motion"), motion}}, QString(), {QStringLiteral("motion")},
                      QStringLiteral("motionInfo")),
               reading.request);
-  reading.request = resolveMotionUnits(reading.request);
-  const QString motion_label = optionLabel(QStringLiteral("motion"));
-  BvhReadOptions read_options;
-  read_options.scale = reading.request.motionScale;
-  reading.clip = naming(motion_label, [&] { return read_bvh(reading.request.motionPath.toStdString(), read_options); });
-  reading.changes = naming(motion_label, [&] { return standardise_clip(reading.clip, reading.request.conventions); });
+  reading.clip = readClip(reading.request, reading.changes);
   reading.figure = figure_scale(reading.clip.skeleton);
   if (!plausible(reading.figure)) throw InputError(figureRefusal(reading.request, reading.figure).toStdString());
   return reading;
@@ -378,25 +398,6 @@ QString figureRefusal(const CharacterRequest& request, const FigureScale& figure
   return QStringLiteral("%1: %2 read %3: %4; expected %5 times: check the units%6")
       .arg(optionLabel(QStringLiteral("motion")), QDir::toNativeSeparators(request.motionPath), read_in,
            QString::fromStdString(describe(figure)), expected, hint);
-}
-
-CharacterRequest resolveMotionUnits(const CharacterRequest& request) {
-  if (request.motionUnits != kAutoUnits) return request;
-  const QString motion_label = optionLabel(QStringLiteral("motion"));
-  BvhReadOptions unscaled;
-  Motion clip = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), unscaled); });
-  naming(motion_label, [&] { return standardise_clip(clip, request.conventions); });
-  const FigureScale figure = figure_scale(clip.skeleton);
-  if (!(figure.legs > 0.0))
-    throw InputError(QStringLiteral("%1: %2 has no legs to measure (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, "
-                                    "after renaming), so units \"auto\" cannot choose; give the units")
-                         .arg(motion_label, QDir::toNativeSeparators(request.motionPath))
-                         .toStdString());
-  CharacterRequest resolved = request;
-  const QString units = nearestUnits(figure.legs, kReferenceLegs);
-  resolved.motionUnits = QStringLiteral("auto: %1").arg(units);
-  resolved.motionScale = metresPerUnit(units);
-  return resolved;
 }
 
 QString bodyTypeName(CharacterBodyKind type) {

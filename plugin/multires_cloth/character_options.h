@@ -22,7 +22,7 @@ namespace mrcloth {
 /// where the motion and the body's cache come from.
 struct CharacterRequest {
   QString motionPath;
-  double motionScale = 1.0;     ///< metres per BVH unit (0 while the units are "auto": resolveMotionUnits)
+  double motionScale = 1.0;     ///< metres per BVH unit (0 while the units are "auto": loadCharacter resolves them)
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01", "auto" / resolved "auto: cm")
   ClipConventions conventions;  ///< motion.joints and motion.axes
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
@@ -38,13 +38,6 @@ QStringList characterOptionKeys();
 /// must be at least that). Input files must exist (InputError naming the
 /// option); errors name the option.
 CharacterRequest parseCharacterOptions(const options::Fields& fields, double fps);
-
-/// The request with motion units "auto" resolved: of m, cmu, dm, cm, mm
-/// and inch, the units that give the clip's figure (its joints renamed as
-/// motion.joints says) legs nearest an adult's (figure_size.h), reported as
-/// "auto: cm"; any other request as it is. InputError for a clip without
-/// legs to measure. Reads the BVH.
-CharacterRequest resolveMotionUnits(const CharacterRequest& request);
 
 /// A clip read on its own (multirescloth.motionInfo), as a run on a
 /// character reads it.
@@ -71,9 +64,9 @@ QString figureRefusal(const CharacterRequest& request, const FigureScale& figure
 /// it did) and builds the character (make_character). Errors name the option they
 /// come from ("option 'motion': <file>:<line>: ..."); a figure too big or
 /// small for its units is an InputError naming the file, its units and the
-/// units that would fit. `request` must have its units resolved
-/// (resolveMotionUnits).
-Character loadCharacter(const CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes = nullptr);
+/// units that would fit. Units "auto" are resolved in `request` (its
+/// motionUnits then say "auto: cm", as the report shows them).
+Character loadCharacter(CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes = nullptr);
 
 QString bodyTypeName(CharacterBodyKind type);
 QString placementName(GarmentPlacement place);

@@ -707,7 +707,7 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
 
 QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const StoredObject& input,
                                                      const SimulationRequest& request) {
-  const CharacterRequest wanted = resolveMotionUnits(*request.character);
+  CharacterRequest wanted = *request.character;  // its units resolved by loadCharacter
   ClipChanges changes;
   Character character = loadCharacter(wanted, *input.mesh, &changes);
   const JointRenaming& renamed = changes.renamed;

@@ -134,6 +134,22 @@ TEST(BvhRead, EveryClipHasTheDocumentedJointsFramesAndFrameTime) {
   }
 }
 
+// Scaling a motion read in file units gives, to the bit, what reading it
+// with that scale gives: offsets and position channels, nothing else.
+TEST(BvhRead, ScalingAfterReadingIsReadingWithTheScale) {
+  SKIP_WITHOUT_SHARED_DATA();
+  for (const char* clip : {"motions/cmu_mb/07_06.bvh", "motions/cmu_daz/16_15_daz.bvh"}) {
+    const double scale = std::string(clip).find("daz") != std::string::npos ? 0.01 : kCmuScale;
+    Motion scaled = read_bvh(test::shared_data(clip), {1.0, false});
+    scale_motion(scaled, scale);
+    const Motion read = read_bvh(test::shared_data(clip), {scale, false});
+    EXPECT_TRUE(scaled.frames == read.frames) << clip;
+    ASSERT_EQ(scaled.skeleton.joints.size(), read.skeleton.joints.size());
+    for (std::size_t j = 0; j < read.skeleton.joints.size(); ++j)
+      EXPECT_TRUE(scaled.skeleton.joints[j].offset == read.skeleton.joints[j].offset) << clip << " joint " << j;
+  }
+}
+
 TEST(BvhRead, CmuLayoutNamesChannelsAndScale) {
   SKIP_WITHOUT_SHARED_DATA();
   const Motion motion = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, false});
