@@ -415,7 +415,6 @@ void SelfContact::precompute(const DynamicsModel& model, const SelfContactOption
   // MakeHuman trousers (the same pairs, fewer cells visited per query).
   cell_ = 2.0 * (mean_edge_length(surface_, model.rest) + options.thickness + options.reach);
   near_support_ = sheet_supports(model, surface_, sheet_neighbourhood(options));
-  near_mark_.assign(static_cast<std::size_t>(model.num_vertices), -1);
 }
 
 void SelfContact::gather(const Positions& x0, const Positions& x1) {
@@ -454,14 +453,14 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
   // a tag of its own, so a candidate's supports are looked up, not merged
   // (on the skirt refined twice a neighbourhood holds about 90 vertices).
   int tag = 0;
+  std::vector<int> near_mark(static_cast<std::size_t>(model_->num_vertices), -1);  // per vertex: the last query near it
   const auto mark_near = [&](int v) {
-    for (const int u : near_support_[static_cast<std::size_t>(v)]) near_mark_[static_cast<std::size_t>(u)] = tag;
+    for (const int u : near_support_[static_cast<std::size_t>(v)]) near_mark[static_cast<std::size_t>(u)] = tag;
   };
   const auto near_query = [&](const std::vector<int>& support) {
     return std::any_of(support.begin(), support.end(),
-                       [&](int u) { return near_mark_[static_cast<std::size_t>(u)] == tag; });
+                       [&](int u) { return near_mark[static_cast<std::size_t>(u)] == tag; });
   };
-  std::fill(near_mark_.begin(), near_mark_.end(), -1);
 
   const BoxGrid triangles(triangle_boxes, cell_);
   for (int v = 0; v < model_->num_vertices; ++v) {

@@ -121,7 +121,6 @@ class SelfContact {
   SelfContactOptions options_;
   ContactSurface surface_;
   std::vector<std::vector<int>> near_support_;  // per full vertex: sheet_supports
-  std::vector<int> near_mark_;                  // per full vertex: the tag of the last query it is near
   double cell_ = 0.0;              // broad-phase cell size, metres
   std::vector<Pair> pairs_;        // this step's, sorted by key
   std::vector<Pair> memory_;       // last step's pairs, sorted by key
