@@ -386,10 +386,16 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     l.fj = static_cast<int>(general_.size());
     general_.push_back(g);
   }
+  // A spring with both ends pinned: the pins set its length, so no sweep
+  // can move it and it must not ask for another round (a waistband the
+  // skinned pelvis stretches beyond the limit held every step of the
+  // trousers at all eight rounds). Left out of the sweep.
+  sweep_.erase(std::remove_if(sweep_.begin(), sweep_.end(),
+                              [&](const LimitedSpring& l) { return l.fi < 0 && general_[static_cast<std::size_t>(l.fj)].count == 0; }),
+               sweep_.end());
   // The sweep's dependents, per free vertex (see limit_strain's active set).
   const std::size_t free_count = model.free_vertices.size();
   std::vector<std::vector<int>> dependents(free_count);
-  always_slots_.clear();
   for (std::size_t k = 0; k < sweep_.size(); ++k) {
     const LimitedSpring& l = sweep_[k];
     if (l.fi >= 0) {
@@ -398,7 +404,6 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
       continue;
     }
     const GeneralSpring& g = general_[static_cast<std::size_t>(l.fj)];
-    if (g.count == 0) always_slots_.push_back(static_cast<int>(k));
     for (int t = 0; t < g.count; ++t)
       dependents[static_cast<std::size_t>(general_terms_[static_cast<std::size_t>(g.first + t)].free)].push_back(static_cast<int>(k));
     if (g.sag_t >= 0)  // the row moves the T-node as the limiter reads it
@@ -564,7 +569,6 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
     const double excess = length - limit * g.rest;
     if (excess <= 0.0) return false;
     sweep_largest = std::max(sweep_largest, excess / g.rest);
-    if (g.denominator <= 0.0) return false;  // both ends pinned
     const Eigen::Vector3d n = e / length;
     const double lambda = excess / g.denominator;
     const GeneralTerm* terms = general_terms_.data() + g.first;
@@ -647,7 +651,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       return true;
     }
     const GeneralSpring& spring = general_[static_cast<std::size_t>(l.fj)];
-    if (!limit_general(spring) || spring.count == 0) return false;  // both ends pinned: measured, never moved
+    if (!limit_general(spring)) return false;
     const GeneralTerm* terms = general_terms_.data() + spring.first;
     for (int t = 0; t < spring.count; ++t) make_dirty(static_cast<std::size_t>(terms[t].free));
     return true;
@@ -666,7 +670,7 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
         if (l.fi >= 0) return dirty[static_cast<std::size_t>(l.fi)] || dirty[static_cast<std::size_t>(l.fj)];
         const GeneralSpring& g = general_[static_cast<std::size_t>(l.fj)];
         const GeneralTerm* terms = general_terms_.data() + g.first;
-        bool found = g.count == 0;
+        bool found = false;
         for (int t = 0; t < g.count && !found; ++t) found = dirty[static_cast<std::size_t>(terms[t].free)] != 0;
         return found;
       };
@@ -678,7 +682,6 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       return any;
     }
     std::fill(due_.begin(), due_.end(), 0);
-    for (int slot : always_slots_) due[static_cast<std::size_t>(slot) >> 6] |= std::uint64_t{1} << (slot & 63);
     for (std::size_t f = 0; f < free_count; ++f)
       if (dirty[f]) set_due(f);
     if (forward) {
@@ -982,8 +985,9 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   // than its slack (its clearance, or contact_slack along a plane) from
   // where its check left it is checked again: the planes stand for the
   // surface only that far. Rounds of (limiting, checking) repeat while
-  // checks move points or a spring started the round more than the round
-  // tolerance beyond the limit, at most collision_rounds; the last word is
+  // checks move points, cloth-cloth contact pushed any, or a spring the
+  // limiter can move started the round more than the round tolerance beyond
+  // the limit, at most collision_rounds; the last word is
   // the check's, or the limiter's where no point left its slack. (Checking
   // once per step and then only what left its slack, with tethers, against
   // every moved point in every round before: over the walk table's 108 runs
@@ -1004,11 +1008,11 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     report.dynamics_ms += limit_ms;
     report.limiter_ms += limit_ms;
     const auto collide_start = Clock::now();
-    if (self_contact_.enabled()) self_contact_.project(q, pinned_part_);
+    const double self_pushed = self_contact_.enabled() ? self_contact_.project(q, pinned_part_) : 0.0;
     const int checked = check_contacts(q_previous, q, scene, /*first=*/false, report.max_correction);
     report.collision_ms += ms_since(collide_start);
     ++report.rounds;
-    if (checked == 0 && excess <= options_.round_tolerance) break;
+    if (checked == 0 && excess <= options_.round_tolerance && self_pushed == 0.0) break;
   }
 
   const double keep = 1.0 / (1.0 + m.material.damping * h);

@@ -34,7 +34,8 @@
 // limiter moved farther than its slack (its clearance, or contact_slack
 // along a plane, less where another part of the body lies just behind) from
 // where it was checked is checked again, and limiting and checking
-// alternate in rounds while checks move points or springs stay beyond the
+// alternate in rounds while checks or cloth-cloth contact move points or
+// springs the limiter can move (not those between two pins) stay beyond the
 // round tolerance.
 //
 // With newton_cg k >= 1 each iteration is instead a Newton step: the
@@ -254,7 +255,7 @@ class ImplicitIntegrator {
   // Per free vertex, the sweep_ slots of the springs it moves (the limiter's
   // dependents: both ends of a direct spring, a general one's terms), in
   // CSR form; and the slots measured every sweep (both ends pinned).
-  std::vector<int> dependent_start_, dependent_slots_, always_slots_;
+  std::vector<int> dependent_start_, dependent_slots_;
   mutable std::vector<std::uint64_t> due_;  // per sweep_ slot, one bit: a vertex it depends on is dirty
   mutable Positions limited_;
   mutable Positions older_, previous_;  // the limiter's iterates two sweeps and one sweep back (Chebyshev acceleration)
@@ -270,7 +271,7 @@ class ImplicitIntegrator {
   };
   struct GeneralSpring {
     int first = 0, count = 0;  // its terms in general_terms_
-    double denominator = 0.0;  // sum of weight^2 / mass; 0 when both ends are pinned
+    double denominator = 0.0;  // sum of weight^2 / mass (> 0: springs with both ends pinned are not limited)
     // Its ends as position_of reads them, in one place: vertices i and j
     // (their pinned parts), then their stencils in general_ends_ (i's
     // count_i terms, then j's count_j).

@@ -38,12 +38,14 @@ for (const type of ["mesh", "capsules", "mesh+self", "mesh+self0"]) {
   // (issue 4: 2 mm): 0.0 mm on both (14 / 17.5 mm while the hands went
   // into the hips; 3.0 mm on the mesh before the waistband was cleared and
   // skin folded over behind the knees stopped counting as the outside).
-  // Stretch: 9.6 / 8.9 % since the pins' weights are averaged over 2 cm
+  // Stretch: 8.9 / 8.9 % since the pins' weights are averaged over 2 cm
   // along the waist (the waistband's own 8.9 % on both); 28 % on both with
   // each pin's skin weights blended over its nearest surface point (all of
   // it the waistband's, below); 57 / 88 % before that, on the waistband's
   // edges next to pins that took neighbouring body vertices' unlike weights
-  // (116 / 149 % before the contact planes).
+  // (116 / 149 % before the contact planes). With cloth-cloth contact and no
+  // neighbourhood (mesh+self0) 19 %; 72 % while a round could end on a
+  // contact push the limiter had not seen.
   expectAtMost(report.preroll.initialPenetration, type === "mesh" ? 1e-9 : 0.007, type + ": initial penetration");
   expectAtMost(report.maxDepth, 0.002, type + ": depth inside the body");
   expectAtMost(report.maxStretch, 0.5, type + ": stretch");
