@@ -51,8 +51,11 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
     report.stretch_frame = frame;
   }
   if (scene.empty()) return;
+  // The cloth's and the pins' apart: a pinned vertex (no free term in its
+  // stencil) goes where what drives the pins takes it, and no step pushes
+  // it out (a waist pinned to the pelvis that a thigh rises into in a squat).
   struct Worst {
-    double depth = 0.0, penetration = 0.0;
+    double depth = 0.0, penetration = 0.0, cloth_depth = 0.0, cloth_penetration = 0.0, pinned_depth = 0.0;
     int vertex = -1;
   };
   std::vector<Worst> parts(pool ? static_cast<std::size_t>(pool->workers()) : 1);
@@ -67,6 +70,12 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
         worst.penetration = inside.penetration;
         worst.vertex = static_cast<int>(v);
       }
+      if (model.stencil[static_cast<std::size_t>(v)].empty()) {
+        worst.pinned_depth = std::max(worst.pinned_depth, inside.depth);
+      } else {
+        worst.cloth_depth = std::max(worst.cloth_depth, inside.depth);
+        worst.cloth_penetration = std::max(worst.cloth_penetration, inside.penetration);
+      }
     }
   };
   if (pool) pool->run(static_cast<std::size_t>(x.rows()), measure);
@@ -79,6 +88,12 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
   }
   for (const Worst& worst : parts) {
     report.max_depth = std::max(report.max_depth, worst.depth);
+    report.max_cloth_depth = std::max(report.max_cloth_depth, worst.cloth_depth);
+    report.max_cloth_penetration = std::max(report.max_cloth_penetration, worst.cloth_penetration);
+    if (worst.pinned_depth > report.max_pinned_depth) {
+      report.max_pinned_depth = worst.pinned_depth;
+      report.pinned_depth_frame = frame;
+    }
     if (worst.vertex >= 0 && worst.penetration > report.max_penetration) {
       report.max_penetration = worst.penetration;
       report.deepest_vertex = worst.vertex;

@@ -69,6 +69,10 @@ struct SimulationReport {
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
   double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
   double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres
+  double max_cloth_penetration = 0.0;  ///< max_penetration over the vertices the solver moves (a free term in their stencil), metres
+  double max_cloth_depth = 0.0;        ///< max_depth over those, metres
+  double max_pinned_depth = 0.0;       ///< max_depth over the vertices that follow pins alone (what drives the pins put them there), metres
+  int pinned_depth_frame = -1;         ///< output frame (0-based) of max_pinned_depth (-1: no pin ever below a surface)
   /// Deepest face centre (the mean of an active face's four corners) below
   /// a collider's surface itself at any output frame, metres: only vertices
   /// collide, so a large face resting on a curved body sinks into it
@@ -77,6 +81,8 @@ struct SimulationReport {
   int max_self_crossings = 0;          ///< most edge-triangle crossings of the cloth with itself at any output frame (count_self_crossings)
   int deepest_vertex = -1;             ///< where max_penetration was met: full vertex id (-1: never within thickness)
   int deepest_frame = -1;              ///< and output frame (0-based)
+  /// Whether that vertex follows pins alone.
+  bool penetration_pinned() const { return max_penetration > max_cloth_penetration; }
   int stretch_vertices[2] = {-1, -1};  ///< the ends of the spring that had max_stretch (-1: never stretched)
   int stretch_frame = -1;              ///< and output frame (0-based)
   /// Whether that spring's ends both follow pins.

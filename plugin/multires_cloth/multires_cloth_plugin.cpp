@@ -396,6 +396,8 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                                        "it is pushed out on the first step, which stretches it: move the "
                                        "colliders or the garment so they start apart")
                             .arg(1000.0 * report.initial_penetration, 0, 'f', 1));
+    const QString pinned_warning = pinnedDepthWarning(QStringLiteral("simulate"), report);
+    if (!pinned_warning.isEmpty()) emit log(LOGWARN, pinned_warning);
     if (report.cancelled)
       emit log(LOGWARN, QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
                             .arg(report.frames).arg(settings.frames));
@@ -405,11 +407,11 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                             .arg(report.frames + 1).arg(settings.frames));
     else
       emit log(LOGINFO, QStringLiteral("simulate: object %1: %2 frames, %3 steps, %4 ms/frame (dynamics %5, "
-                                       "collision %6), %7, max penetration %8 mm%9")
+                                       "collision %6), %7, %8%9")
                             .arg(input.id).arg(report.frames).arg(report.steps)
                             .arg(report.mean_frame.total_ms(), 0, 'f', 2).arg(report.mean_frame.dynamics_ms, 0, 'f', 2)
                             .arg(report.mean_frame.collision_ms, 0, 'f', 2).arg(stretchSummary(report))
-                            .arg(1000.0 * report.max_penetration, 0, 'f', 3)
+                            .arg(penetrationSummary(report))
                             .arg(report.cache_path.empty() ? QString()
                                                            : QStringLiteral(" -> ") +
                                                                  QString::fromStdString(report.cache_path)));
@@ -794,6 +796,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
   if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
+  const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
+  if (!pinned_warning.isEmpty()) emit log(LOGWARN, pinned_warning);
   if (report.preroll.initial_penetration > 1e-6)  // clearing the garment leaves round-off
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
                                      "thickness); it is pushed out on the first step: check option 'place'")
@@ -813,7 +817,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                                                .arg(motion_report.frames + 1).arg(run.frames)));
   else
     emit log(LOGINFO, QStringLiteral("%1: object %2 on %3: pre-roll %4 frames, %5 frames, %6 ms/frame (dynamics %7, "
-                                     "collision %8), %9, max penetration %10 mm, max waist error %11 "
+                                     "collision %8), %9, %10, max waist error %11 "
                                      "m%12%13")
                           .arg(slot).arg(input.id).arg(QFileInfo(wanted.motionPath).fileName())
                           .arg(report.preroll.frames).arg(motion_report.frames)
@@ -821,7 +825,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                           .arg(motion_report.mean_frame.dynamics_ms, 0, 'f', 2)
                           .arg(motion_report.mean_frame.collision_ms, 0, 'f', 2)
                           .arg(stretchSummary(motion_report))
-                          .arg(1000.0 * motion_report.max_penetration, 0, 'f', 3)
+                          .arg(penetrationSummary(motion_report))
                           .arg(report.max_waist_error, 0, 'g', 3)
                           .arg(motion_report.cache_path.empty()
                                    ? QString()
@@ -917,8 +921,11 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "an output frame; 0: none doubled), meanRounds (strain-limiting and "
                       "collision rounds per step, 1 .. 8: the dynamics cost grows with them), maxPenetration (m: deepest "
                       "vertex inside a collider's surface + thickness at an output frame), maxDepth (m: deepest below "
-                      "the surface itself), maxFaceDepth (m: deepest face centre below it; only vertices collide, so "
-                      "large faces on a curved body sink in between their corners), deepest {vertex, frame} (where maxPenetration was met; -1: never), "
+                      "the surface itself), maxClothPenetration and maxClothDepth (m: the same over the vertices the solver moves), "
+                      "maxPinnedDepth (m: over pinned vertices, which go where their pins take them and are never pushed "
+                      "out), maxFaceDepth (m: deepest face centre below it; only vertices collide, so "
+                      "large faces on a curved body sink in between their corners), deepest {vertex, frame, pinned} (where "
+                      "maxPenetration was met; -1: never; pinned: a pinned vertex), "
                       "mostStretched {vertices: [i, j], frame} (the spring with maxStretch), initialPenetration (m), nonFinite, cancelled, "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "

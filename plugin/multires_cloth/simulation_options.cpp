@@ -320,6 +320,23 @@ QString stretchSummary(const SimulationReport& report) {
   return text;
 }
 
+QString penetrationSummary(const SimulationReport& report) {
+  QString text = QStringLiteral("max penetration %1 mm").arg(1000.0 * report.max_penetration, 0, 'f', 3);
+  if (report.penetration_pinned())
+    text += QStringLiteral(" (a pinned vertex, set by what drives the pins; the cloth's %1 mm)")
+                .arg(1000.0 * report.max_cloth_penetration, 0, 'f', 3);
+  return text;
+}
+
+QString pinnedDepthWarning(const QString& slot, const SimulationReport& report) {
+  if (!(report.max_pinned_depth > 1e-3)) return {};
+  return QStringLiteral("%1: pinned vertices went %2 mm below the body's surface (deepest at output frame %3): pins "
+                        "follow what drives them and no step pushes them out, so the body overlaps the pinned rim "
+                        "there (the cloth's own deepest: %4 mm below)")
+      .arg(slot).arg(1000.0 * report.max_pinned_depth, 0, 'f', 1).arg(report.pinned_depth_frame)
+      .arg(1000.0 * report.max_cloth_depth, 0, 'f', 1);
+}
+
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model) {
   qlonglong stretch = 0, shear = 0, bend = 0;
   for (const Spring& spring : model.springs) {
@@ -353,10 +370,14 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("meanRounds"), report.mean_rounds},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("maxDepth"), report.max_depth},
+      {QStringLiteral("maxClothPenetration"), report.max_cloth_penetration},
+      {QStringLiteral("maxClothDepth"), report.max_cloth_depth},
+      {QStringLiteral("maxPinnedDepth"), report.max_pinned_depth},
       {QStringLiteral("maxFaceDepth"), report.max_face_depth},
       {QStringLiteral("maxSelfCrossings"), report.max_self_crossings},
       {QStringLiteral("deepest"), QVariantMap{{QStringLiteral("vertex"), report.deepest_vertex},
-                                              {QStringLiteral("frame"), report.deepest_frame}}},
+                                              {QStringLiteral("frame"), report.deepest_frame},
+                                              {QStringLiteral("pinned"), report.penetration_pinned()}}},
       {QStringLiteral("mostStretched"),
        QVariantMap{{QStringLiteral("vertices"), QVariantList{report.stretch_vertices[0], report.stretch_vertices[1]}},
                    {QStringLiteral("frame"), report.stretch_frame},

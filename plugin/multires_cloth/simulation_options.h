@@ -52,7 +52,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 /// The script's view of a finished (or cancelled) run: frames, steps,
 /// timeStep, precomputeMs, msPerFrame {dynamics, collision, total, limiter,
 /// posing, firstRound},
-/// maxStretch, maxTearOpening, maxPenetration, nonFinite, cancelled, output, vertices,
+/// maxStretch, maxTearOpening, maxPenetration (maxClothPenetration, maxClothDepth,
+/// maxPinnedDepth), nonFinite, cancelled, output, vertices,
 /// freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear,
 /// bend}, perFrameMs [{dynamics, collision}].
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model);
@@ -60,5 +61,14 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
 /// "max stretch X %" for log lines, saying when the most stretched spring
 /// lies between pinned vertices (then with the cloth's own largest stretch).
 QString stretchSummary(const SimulationReport& report);
+
+/// "max penetration X mm", with the cloth's own when the deepest vertex is a
+/// pinned one (for the run's log line).
+QString penetrationSummary(const SimulationReport& report);
+
+/// The warning for pins that went below a collider's surface by more than
+/// a millimetre (nothing pushes a pin out: what drives the pins put it
+/// there), or an empty string. `slot` starts the message.
+QString pinnedDepthWarning(const QString& slot, const SimulationReport& report);
 
 }  // namespace mrcloth

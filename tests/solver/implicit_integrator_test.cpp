@@ -311,6 +311,40 @@ TEST(ImplicitIntegrator, AnEdgeItsPinsStretchDoesNotHoldStepsAtAllTheirRounds) {
   EXPECT_LE(cloth, m.material.stretch_limit + 0.01);
 }
 
+TEST(ImplicitIntegrator, SimulateReportsPinsInsideAColliderApartFromTheCloth) {
+  // A sphere around a pinned corner (as a thigh rises into a waist pinned
+  // to the pelvis in a squat): nothing pushes the pin out, and the report
+  // says so instead of blaming the cloth, whose nearest vertex is 4 cm off.
+  const DynamicsModel m = sheet_pinned_at({0, 10});
+  SimulationOptions s;
+  s.frames = 6;
+  const Eigen::Vector3d corner = m.rest.row(0).transpose();
+  s.colliders.resize(1);
+  s.colliders[0].shape = SphereCollider{corner + Eigen::Vector3d(0.0, 0.005, 0.0), 0.02};
+  ClothState state = rest_state(m);
+  const SimulationReport r = simulate(m, state, s);
+  EXPECT_NEAR(r.max_pinned_depth, 0.015, 1e-12);
+  EXPECT_EQ(r.pinned_depth_frame, 0);
+  EXPECT_NEAR(r.max_depth, 0.015, 1e-12);
+  EXPECT_NEAR(r.max_penetration, 0.015 + s.colliders[0].thickness, 1e-12);
+  EXPECT_EQ(r.deepest_vertex, 0);
+  EXPECT_TRUE(r.penetration_pinned());
+  EXPECT_EQ(r.max_cloth_depth, 0.0);
+  EXPECT_EQ(r.max_cloth_penetration, 0.0);
+  // The sheet swinging down onto a sphere under its middle instead: the
+  // deepest is the cloth's (within the thickness), and the pins are clear.
+  s.frames = 12;
+  s.colliders[0].shape = SphereCollider{Eigen::Vector3d(m.rest.row(60).transpose()) + Eigen::Vector3d(0.0, -0.12, 0.0), 0.1};
+  state = rest_state(m);
+  const SimulationReport free = simulate(m, state, s);
+  EXPECT_GT(free.max_cloth_penetration, 0.0);
+  EXPECT_EQ(free.max_cloth_penetration, free.max_penetration);
+  EXPECT_EQ(free.max_cloth_depth, free.max_depth);
+  EXPECT_FALSE(free.penetration_pinned());
+  EXPECT_EQ(free.max_pinned_depth, 0.0);
+  EXPECT_EQ(free.pinned_depth_frame, -1);
+}
+
 TEST(ImplicitIntegrator, SimulateMeasuresTheSameWorstOnAnyThreadCount) {
   // Two opposite pinned corners sit 3 cm deep in equal spheres (pins are
   // not resolved): the deepest vertex is a tie at every frame, between

@@ -66,6 +66,9 @@ expectEqual(report.mostStretched.pinned, report.maxPinnedStretch > report.maxClo
 expectAtMost(report.maxPinnedStretch, 1e-9, "the rigidly carried waistband's stretch:");
 if (report.maxPenetration > 0 && !(report.deepest.vertex >= 0 && report.deepest.frame >= 0 && report.deepest.frame < frames))
   throw new Error("deepest " + JSON.stringify(report.deepest));
+// The same split for depth: the deepest is the cloth's or a pin's, and says which.
+expectEqual(report.deepest.pinned, report.maxPenetration > report.maxClothPenetration, "deepest.pinned");
+expectEqual(report.maxDepth, Math.max(report.maxClothDepth, report.maxPinnedDepth), "maxDepth, the larger part");
 // The mannequin's walk swings the hands close to the hips: the arms open by
 // a few degrees at most, to keep them 2 cm clear.
 expectEqual(report.armsOpened.clearance, 0.02, "arm clearance");
