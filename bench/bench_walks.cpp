@@ -9,11 +9,13 @@
 // Rows: each garment (the shared skirt, the knee-length skirt, the
 // trousers) on each walk (07_06, 07_03, 08_03, 02_01) in three kinds: coarse
 // on fitted capsules, coarse on the skinned mesh, refined once on the
-// skinned mesh. Columns: depth (deepest vertex below the body's surface at
-// an output frame), largest edge stretch, tear (the largest opening of an
-// edge at least doubled), ms per frame (dynamics, collision). Then a
-// summary: runs torn more than 1 cm open, runs deeper than 2 mm, the median
-// and largest stretch, the total time.
+// skinned mesh. Columns: depth (deepest vertex the solver moves below the
+// body's surface at an output frame), pins (the same for pinned vertices,
+// which go where the body takes them), largest edge stretch, tear (the
+// largest opening of an edge at least doubled), ms per frame (dynamics,
+// collision). Then a summary: runs torn more than 1 cm open, runs with
+// cloth (and with pins) deeper than 2 mm, the median and largest stretch,
+// the total time.
 //
 // Usage: bench_walks [--kinds LIST] [--garments LIST] [--walks LIST] and the
 //                    run options of garment_on_character.h (--frames, --preroll,
@@ -115,9 +117,9 @@ int run_table(int argc, char** argv) {
               w.run.simulation.strain_limit_sweeps, w.run.simulation.limiter_acceleration,
               w.run.simulation.limiter_mass_exponent, bench::solve_description(w.run.simulation).c_str(),
               w.run.simulation.threads);
-  std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %9s | %8s | %8s | %8s | %8s | %9s |\n", "garment", "walk", "kind",
-              "vertices", "depth mm", "stretch", "tear mm", "dyn ms/f", "coll ms/f", "faces mm", "crossings");
-  std::printf("|----------|-------|-----------------|----------|----------|-----------|----------|----------|----------|----------|-----------|\n");
+  std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %8s | %9s | %8s | %8s | %8s | %8s | %9s |\n", "garment", "walk", "kind",
+              "vertices", "depth mm", "pins mm", "stretch", "tear mm", "dyn ms/f", "coll ms/f", "faces mm", "crossings");
+  std::printf("|----------|-------|-----------------|----------|----------|----------|-----------|----------|----------|----------|----------|-----------|\n");
   std::vector<Result> results;
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& garment : w.garments)
@@ -125,8 +127,9 @@ int run_table(int argc, char** argv) {
       for (const std::string& walk : w.walks) {
         Result r = run(garment, walk, kind, w);
         const SimulationReport& m = r.motion;
-        std::printf("| %-8s | %-5s | %-15s | %8zu | %8.1f | %7.0f %% | %8.1f | %8.1f | %8.1f | %8.1f | %9d |%s\n",
-                    garment.c_str(), walk.c_str(), kind.c_str(), r.vertices, 1000.0 * m.max_depth, 100.0 * m.max_stretch,
+        std::printf("| %-8s | %-5s | %-15s | %8zu | %8.1f | %8.1f | %7.0f %% | %8.1f | %8.1f | %8.1f | %8.1f | %9d |%s\n",
+                    garment.c_str(), walk.c_str(), kind.c_str(), r.vertices, 1000.0 * m.max_cloth_depth,
+                    1000.0 * m.max_pinned_depth, 100.0 * m.max_stretch,
                     1000.0 * m.max_tear_opening, m.mean_frame.dynamics_ms, m.mean_frame.collision_ms,
                     1000.0 * m.max_face_depth, m.max_self_crossings, m.non_finite ? " NaN!" : "");
         std::fflush(stdout);
@@ -134,13 +137,14 @@ int run_table(int argc, char** argv) {
       }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<double> stretch;
-  int torn = 0, deep = 0, non_finite = 0;
+  int torn = 0, deep = 0, deep_pins = 0, non_finite = 0;
   double frame_ms = 0.0, face_depth = 0.0;
   for (const Result& r : results) {
     face_depth = std::max(face_depth, r.motion.max_face_depth);
     stretch.push_back(r.motion.max_stretch);
     if (r.motion.max_tear_opening > 0.01) ++torn;
-    if (r.motion.max_depth > 0.002) ++deep;
+    if (r.motion.max_cloth_depth > 0.002) ++deep;
+    if (r.motion.max_pinned_depth > 0.002) ++deep_pins;
     if (r.motion.non_finite) ++non_finite;
     frame_ms += r.motion.mean_frame.total_ms();
   }
@@ -148,10 +152,10 @@ int run_table(int argc, char** argv) {
   std::sort(stretch.begin(), stretch.end());
   const double median = stretch.size() % 2 ? stretch[stretch.size() / 2]
                                            : 0.5 * (stretch[stretch.size() / 2 - 1] + stretch[stretch.size() / 2]);
-  std::printf("\n%zu runs: %d torn more than 1 cm open, %d deeper than 2 mm, %d non-finite; stretch median %.0f %%, "
-              "largest %.0f %%; face centres at most %.1f mm inside a body (only vertices collide); the runs' ms per "
-              "frame summed %.1f; %.0f s in all\n",
-              results.size(), torn, deep, non_finite, 100.0 * median, 100.0 * stretch.back(), 1000.0 * face_depth,
+  std::printf("\n%zu runs: %d torn more than 1 cm open, %d with cloth deeper than 2 mm (%d with pins deeper), %d "
+              "non-finite; stretch median %.0f %%, largest %.0f %%; face centres at most %.1f mm inside a body (only "
+              "vertices collide); the runs' ms per frame summed %.1f; %.0f s in all\n",
+              results.size(), torn, deep, deep_pins, non_finite, 100.0 * median, 100.0 * stretch.back(), 1000.0 * face_depth,
               frame_ms, seconds);
   return 0;
 }
