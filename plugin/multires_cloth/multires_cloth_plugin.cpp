@@ -796,8 +796,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
   if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
+  // Like the fit, where the pins go is the garment's and the motion's, the
+  // same for every refinement of one garment (the pipeline says it once).
   const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
-  if (!pinned_warning.isEmpty()) emit log(LOGWARN, pinned_warning);
+  if (!pinned_warning.isEmpty() && request.character->fitWarning) emit log(LOGWARN, pinned_warning);
   if (report.preroll.initial_penetration > 1e-6)  // clearing the garment leaves round-off
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
                                      "thickness); it is pushed out on the first step: check option 'place'")
@@ -1005,7 +1007,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
             "steps per second >= fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
             "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool), fitWarning: bool = true (log a "
-            "warning when a tube garment is too narrow for the motion; the report's fit has it either way). With "
+            "warning when a tube garment is too narrow for the motion, or when its pins go more than 1 mm below the "
+            "body's surface; the report's fit and maxPinnedDepth have them either way). With "
             "output, the rest mesh "
             "is written beside the cache as <name>.obj (restMesh in the report)")}},
       {QStringLiteral("extractModes(int id, string cachePath, object options = {}) -> object"),
