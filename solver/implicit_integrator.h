@@ -254,7 +254,7 @@ class ImplicitIntegrator {
   mutable std::vector<char> dirty_, swept_;
   // Per free vertex, the sweep_ slots of the springs it moves (the limiter's
   // dependents: both ends of a direct spring, a general one's terms), in
-  // CSR form; and the slots measured every sweep (both ends pinned).
+  // CSR form.
   std::vector<int> dependent_start_, dependent_slots_;
   mutable std::vector<std::uint64_t> due_;  // per sweep_ slot, one bit: a vertex it depends on is dirty
   mutable Positions limited_;
