@@ -18,10 +18,15 @@ void check(const SimulationOptions& o) {
   validate_colliders(o.colliders);
 }
 
-double deepest_penetration(const CollisionScene& scene, const Positions& x) {
+/// The deepest penetration of the vertices the solver moves: what its first
+/// step pushes out (a pin stays where its pins put it, and the pins' depth
+/// is measured at every output frame apart).
+double deepest_cloth_penetration(const CollisionScene& scene, const DynamicsModel& model, const Positions& x) {
   double deepest = 0.0;
   if (scene.empty()) return deepest;
-  for (Eigen::Index v = 0; v < x.rows(); ++v) deepest = std::max(deepest, scene.penetration(x.row(v).transpose()));
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (!model.stencil[static_cast<std::size_t>(v)].empty())
+      deepest = std::max(deepest, scene.penetration(x.row(v).transpose()));
   return deepest;
 }
 
@@ -140,7 +145,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     cache = std::make_unique<Pc2Writer>(options.cache_path, model.num_vertices, 1.0, 1.0);
 
   if (bodies.pose) bodies.pose(state.time);
-  report.initial_penetration = deepest_penetration(scene, full_positions(model, state.positions, state.pinned));
+  report.initial_penetration = deepest_cloth_penetration(scene, model, full_positions(model, state.positions, state.pinned));
   const Positions rest_pinned = pinned_rows(model, model.rest);
   const ContactSurface surface = contact_surface(model);
   MeasureHints hints{std::vector<int>(static_cast<std::size_t>(model.num_vertices), -1),

@@ -67,7 +67,7 @@ struct SimulationReport {
   double max_pinned_stretch = 0.0;     ///< the same over springs whose ends both follow pins (StretchPeak::pinned_strain): set by what drives the pins
   double max_tear_opening = 0.0;       ///< largest StretchPeak::tear_opening at any output frame, metres (0: no spring ever doubled)
   double max_penetration = 0.0;        ///< deepest vertex inside collider + thickness at any output frame, metres
-  double initial_penetration = 0.0;    ///< the same for the start state: > 0 means the cloth began inside a collider
+  double initial_penetration = 0.0;    ///< the same for the start state, over the vertices the solver moves: > 0 means the cloth began inside a collider
   double max_depth = 0.0;              ///< deepest vertex below a collider's surface itself (thickness not counted) at any output frame, metres
   double max_cloth_penetration = 0.0;  ///< max_penetration over the vertices the solver moves (a free term in their stencil), metres
   double max_cloth_depth = 0.0;        ///< max_depth over those, metres

@@ -928,7 +928,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "out), maxFaceDepth (m: deepest face centre below it; only vertices collide, so "
                       "large faces on a curved body sink in between their corners), deepest {vertex, frame, pinned} (where "
                       "maxPenetration was met; -1: never; pinned: a pinned vertex), "
-                      "mostStretched {vertices: [i, j], frame} (the spring with maxStretch), initialPenetration (m), nonFinite, cancelled, "
+                      "mostStretched {vertices: [i, j], frame} (the spring with maxStretch), initialPenetration (m: the cloth's at the start, pins not counted), nonFinite, cancelled, "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
                       "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN). "

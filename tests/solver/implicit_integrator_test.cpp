@@ -331,6 +331,7 @@ TEST(ImplicitIntegrator, SimulateReportsPinsInsideAColliderApartFromTheCloth) {
   EXPECT_TRUE(r.penetration_pinned());
   EXPECT_EQ(r.max_cloth_depth, 0.0);
   EXPECT_EQ(r.max_cloth_penetration, 0.0);
+  EXPECT_EQ(r.initial_penetration, 0.0);  // what the first step pushes out: not the pin
   // The sheet swinging down onto a sphere under its middle instead: the
   // deepest is the cloth's (within the thickness), and the pins are clear.
   s.frames = 12;
