@@ -21,6 +21,31 @@ void check(const SimulationOptions& o) {
 /// The deepest penetration of the vertices the solver moves: what its first
 /// step pushes out (a pin stays where its pins put it, and the pins' depth
 /// is measured at every output frame apart).
+/// Moves each pinned target that lies below a surface of `scene` (posed for
+/// the step's end) out onto it, and returns the farthest move (metres).
+/// `start` (#pinned x 3) is where the pins began the step, the side they
+/// came from; `hints`, one per pin, start each search where the last ended.
+/// Onto the surface, not out to the thickness as cloth is pushed: a pin then
+/// leaves its target continuously as the body rises into it.
+double yield_pins_to_surfaces(const CollisionScene& scene, const Positions& start, Positions& pinned,
+                              std::vector<int>& hints) {
+  double farthest = 0.0;
+  for (Eigen::Index r = 0; r < pinned.rows(); ++r) {
+    const Eigen::Vector3d target = pinned.row(r).transpose();
+    const double depth = scene.depths(target, &hints[static_cast<std::size_t>(r)]).depth;
+    if (!(depth > 0.0)) continue;
+    Eigen::Vector3d out = target;
+    scene.resolve(start.row(r).transpose(), out, /*friction=*/false);  // out to the thickness, depth + thickness away
+    const Eigen::Vector3d push = out - target;
+    const double length = push.norm();
+    if (!(length > 0.0)) continue;
+    const Eigen::Vector3d onto = target + std::min(depth, length) / length * push;
+    pinned.row(r) = onto.transpose();
+    farthest = std::max(farthest, (onto - target).norm());
+  }
+  return farthest;
+}
+
 double deepest_cloth_penetration(const CollisionScene& scene, const DynamicsModel& model, const Positions& x) {
   double deepest = 0.0;
   if (scene.empty()) return deepest;
@@ -151,6 +176,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   MeasureHints hints{std::vector<int>(static_cast<std::size_t>(model.num_vertices), -1),
                      std::vector<int>(model.corners.size(), -1)};
   Positions pinned_next = rest_pinned;
+  std::vector<int> pin_hints(static_cast<std::size_t>(rest_pinned.rows()), -1);
   for (int frame = 0; frame < options.frames; ++frame) {
     FrameTiming timing;
     for (int sub = 0; sub < options.substeps; ++sub) {
@@ -165,6 +191,16 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pose_start).count();
         timing.collision_ms += posing_ms;
         timing.posing_ms += posing_ms;
+      }
+      if (options.pins_yield && !scene.empty()) {
+        const auto yield_start = std::chrono::steady_clock::now();
+        const double moved = yield_pins_to_surfaces(scene, state.pinned, pinned_next, pin_hints);
+        if (moved > report.max_pin_yield) {
+          report.max_pin_yield = moved;
+          report.pin_yield_frame = frame;
+        }
+        timing.collision_ms +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - yield_start).count();
       }
       const StepReport step = integrator.step(state, pinned_next, scene);
       timing.dynamics_ms += step.dynamics_ms;

@@ -29,6 +29,11 @@ struct SimulationOptions {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};   ///< m/s^2
   std::vector<Collider> colliders;            ///< analytic colliders
   SelfContactOptions self_contact;            ///< cloth-cloth contact (self_contact.h); thickness 0: off
+  /// A pin whose target lies below a collider's surface is moved out onto
+  /// that surface for the step (a thigh rising into a waistband pinned to
+  /// the pelvis pushes it, as it pushes the cloth); false: pins exactly at
+  /// their targets, inside a body or not.
+  bool pins_yield = true;
   std::string cache_path;                     ///< PC2 file of all vertices per frame; empty: none
 };
 
@@ -73,6 +78,8 @@ struct SimulationReport {
   double max_cloth_depth = 0.0;        ///< max_depth over those, metres
   double max_pinned_depth = 0.0;       ///< max_depth over the vertices that follow pins alone (what drives the pins put them there), metres
   int pinned_depth_frame = -1;         ///< output frame (0-based) of max_pinned_depth (-1: no pin ever below a surface)
+  double max_pin_yield = 0.0;          ///< farthest a pin was moved off its target onto a surface (pins_yield), metres
+  int pin_yield_frame = -1;            ///< the output frame (0-based) whose steps did that (-1: no pin ever yielded)
   /// Deepest face centre (the mean of an active face's four corners) below
   /// a collider's surface itself at any output frame, metres: only vertices
   /// collide, so a large face resting on a curved body sinks into it

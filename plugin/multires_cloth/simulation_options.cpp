@@ -187,7 +187,7 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
                      QStringLiteral("iterations"), QStringLiteral("newtonCg"), QStringLiteral("limiterSweeps"), QStringLiteral("limiterAcceleration"),
-                     QStringLiteral("limiterMassExponent"), QStringLiteral("tNodeSag"), QStringLiteral("collisionRounds"),
+                     QStringLiteral("limiterMassExponent"), QStringLiteral("tNodeSag"), QStringLiteral("pinsYield"), QStringLiteral("collisionRounds"),
                      QStringLiteral("contactSlack"), QStringLiteral("material"),   QStringLiteral("alpha"),
                      QStringLiteral("alphaBend"), QStringLiteral("bendModel"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
@@ -234,6 +234,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
              .arg(fields.label(QStringLiteral("limiterMassExponent")))
              .arg(sim.limiter_mass_exponent));
   sim.t_node_sag = fields.boolean(QStringLiteral("tNodeSag"), sim.t_node_sag);
+  sim.pins_yield = fields.boolean(QStringLiteral("pinsYield"), sim.pins_yield);
   sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
@@ -329,12 +330,18 @@ QString penetrationSummary(const SimulationReport& report) {
 }
 
 QString pinnedDepthWarning(const QString& slot, const SimulationReport& report) {
-  if (!(report.max_pinned_depth > 1e-3)) return {};
-  return QStringLiteral("%1: pinned vertices went %2 mm below the body's surface (deepest at output frame %3): pins "
-                        "follow what drives them and no step pushes them out, so the body overlaps the pinned rim "
-                        "there (the cloth's own deepest: %4 mm below)")
-      .arg(slot).arg(1000.0 * report.max_pinned_depth, 0, 'f', 1).arg(report.pinned_depth_frame)
-      .arg(1000.0 * report.max_cloth_depth, 0, 'f', 1);
+  if (report.max_pinned_depth > 1e-3)
+    return QStringLiteral("%1: pinned vertices went %2 mm below the body's surface (deepest at output frame %3): with "
+                          "pinsYield false pins stay on their targets, so the body overlaps the pinned rim there (the "
+                          "cloth's own deepest: %4 mm below)")
+        .arg(slot).arg(1000.0 * report.max_pinned_depth, 0, 'f', 1).arg(report.pinned_depth_frame)
+        .arg(1000.0 * report.max_cloth_depth, 0, 'f', 1);
+  if (report.max_pin_yield > 1e-3)
+    return QStringLiteral("%1: the body overlapped the pins' targets by up to %2 mm (output frame %3): those pins were "
+                          "moved out onto its surface, off the targets what drives them gave (pinsYield: false keeps "
+                          "them there, inside the body)")
+        .arg(slot).arg(1000.0 * report.max_pin_yield, 0, 'f', 1).arg(report.pin_yield_frame);
+  return {};
 }
 
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model) {
@@ -373,6 +380,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("maxClothPenetration"), report.max_cloth_penetration},
       {QStringLiteral("maxClothDepth"), report.max_cloth_depth},
       {QStringLiteral("maxPinnedDepth"), report.max_pinned_depth},
+      {QStringLiteral("maxPinYield"), report.max_pin_yield},
       {QStringLiteral("maxFaceDepth"), report.max_face_depth},
       {QStringLiteral("maxSelfCrossings"), report.max_self_crossings},
       {QStringLiteral("deepest"), QVariantMap{{QStringLiteral("vertex"), report.deepest_vertex},

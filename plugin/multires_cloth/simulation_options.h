@@ -53,7 +53,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
 /// timeStep, precomputeMs, msPerFrame {dynamics, collision, total, limiter,
 /// posing, firstRound},
 /// maxStretch, maxTearOpening, maxPenetration (maxClothPenetration, maxClothDepth,
-/// maxPinnedDepth), nonFinite, cancelled, output, vertices,
+/// maxPinnedDepth, maxPinYield), nonFinite, cancelled, output, vertices,
 /// freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear,
 /// bend}, perFrameMs [{dynamics, collision}].
 QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsModel& model);
@@ -66,9 +66,9 @@ QString stretchSummary(const SimulationReport& report);
 /// pinned one (for the run's log line).
 QString penetrationSummary(const SimulationReport& report);
 
-/// The warning for pins that went below a collider's surface by more than
-/// a millimetre (nothing pushes a pin out: what drives the pins put it
-/// there), or an empty string. `slot` starts the message.
+/// The warning for pins a collider overlapped by more than a millimetre:
+/// below its surface (pinsYield false) or moved out onto it, off their
+/// targets; or an empty string. `slot` starts the message.
 QString pinnedDepthWarning(const QString& slot, const SimulationReport& report);
 
 }  // namespace mrcloth

@@ -313,11 +313,13 @@ TEST(ImplicitIntegrator, AnEdgeItsPinsStretchDoesNotHoldStepsAtAllTheirRounds) {
 
 TEST(ImplicitIntegrator, SimulateReportsPinsInsideAColliderApartFromTheCloth) {
   // A sphere around a pinned corner (as a thigh rises into a waist pinned
-  // to the pelvis in a squat): nothing pushes the pin out, and the report
-  // says so instead of blaming the cloth, whose nearest vertex is 4 cm off.
+  // to the pelvis in a squat), with the pins kept at their targets: nothing
+  // pushes the pin out, and the report says so instead of blaming the
+  // cloth, whose nearest vertex is 4 cm off.
   const DynamicsModel m = sheet_pinned_at({0, 10});
   SimulationOptions s;
   s.frames = 6;
+  s.pins_yield = false;
   const Eigen::Vector3d corner = m.rest.row(0).transpose();
   s.colliders.resize(1);
   s.colliders[0].shape = SphereCollider{corner + Eigen::Vector3d(0.0, 0.005, 0.0), 0.02};
@@ -332,6 +334,8 @@ TEST(ImplicitIntegrator, SimulateReportsPinsInsideAColliderApartFromTheCloth) {
   EXPECT_EQ(r.max_cloth_depth, 0.0);
   EXPECT_EQ(r.max_cloth_penetration, 0.0);
   EXPECT_EQ(r.initial_penetration, 0.0);  // what the first step pushes out: not the pin
+  EXPECT_EQ(r.max_pin_yield, 0.0);
+  EXPECT_EQ(r.pin_yield_frame, -1);
   // The sheet swinging down onto a sphere under its middle instead: the
   // deepest is the cloth's (within the thickness), and the pins are clear.
   s.frames = 12;
@@ -346,13 +350,43 @@ TEST(ImplicitIntegrator, SimulateReportsPinsInsideAColliderApartFromTheCloth) {
   EXPECT_EQ(free.pinned_depth_frame, -1);
 }
 
+TEST(ImplicitIntegrator, PinsInsideAColliderYieldOntoItsSurface) {
+  // The same sphere around a pinned corner, with pins yielding (the
+  // default): every step moves the pin from its target (5 mm below the
+  // sphere's centre, 15 mm deep) straight out onto the surface, the pinned
+  // edge from it to the other corner is what stretches, and no vertex is
+  // below the surface at any output frame.
+  const DynamicsModel m = sheet_pinned_at({0, 10});
+  SimulationOptions s;
+  s.frames = 6;
+  ASSERT_TRUE(s.pins_yield);
+  const Eigen::Vector3d corner = m.rest.row(0).transpose();
+  const Eigen::Vector3d centre = corner + Eigen::Vector3d(0.0, 0.005, 0.0);
+  s.colliders.resize(1);
+  s.colliders[0].shape = SphereCollider{centre, 0.02};
+  ClothState state = rest_state(m);
+  std::vector<Positions> frames;
+  const SimulationReport r = simulate(m, state, s, {}, {}, &frames);
+  EXPECT_NEAR(r.max_pin_yield, 0.015, 1e-12);
+  EXPECT_EQ(r.pin_yield_frame, 0);
+  EXPECT_LT(r.max_depth, 1e-12);
+  EXPECT_EQ(r.max_pinned_depth, r.max_depth);
+  for (const Positions& x : frames) {
+    EXPECT_NEAR((x.row(0).transpose() - centre).norm(), 0.02, 1e-12);  // on the surface
+    EXPECT_NEAR(x(0, 0), corner.x(), 1e-12);                             // straight below the centre
+    EXPECT_NEAR(x(0, 2), corner.z(), 1e-12);
+    EXPECT_EQ(x.row(10), m.rest.row(10));  // the other pin, outside, at its target
+  }
+}
+
 TEST(ImplicitIntegrator, SimulateMeasuresTheSameWorstOnAnyThreadCount) {
-  // Two opposite pinned corners sit 3 cm deep in equal spheres (pins are
-  // not resolved): the deepest vertex is a tie at every frame, between
+  // Two opposite pinned corners sit 3 cm deep in equal spheres (pins kept
+  // at their targets): the deepest vertex is a tie at every frame, between
   // vertices in different threads' parts, which the first vertex wins.
   const DynamicsModel m = sheet_pinned_at({0, 120});
   SimulationOptions s;
   s.frames = 4;
+  s.pins_yield = false;
   s.colliders.resize(2);
   for (int k = 0; k < 2; ++k) {
     const Eigen::Vector3d corner = m.rest.row(k == 0 ? 0 : 120).transpose();

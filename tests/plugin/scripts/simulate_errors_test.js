@@ -14,7 +14,7 @@ const sim = options => () => multirescloth.simulate(grid, options);
 expectThrows(() => multirescloth.simulate(99), "ArgumentError", "multirescloth.simulate: no object with id 99");
 expectThrows(() => multirescloth.simulate(grid, 5), "ArgumentError", "options must be an object, got the number 5");
 expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unknown option 'frame'",
-             "accepted: frames, fps, substeps, iterations, newtonCg, limiterSweeps, limiterAcceleration, limiterMassExponent, tNodeSag, collisionRounds, contactSlack, material, alpha, alphaBend, bendModel, " +
+             "accepted: frames, fps, substeps, iterations, newtonCg, limiterSweeps, limiterAcceleration, limiterMassExponent, tNodeSag, pinsYield, collisionRounds, contactSlack, material, alpha, alphaBend, bendModel, " +
              "gravity, pins, colliders, " +
              "output, objSequence, updateObject, selfContact, threads");
 
@@ -58,6 +58,7 @@ expectThrows(sim({selfContact: {thickness: 0.003, radius: 1}}), "ArgumentError",
 expectThrows(sim({gravity: [0, -9.81]}), "ArgumentError", "option 'gravity' must be an array of 3 numbers");
 expectThrows(sim({updateObject: 1}), "ArgumentError", "option 'updateObject' must be true or false, got the number 1");
 expectThrows(sim({tNodeSag: "yes"}), "ArgumentError", "option 'tNodeSag' must be true or false");
+expectThrows(sim({pinsYield: "no"}), "ArgumentError", "option 'pinsYield' must be true or false");
 
 // Material.
 expectThrows(sim({material: "wool"}), "ArgumentError",
