@@ -18,9 +18,6 @@ void check(const SimulationOptions& o) {
   validate_colliders(o.colliders);
 }
 
-/// The deepest penetration of the vertices the solver moves: what its first
-/// step pushes out (a pin stays where its pins put it, and the pins' depth
-/// is measured at every output frame apart).
 /// Moves each pinned target that lies below a surface of `scene` (posed for
 /// the step's end) out onto it, and returns the farthest move (metres).
 /// `start` (#pinned x 3) is where the pins began the step, the side they
@@ -34,18 +31,24 @@ double yield_pins_to_surfaces(const CollisionScene& scene, const Positions& star
     const Eigen::Vector3d target = pinned.row(r).transpose();
     const double depth = scene.depths(target, &hints[static_cast<std::size_t>(r)]).depth;
     if (!(depth > 0.0)) continue;
-    Eigen::Vector3d out = target;
-    scene.resolve(start.row(r).transpose(), out, /*friction=*/false);  // out to the thickness, depth + thickness away
+    Eigen::Vector3d out = target;  // out to the thickness from every surface, as cloth is pushed
+    scene.resolve(start.row(r).transpose(), out, /*friction=*/false);
     const Eigen::Vector3d push = out - target;
     const double length = push.norm();
     if (!(length > 0.0)) continue;
-    const Eigen::Vector3d onto = target + std::min(depth, length) / length * push;
+    // Back along the push to the surface, unless that lies inside another
+    // part of the body (two capsules overlapping): then where it was pushed.
+    Eigen::Vector3d onto = target + std::min(depth, length) / length * push;
+    if (scene.depths(onto).depth > 0.0) onto = out;
     pinned.row(r) = onto.transpose();
     farthest = std::max(farthest, (onto - target).norm());
   }
   return farthest;
 }
 
+/// The deepest penetration of the vertices the solver moves: what its first
+/// step pushes out (pins are not pushed as cloth is, and their depth is
+/// measured apart at every output frame).
 double deepest_cloth_penetration(const CollisionScene& scene, const DynamicsModel& model, const Positions& x) {
   double deepest = 0.0;
   if (scene.empty()) return deepest;

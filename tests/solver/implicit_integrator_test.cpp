@@ -379,6 +379,30 @@ TEST(ImplicitIntegrator, PinsInsideAColliderYieldOntoItsSurface) {
   }
 }
 
+TEST(ImplicitIntegrator, APinYieldsOutOfEveryOverlappingCollider) {
+  // The target 15 mm inside one sphere, whose surface below it lies inside
+  // a second sphere beside it (two capsules overlapping at a hip): the pin
+  // ends outside both, in the crease, never below either surface.
+  const DynamicsModel m = sheet_pinned_at({0, 10});
+  SimulationOptions s;
+  s.frames = 4;
+  const Eigen::Vector3d corner = m.rest.row(0).transpose();
+  const Eigen::Vector3d upper = corner + Eigen::Vector3d(0.0, 0.005, 0.0), lower = corner + Eigen::Vector3d(0.012, -0.03, 0.0);
+  s.colliders.resize(2);
+  s.colliders[0].shape = SphereCollider{upper, 0.02};
+  s.colliders[1].shape = SphereCollider{lower, 0.02};
+  ClothState state = rest_state(m);
+  std::vector<Positions> frames;
+  const SimulationReport r = simulate(m, state, s, {}, {}, &frames);
+  EXPECT_GT(r.max_pin_yield, 0.015);
+  EXPECT_EQ(r.max_pinned_depth, 0.0);
+  for (const Positions& x : frames) {
+    const Eigen::Vector3d pin = x.row(0).transpose();
+    EXPECT_GE((pin - upper).norm(), 0.02 - 1e-12);
+    EXPECT_GE((pin - lower).norm(), 0.02 - 1e-12);
+  }
+}
+
 TEST(ImplicitIntegrator, SimulateMeasuresTheSameWorstOnAnyThreadCount) {
   // Two opposite pinned corners sit 3 cm deep in equal spheres (pins kept
   // at their targets): the deepest vertex is a tie at every frame, between
