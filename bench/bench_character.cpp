@@ -163,11 +163,11 @@ int run_benchmark(int argc, char** argv) {
   if (b.flare != 0.0) std::printf("the skirt flared by %.2f toward its hem (bench::flare_skirt)\n", b.flare);
   std::printf("skirt on CMU 07_06, %d frames at 30 fps after a %.1f s pre-roll, %.0f Hz steps, %d thread(s), set up as "
               "multirescloth.simulate sets it up, %s a step, cloth-cloth contact %.1f mm, at most %d rounds of %d limiter sweeps "
-              "(acceleration %.3f, mass exponent %.2f), contact slack %.2f mm, round tolerance %.3f\n\n",
+              "(acceleration %.3f%s, mass exponent %.2f), contact slack %.2f mm, round tolerance %.3f\n\n",
               b.run.simulation.frames, b.run.preroll, b.run.step_rate, b.run.simulation.threads,
               bench::solve_description(b.run.simulation).c_str(),
               1000.0 * b.run.simulation.self_contact.thickness, b.run.simulation.collision_rounds,
-              b.run.simulation.strain_limit_sweeps, b.run.simulation.limiter_acceleration,
+              b.run.simulation.strain_limit_sweeps, b.run.simulation.limiter_acceleration, b.run.simulation.acceleration_from_chain ? " or the chain's" : "",
               b.run.simulation.limiter_mass_exponent, 1000.0 * b.run.simulation.contact_slack,
               b.run.simulation.round_tolerance);
   std::printf("| %-22s | %-8s | %8s | %9s | %9s | %9s | %9s | %9s | %9s | %9s |  |\n", "garment", "body", "vertices",

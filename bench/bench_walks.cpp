@@ -112,9 +112,9 @@ int run_table(int argc, char** argv) {
     return 0;
   }
   std::printf("the walk table: %d frames at 30 fps after a %.3f s pre-roll, at most %d rounds of %d limiter sweeps "
-              "(acceleration %.3f, mass exponent %.2f), %s a step, %d thread(s)\n\n",
+              "(acceleration %.3f%s, mass exponent %.2f), %s a step, %d thread(s)\n\n",
               w.run.simulation.frames, w.run.preroll, w.run.simulation.collision_rounds,
-              w.run.simulation.strain_limit_sweeps, w.run.simulation.limiter_acceleration,
+              w.run.simulation.strain_limit_sweeps, w.run.simulation.limiter_acceleration, w.run.simulation.acceleration_from_chain ? " or the chain's" : "",
               w.run.simulation.limiter_mass_exponent, bench::solve_description(w.run.simulation).c_str(),
               w.run.simulation.threads);
   std::printf("| %-8s | %-5s | %-15s | %8s | %8s | %8s | %9s | %8s | %8s | %8s | %8s | %9s |\n", "garment", "walk", "kind",

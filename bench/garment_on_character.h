@@ -35,7 +35,7 @@ struct GarmentRun {
 
 /// The command-line options both benchmarks take for a run, after their own.
 inline constexpr const char* kRunOptionsUsage =
-    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO] [--mass-exponent E] "
+    "[--frames N] [--preroll S] [--step-rate HZ] [--rounds N] [--sweeps N] [--acceleration RHO|auto] [--mass-exponent E] "
     "[--slack METRES] "
     "[--round-tolerance STRAIN] [--tethers 0|1] [--iterations N] [--newton-cg K] [--stretch-stiffness N/M] "
     "[--self-contact METRES] [--self-contact-neighbourhood METRES] [--self-contact-reach METRES] [--mittens 0|1] [--waist-smoothing METRES] [--threads N]";
@@ -49,6 +49,7 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--step-rate") o.step_rate = std::atof(value);
   else if (key == "--rounds") s.collision_rounds = std::atoi(value);
   else if (key == "--sweeps") s.strain_limit_sweeps = std::atoi(value);
+  else if (key == "--acceleration" && std::string(value) == "auto") s.acceleration_from_chain = true;
   else if (key == "--acceleration") s.limiter_acceleration = std::atof(value);
   else if (key == "--mass-exponent") s.limiter_mass_exponent = std::atof(value);
   else if (key == "--slack") s.contact_slack = std::atof(value);

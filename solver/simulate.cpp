@@ -152,6 +152,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.newton_cg = options.newton_cg;
   io.strain_limit_sweeps = options.strain_limit_sweeps;
   io.limiter_acceleration = options.limiter_acceleration;
+  io.acceleration_from_chain = options.acceleration_from_chain;
   io.limiter_mass_exponent = options.limiter_mass_exponent;
   io.t_node_sag = options.t_node_sag;
   io.collision_rounds = options.collision_rounds;
@@ -166,6 +167,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   auto start = std::chrono::steady_clock::now();
   ImplicitIntegrator integrator;
   integrator.precompute(model, io);
+  report.limiter_acceleration = integrator.limiter_acceleration();
   report.precompute_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   std::unique_ptr<Pc2Writer> cache;

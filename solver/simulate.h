@@ -19,6 +19,7 @@ struct SimulationOptions {
   int newton_cg = IntegratorOptions{}.newton_cg;  ///< see IntegratorOptions: 0 plain iterations, k: Newton steps by k preconditioned CG iterations
   int strain_limit_sweeps = 6;                ///< see IntegratorOptions
   double limiter_acceleration = IntegratorOptions{}.limiter_acceleration;  ///< see IntegratorOptions: rho in [0, 1), 0 plain sweeps
+  bool acceleration_from_chain = IntegratorOptions{}.acceleration_from_chain;  ///< see IntegratorOptions
   double limiter_mass_exponent = IntegratorOptions{}.limiter_mass_exponent;  ///< see IntegratorOptions: in [0, 1], 1 mass-weighted projections
   bool t_node_sag = IntegratorOptions{}.t_node_sag;  ///< see IntegratorOptions (experimental, off)
   int collision_rounds = 8;                   ///< see IntegratorOptions
@@ -94,6 +95,7 @@ struct SimulationReport {
   int stretch_frame = -1;              ///< and output frame (0-based)
   /// Whether that spring's ends both follow pins.
   bool stretch_pinned() const { return max_pinned_stretch > max_cloth_stretch; }
+  double limiter_acceleration = 0.0;   ///< the Chebyshev estimate the limiter used (ImplicitIntegrator::limiter_acceleration)
   double mean_rounds = 0.0;            ///< strain-limiting/collision rounds per step, mean (1 .. collision_rounds): what a step's dynamics cost grows with
   bool non_finite = false;             ///< a NaN or infinity appeared (the run stops there)
   bool cancelled = false;              ///< the progress callback asked to stop (no cache is written)

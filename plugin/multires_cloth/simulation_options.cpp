@@ -222,11 +222,23 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
   sim.newton_cg = fields.integerAtLeast(QStringLiteral("newtonCg"), sim.newton_cg, 0);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
-  sim.limiter_acceleration = fields.numberFrom(QStringLiteral("limiterAcceleration"), sim.limiter_acceleration, 0.0, false);
-  if (!(sim.limiter_acceleration < 1.0))
-    fail(QStringLiteral("%1 must be a number >= 0 and < 1 (0: plain limiter sweeps), got %2")
-             .arg(fields.label(QStringLiteral("limiterAcceleration")))
-             .arg(sim.limiter_acceleration));
+  // "auto": the default estimate raised to the garment's chain's
+  // (chain_spectral_radius), which the longer chains of refined meshes need.
+  const QVariant acceleration =
+      fields.has(QStringLiteral("limiterAcceleration")) ? fields.required(QStringLiteral("limiterAcceleration")) : QVariant();
+  if (acceleration.typeId() == QMetaType::QString) {
+    if (acceleration.toString() != QLatin1String("auto"))
+      fail(QStringLiteral("%1 must be \"auto\" or a number >= 0 and < 1 (0: plain limiter sweeps), got %2")
+               .arg(fields.label(QStringLiteral("limiterAcceleration")), script::describeValue(acceleration)));
+    sim.acceleration_from_chain = true;
+  } else {
+    sim.limiter_acceleration =
+        fields.numberFrom(QStringLiteral("limiterAcceleration"), sim.limiter_acceleration, 0.0, false);
+    if (!(sim.limiter_acceleration < 1.0))
+      fail(QStringLiteral("%1 must be \"auto\" or a number >= 0 and < 1 (0: plain limiter sweeps), got %2")
+               .arg(fields.label(QStringLiteral("limiterAcceleration")))
+               .arg(sim.limiter_acceleration));
+  }
   sim.limiter_mass_exponent =
       fields.numberFrom(QStringLiteral("limiterMassExponent"), sim.limiter_mass_exponent, 0.0, false);
   if (!(sim.limiter_mass_exponent <= 1.0))
@@ -375,6 +387,7 @@ QVariantMap simulationReportMap(const SimulationReport& report, const DynamicsMo
       {QStringLiteral("maxPinnedStretch"), report.max_pinned_stretch},
       {QStringLiteral("maxTearOpening"), report.max_tear_opening},
       {QStringLiteral("meanRounds"), report.mean_rounds},
+      {QStringLiteral("limiterAcceleration"), report.limiter_acceleration},
       {QStringLiteral("maxPenetration"), report.max_penetration},
       {QStringLiteral("maxDepth"), report.max_depth},
       {QStringLiteral("maxClothPenetration"), report.max_cloth_penetration},

@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <tuple>
 
 namespace mrcloth {
 namespace {
@@ -755,6 +756,31 @@ TEST(ImplicitIntegrator, AcceleratedSweepsLetACurtainHangingAtItsLimitComeToRest
     EXPECT_GT(stretch, 0.5 * m.material.stretch_limit) << "the limiter should carry the curtain; the test proves nothing";
     EXPECT_GE(fastest, half_step_of_gravity - 1e-9) << n << " x " << n;
     EXPECT_LT(fastest - half_step_of_gravity, 1e-4) << n << " x " << n;  // measured 4e-6 and 2e-5 m/s
+  }
+}
+
+TEST(ImplicitIntegrator, TheChainsSpectralRadiusCountsTheLongestWayFromAPin) {
+  // An 11 x 11 sheet: pinned along a side, the farthest row is 10 stretch
+  // springs away; pinned at a corner, the opposite corner 20 (no diagonal
+  // is a stretch spring); without pins there is no chain.
+  std::vector<int> side;
+  for (int i = 0; i < 11; ++i) side.push_back(i);
+  EXPECT_NEAR(chain_spectral_radius(sheet_pinned_at(side)), std::pow(std::cos(M_PI / 11.0), 2), 1e-15);
+  EXPECT_NEAR(chain_spectral_radius(sheet_pinned_at({0})), std::pow(std::cos(M_PI / 21.0), 2), 1e-15);
+  EXPECT_EQ(chain_spectral_radius(sheet_pinned_at({})), 0.0);
+  // The limiter's estimate: the options', raised to the chain's when asked,
+  // never where the options ask for plain sweeps.
+  const DynamicsModel corner = sheet_pinned_at({0});
+  const double chain = chain_spectral_radius(corner);
+  ASSERT_GT(chain, 0.97);
+  for (const auto& [acceleration, from_chain, expected] :
+       std::vector<std::tuple<double, bool, double>>{{0.97, false, 0.97}, {0.97, true, chain}, {0.995, true, 0.995}, {0.0, true, 0.0}}) {
+    IntegratorOptions o = options(1.0 / 120);
+    o.limiter_acceleration = acceleration;
+    o.acceleration_from_chain = from_chain;
+    ImplicitIntegrator integrator;
+    integrator.precompute(corner, o);
+    EXPECT_EQ(integrator.limiter_acceleration(), expected) << acceleration << " " << from_chain;
   }
 }
 

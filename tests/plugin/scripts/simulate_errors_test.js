@@ -30,7 +30,7 @@ expectThrows(sim({bendModel: "hinge"}), "ArgumentError", "option 'bendModel'");
 expectThrows(sim({newtonCg: -1}), "ArgumentError", "option 'newtonCg' must be an integer >= 0");
 expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
 expectThrows(sim({limiterAcceleration: -0.1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0, got the number -0.1");
-expectThrows(sim({limiterAcceleration: 1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0 and < 1 (0: plain limiter sweeps), got 1");
+expectThrows(sim({limiterAcceleration: 1}), "ArgumentError", "option 'limiterAcceleration' must be \"auto\" or a number >= 0 and < 1 (0: plain limiter sweeps), got 1");
 expectThrows(sim({limiterMassExponent: -0.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0, got the number -0.5");
 expectThrows(sim({limiterMassExponent: 1.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0 and <= 1 (1: mass-weighted limiter projections), got 1.5");
 expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer >= 1");
