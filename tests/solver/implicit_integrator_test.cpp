@@ -733,7 +733,9 @@ TEST(ImplicitIntegrator, AcceleratedSweepsLetACurtainHangingAtItsLimitComeToRest
   // before they were limited to sweeps that meet a spring beyond the round
   // tolerance); it must come to rest as with plain sweeps, moving by no
   // more than 0.1 mm/s beyond the half step of gravity the velocity
-  // carries (h g / 2).
+  // carries (h g / 2). Also with the chain's estimate (0.9898 for the 31 x
+  // 31 curtain), which near rest gives way to the default's (0.3 m/s before).
+  for (const bool from_chain : {false, true})
   for (const int n : {11, 31}) {
     DynamicsOptions d;
     for (int v = 0; v < n; ++v) d.pinned.push_back(v);
@@ -742,6 +744,7 @@ TEST(ImplicitIntegrator, AcceleratedSweepsLetACurtainHangingAtItsLimitComeToRest
     const DynamicsModel m = build_dynamics(test::make_sheet(n, 0.5), d);
     IntegratorOptions o = options(1.0 / 120);
     ASSERT_GT(o.limiter_acceleration, 0.0) << "the default is accelerated";
+    o.acceleration_from_chain = from_chain;
     ImplicitIntegrator integrator;
     integrator.precompute(m, o);
     ClothState s = rest_state(m);
@@ -754,8 +757,8 @@ TEST(ImplicitIntegrator, AcceleratedSweepsLetACurtainHangingAtItsLimitComeToRest
     }
     const double half_step_of_gravity = 0.5 * o.time_step * 9.81;
     EXPECT_GT(stretch, 0.5 * m.material.stretch_limit) << "the limiter should carry the curtain; the test proves nothing";
-    EXPECT_GE(fastest, half_step_of_gravity - 1e-9) << n << " x " << n;
-    EXPECT_LT(fastest - half_step_of_gravity, 1e-4) << n << " x " << n;  // measured 4e-6 and 2e-5 m/s
+    EXPECT_GE(fastest, half_step_of_gravity - 1e-9) << n << " x " << n << (from_chain ? ", the chain's" : "");
+    EXPECT_LT(fastest - half_step_of_gravity, 1e-4) << n << " x " << n << (from_chain ? ", the chain's" : "");  // measured 4e-6 and 2e-5 m/s (2.7e-6 and 8.3e-6 with the chain's)
   }
 }
 
