@@ -53,6 +53,10 @@ const USAGE = [
   "  --bend-model M         distance | secondDifference: experimental bend springs quadratic in the",
   "                         curvature (simulate's bendModel; give --bend-stiffness) [distance, the paper's]",
   "  --bend-stiffness K     bend spring stiffness at level 1, N/m, >= 0 [the material's]",
+  "  --limiter-acceleration A",
+  "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
+  "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
+  "                         README, Collision cost) [simulate's default, 0.97]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
   "                         (README, Characters) [120, the CMU mocap rate]",
@@ -89,6 +93,7 @@ const DEFAULTS = {
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
   waistSmoothing: 0.02,  // simulate's default; recorded with --makehuman, so runs made before it (0 in effect) do not resume
   newtonCg: 0, bendModel: "distance", bendStiffness: null,  // null: the material's
+  limiterAcceleration: null,  // null: simulate's default
 };
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
                "-h": "help", "--t-node-sag": "tNodeSag"};
@@ -99,6 +104,7 @@ const VALUED = {
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
   "--threads": "threads", "--step-rate": "stepRate", "--newton-cg": "newtonCg", "--bend-model": "bendModel",
   "--bend-stiffness": "bendStiffness", "--waist-smoothing": "waistSmoothing",
+  "--limiter-acceleration": "limiterAcceleration",
   "--size": "size",
 };
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
@@ -156,6 +162,13 @@ function parseOptions(args) {
       case "newtonCg": options.newtonCg = integerOption(name, text, 0); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
       case "bendStiffness": options.bendStiffness = numberOption(name, text, 0, false); break;
+      case "limiterAcceleration": {
+        const value = Number(text);
+        if (text !== "auto" && (text.trim() === "" || !isFinite(value) || value < 0 || value >= 1))
+          throw pipelineError("option " + name + ": expected auto or a number >= 0 and < 1, got \"" + text + "\"");
+        options.limiterAcceleration = text === "auto" ? text : value;
+        break;
+      }
       case "waistSmoothing":
         options.waistSmoothing = numberOption(name, text, 0, false);
         waistGiven = true;
@@ -256,6 +269,7 @@ function resultOptions(options) {
   if (copy.newtonCg === 0) delete copy.newtonCg;
   if (copy.bendModel === "distance") delete copy.bendModel;
   if (copy.bendStiffness === null) delete copy.bendStiffness;
+  if (copy.limiterAcceleration === null) delete copy.limiterAcceleration;
   if (!copy.makehuman) delete copy.waistSmoothing;  // no skin to follow: it decides nothing
   return copy;
 }
@@ -350,7 +364,8 @@ function runPipeline(options) {
        material: material, tNodeSag: options.tNodeSag, threads: options.threads},
       options.stepRate === null ? {} : {stepRate: options.stepRate},
       options.newtonCg === 0 ? {} : {newtonCg: options.newtonCg},
-      options.bendModel === "distance" ? {} : {bendModel: options.bendModel});
+      options.bendModel === "distance" ? {} : {bendModel: options.bendModel},
+      options.limiterAcceleration === null ? {} : {limiterAcceleration: options.limiterAcceleration});
   const onCharacter = (frames, output, bodyOutput) => {
     const settings = Object.assign({motion: null}, characterSettings(frames), {output: out + "/" + output});
     if (bodyOutput) settings.bodyOutput = out + "/" + bodyOutput;
@@ -664,6 +679,8 @@ function reportMarkdown(report) {
              (report.options.bendModel && report.options.bendModel !== "distance"
                   ? " (" + report.options.bendModel + " bend springs)" : "") +
              (report.options.newtonCg ? "; Newton steps of " + report.options.newtonCg + " CG" : "") +
+             (report.options.limiterAcceleration !== undefined && report.options.limiterAcceleration !== null
+                  ? "; limiter acceleration " + report.options.limiterAcceleration : "") +
              "; " + report.options.fps + " fps" +
              (report.table1Instance.stepRate ? ", " + report.table1Instance.stepRate + " steps per second" : "") + ".", "");
   // The deepest vertex's penetration, and where it was a pinned one (it goes

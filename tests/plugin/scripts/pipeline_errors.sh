@@ -33,6 +33,8 @@ refused "option --fps: expected a number > 0, got \"fast\"" --fps fast
 refused "option --threads: expected an integer >= 0, got \"-2\"" --threads -2
 refused "option --step-rate: expected a number > 0, got \"0\"" --step-rate 0
 refused "option --step-rate: expected at least --fps \(30 frames per second\), got 20" --step-rate 20
+refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, got \"fast\"" --limiter-acceleration fast
+refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, got \"1\"" --limiter-acceleration 1
 refused "option --newton-cg: expected an integer >= 0, got \"-1\"" --newton-cg -1
 refused "option --bend-model: expected one of distance, secondDifference, got \"hinge\"" --bend-model hinge
 refused "option --bend-stiffness: expected a number >= 0, got \"-0.1\"" --bend-stiffness -0.1
