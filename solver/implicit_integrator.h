@@ -129,7 +129,7 @@ std::vector<FineRow> t_node_fine_rows(const DynamicsModel& model);
 /// model's longest: cos^2(pi / (n + 1)), n the most stretch springs between
 /// a pin and any vertex (along the shortest way). The strain limiter's
 /// corrections cross a garment like that chain, so this is the Chebyshev
-/// estimate its sweeps need: 0.97 for the shared skirt (19 links), 0.9935
+/// estimate its sweeps need: 0.9755 for the shared skirt (19 links), 0.9935
 /// refined once, 0.998 twice. 0 without pins.
 double chain_spectral_radius(const DynamicsModel& model);
 
