@@ -696,6 +696,11 @@ double ImplicitIntegrator::limit_strain(Positions& q) const {
       const auto is_due = [&](const LimitedSpring& l) {
         if (l.fi >= 0) return dirty[static_cast<std::size_t>(l.fi)] || dirty[static_cast<std::size_t>(l.fj)];
         const GeneralSpring& g = general_[static_cast<std::size_t>(l.fj)];
+        // A sagging T-node spring also reads its fine row (the extra rows
+        // among its dependents): tested every sweep, as every spring is
+        // without the active set (testing only its terms left springs the
+        // row had stretched unprojected, and the bits differed).
+        if (g.sag_t >= 0) return true;
         const GeneralTerm* terms = general_terms_.data() + g.first;
         bool found = false;
         for (int t = 0; t < g.count && !found; ++t) found = dirty[static_cast<std::size_t>(terms[t].free)] != 0;
