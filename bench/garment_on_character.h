@@ -50,7 +50,10 @@ inline bool take_run_option(const std::string& key, const char* value, GarmentRu
   else if (key == "--rounds") s.collision_rounds = std::atoi(value);
   else if (key == "--sweeps") s.strain_limit_sweeps = std::atoi(value);
   else if (key == "--acceleration" && std::string(value) == "auto") s.acceleration_from_chain = true;
-  else if (key == "--acceleration") s.limiter_acceleration = std::atof(value);
+  else if (key == "--acceleration") {
+    s.limiter_acceleration = std::atof(value);
+    s.acceleration_from_chain = false;
+  }
   else if (key == "--mass-exponent") s.limiter_mass_exponent = std::atof(value);
   else if (key == "--slack") s.contact_slack = std::atof(value);
   else if (key == "--round-tolerance") s.round_tolerance = std::atof(value);

@@ -74,7 +74,7 @@ struct IntegratorOptions {
   int newton_cg = 0;                            ///< >= 0; 0: each iteration steps by Q^-1 grad (Liu et al.); k: each is a Newton step solved by k conjugate-gradient iterations preconditioned by Q (less damped per iteration, see above)
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
   double limiter_acceleration = 0.97;           ///< spectral radius estimate rho in [0, 1) for Chebyshev acceleration of a round's sweeps (see limit_strain); 0: plain sweeps
-  bool acceleration_from_chain = false;         ///< raise rho to chain_spectral_radius(model) (see there) in rounds not near rest (see limit_strain); with limiter_acceleration 0 still plain sweeps
+  bool acceleration_from_chain = true;          ///< raise rho to chain_spectral_radius(model) (see there) in rounds not near rest (see limit_strain); with limiter_acceleration 0 still plain sweeps
   double limiter_mass_exponent = 0.5;           ///< the limiter moves a vertex in proportion to mass^-exponent, in [0, 1]: 1 mass-weighted (momentum-conserving), 0 equal; 0.5 converges on multi-resolution meshes, whose masses differ up to 16-fold (see precompute; README, Limiter weights)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collision checks) per step, >= 1

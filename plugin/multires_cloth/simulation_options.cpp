@@ -231,7 +231,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
       fail(QStringLiteral("%1 must be \"auto\" or a number >= 0 and < 1 (0: plain limiter sweeps), got %2")
                .arg(fields.label(QStringLiteral("limiterAcceleration")), script::describeValue(acceleration)));
     sim.acceleration_from_chain = true;
-  } else {
+  } else if (acceleration.isValid()) {
+    sim.acceleration_from_chain = false;
     sim.limiter_acceleration =
         fields.numberFrom(QStringLiteral("limiterAcceleration"), sim.limiter_acceleration, 0.0, false);
     if (!(sim.limiter_acceleration < 1.0))

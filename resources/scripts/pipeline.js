@@ -56,7 +56,7 @@ const USAGE = [
   "  --limiter-acceleration A",
   "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
   "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
-  "                         README, Collision cost) [simulate's default, 0.97]",
+  "                         README, Collision cost) [simulate's default, auto]",
   "  --fps F                output frames per second, > 0 [30]",
   "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
   "                         (README, Characters) [120, the CMU mocap rate]",
