@@ -44,8 +44,9 @@ for (const type of ["mesh", "capsules", "mesh+self", "mesh+self0"]) {
   // it the waistband's, below); 57 / 88 % before that, on the waistband's
   // edges next to pins that took neighbouring body vertices' unlike weights
   // (116 / 149 % before the contact planes). With cloth-cloth contact and no
-  // neighbourhood (mesh+self0) 14.5 % (19 % with the fixed estimate 0.97); 72 % while a round could end on a
-  // contact push the limiter had not seen.
+  // neighbourhood (mesh+self0) 14.5 % (19 % with the fixed limiter estimate
+  // 0.97); 72 % while a round could end on a contact push the limiter had
+  // not seen.
   expectAtMost(report.preroll.initialPenetration, type === "mesh" ? 1e-9 : 0.007, type + ": initial penetration");
   expectAtMost(report.maxDepth, 0.002, type + ": depth inside the body");
   expectAtMost(report.maxStretch, 0.5, type + ": stretch");
