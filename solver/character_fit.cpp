@@ -17,6 +17,18 @@ bool arm_joint(const std::string& name) {
   return false;
 }
 
+/// Per joint, whether it is on an arm: named as an arm's joint, or below
+/// one. A hand's finger joints count whatever their names (a DAZ
+/// skeleton's lIndex1, lMid1, ... name no arm part); left out, the hands
+/// hanging at the hips counted into a skirt's girth there.
+std::vector<char> arm_joints(const Skeleton& skeleton) {
+  std::vector<char> arm(skeleton.joints.size(), 0);
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
+    for (int k = static_cast<int>(j); k >= 0 && !arm[j]; k = skeleton.joints[static_cast<std::size_t>(k)].parent)
+      arm[j] = arm_joint(skeleton.joints[static_cast<std::size_t>(k)].name);
+  return arm;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector2i> polygon_edges(const std::vector<std::vector<int>>& polygons) {
@@ -29,6 +41,7 @@ std::vector<Eigen::Vector2i> polygon_edges(const std::vector<std::vector<int>>& 
 std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skeleton) {
   const Pose rest = rest_pose(skeleton);
   const BodySurface surface = body.surface(rest);
+  const std::vector<char> on_arm = arm_joints(skeleton);
   std::vector<char> counted(static_cast<std::size_t>(surface.vertices.rows()), 1);
   for (Eigen::Index v = 0; v < surface.vertices.rows(); ++v) {
     const Eigen::Vector3d p = surface.vertices.row(v).transpose();
@@ -40,7 +53,7 @@ std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skele
       const double d = segment_distance(p, rest.position(parent), rest.position(static_cast<int>(j))).first;
       if (d < nearest) {
         nearest = d;
-        arm = arm_joint(skeleton.joints[j].name);
+        arm = on_arm[j] != 0;
       }
     }
     counted[static_cast<std::size_t>(v)] = !arm;
