@@ -4,6 +4,7 @@
 #include "mesh_ops/errors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -63,6 +64,27 @@ std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skele
 
 bool is_tube_garment(const QuadMesh& garment) { return boundary_loops(garment).size() == 2; }
 
+HoopDemandOptions full_round_span(const QuadMesh& tube, const Eigen::MatrixX3d& points, HoopDemandOptions levels) {
+  const std::vector<std::vector<int>> loops = boundary_loops(tube);
+  if (loops.size() != 2 || !std::isnan(levels.top) || !std::isnan(levels.bottom)) return levels;
+  const int up = levels.up_axis;
+  const auto extent = [&](const std::vector<int>& loop) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const int v : loop) {
+      low = std::min(low, points(v, up));
+      high = std::max(high, points(v, up));
+    }
+    return std::make_pair(low, high);
+  };
+  auto upper = extent(loops[0]), lower = extent(loops[1]);
+  if (upper.second < lower.second) std::swap(upper, lower);
+  if (upper.first > lower.second) {  // else the loops overlap in height: the whole garment, as for any shape
+    levels.top = upper.first;
+    levels.bottom = lower.second;
+  }
+  return levels;
+}
+
 std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
                                        const QuadMesh& garment, const HoopDemandOptions& levels, int max_samples) {
   if (max_samples < 1)
@@ -90,7 +112,7 @@ std::vector<HoopLevel> run_hoop_demand(const Motion& motion, const PosedBody& bo
   }
   std::vector<HoopLevel> out =
       hoop_demand(rest, polygon_edges(active_face_polygons(garment)), frames, polygon_edges(faces),
-                  vertices_off_arms(body, motion.skeleton), levels);
+                  vertices_off_arms(body, motion.skeleton), full_round_span(garment, rest, levels));
   for (HoopLevel& level : out)
     if (level.frame >= 0) level.frame *= stride;  // the output frame, not the sample
   return out;

@@ -24,9 +24,20 @@ std::vector<char> vertices_off_arms(const PosedBody& body, const Skeleton& skele
 /// the garment a girth is measured for.
 bool is_tube_garment(const QuadMesh& garment);
 
+/// `levels` with the span a tube's levels divide (HoopDemandOptions::top,
+/// bottom) set to where its level loops go all the way round: from the
+/// lowest point of its top boundary loop to the highest of its bottom one
+/// (`points`: #V x 3 positions of `tube`'s vertices, metres). Above a
+/// waistband lower at the front than at the back, or below a hem longer
+/// at the back, a level cuts only part of the tube, and the hull of that
+/// arc is no girth. Unchanged when `levels` sets a span, when the garment
+/// is not a tube, or when the loops overlap in height.
+HoopDemandOptions full_round_span(const QuadMesh& tube, const Eigen::MatrixX3d& points, HoopDemandOptions levels);
+
 /// The hoop demand (hoop_demand) of `garment` (placed: at rest in the
 /// reference pose, metres; its active faces' sides are its edges) on
-/// `body` over the output frames of the run `options` describes, at most
+/// `body` over the output frames of the run `options` describes (levels
+/// over full_round_span's span), at most
 /// `max_samples` of them (>= 1; evenly strided), the body's heights taken
 /// as the pelvis joint carries the waist: each frame lowered by how far
 /// the pelvis rose since the reference pose. Each level's `frame` is the

@@ -76,7 +76,11 @@ std::vector<HoopLevel> hoop_demand(const Eigen::MatrixX3d& garment, const std::v
     throw ArgumentError("hoop_demand: " + std::to_string(counted.size()) + " body vertex flags; expected one per body vertex (" +
                         std::to_string(body_count) + ")");
   const int up = options.up_axis;
-  const double top = garment.col(up).maxCoeff(), bottom = garment.col(up).minCoeff();
+  const double top = std::isnan(options.top) ? garment.col(up).maxCoeff() : options.top;
+  const double bottom = std::isnan(options.bottom) ? garment.col(up).minCoeff() : options.bottom;
+  if (!(top > bottom))
+    throw ArgumentError("hoop_demand: the levels' span runs from " + std::to_string(top) + " down to " +
+                        std::to_string(bottom) + " m; expected its top above its bottom");
   std::vector<HoopLevel> levels(static_cast<std::size_t>(options.levels));
   for (int k = 0; k < options.levels; ++k) {
     HoopLevel& level = levels[static_cast<std::size_t>(k)];

@@ -6,13 +6,19 @@
 // whole and within its limit: the stride asks for cloth that is not there.
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace mrcloth {
 
 struct HoopDemandOptions {
-  int levels = 8;   ///< heights, >= 1: the middles of equal bands from the garment's top to its bottom
+  int levels = 8;   ///< heights, >= 1: the middles of equal bands from `top` to `bottom`
   int up_axis = 1;  ///< 0, 1 or 2: the vertical axis (y in the skeleton's space)
+  /// The span the levels divide, metres along the up axis (top > bottom);
+  /// NaN: the garment's highest / lowest point. run_hoop_demand sets the
+  /// span where a tube's level loops go all the way round (see there).
+  double top = std::numeric_limits<double>::quiet_NaN();
+  double bottom = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One height. A girth is the perimeter of the convex hull of a mesh's

@@ -7,11 +7,13 @@
 #include "mesh_ops/garment_io.h"
 #include "solver/body_capsules.h"
 #include "solver/character_fit.h"
+#include "solver/garment_fit.h"
 #include "solver/skeleton.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <set>
@@ -206,6 +208,61 @@ TEST_F(GarmentsOnMannequin, FingersUnderAHandAreLeftOutOfTheGirthWhateverTheirNa
   }
   EXPECT_GT(out_on_arms, 100);
   EXPECT_GT(beyond_hands, 10) << "the hands' capsules must reach past the hand joints";
+}
+
+// A waistband lower at the front than at the back and a hem longer at
+// the back: a level above the waistband's lowest point, or below the
+// hem's highest, cuts only part of the tube (the hull of that arc is no
+// girth), so the levels divide the span between those two points. The
+// default skirt's loops lie flat: its span is its extent. (The shared
+// knee-length skirt, 5 cm slanted at the waist and 21 cm at the hem:
+// character_fit_warning.js.)
+TEST_F(GarmentsOnMannequin, LevelsLieWhereTheTubeGoesAllTheWayRound) {
+  const QuadMesh& skirt = skirt_->mesh;
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(skirt.n_vertices()), 3);
+  for (const auto v : skirt.vertices()) points.row(v.idx()) = point(skirt, v.idx()).transpose();
+  const double top = points.col(1).maxCoeff(), bottom = points.col(1).minCoeff();
+  const HoopDemandOptions flat = full_round_span(skirt, points, {});
+  EXPECT_EQ(flat.top, top);
+  EXPECT_EQ(flat.bottom, bottom);
+  // The top loop 4 cm lower at the front (+z) than at the back, the
+  // bottom loop 6 cm lower at the back.
+  const std::vector<std::vector<int>> loops = boundary_loops(skirt);
+  ASSERT_EQ(loops.size(), 2u);
+  const double z_front = points.col(2).maxCoeff(), z_back = points.col(2).minCoeff();
+  Eigen::MatrixX3d slanted = points;
+  double top_low = std::numeric_limits<double>::infinity(), bottom_high = -top_low;
+  for (const std::vector<int>& loop : loops)
+    for (const int v : loop) {
+      const double front = (points(v, 2) - z_back) / (z_front - z_back);  // 0 at the back, 1 at the front
+      if (points(v, 1) > 0.5 * (top + bottom)) {
+        slanted(v, 1) -= 0.04 * front;
+        top_low = std::min(top_low, slanted(v, 1));
+      } else {
+        slanted(v, 1) -= 0.06 * (1.0 - front);
+        bottom_high = std::max(bottom_high, slanted(v, 1));
+      }
+    }
+  const HoopDemandOptions span = full_round_span(skirt, slanted, {});
+  EXPECT_EQ(span.top, top_low);
+  EXPECT_EQ(span.bottom, bottom_high);
+  EXPECT_LT(span.top, top - 0.02);  // the waist's front lies inside the hem's z range: lowered 3 cm
+  EXPECT_EQ(span.bottom, bottom);   // the hem's frontmost vertex is unmoved
+  const std::vector<HoopLevel> levels = hoop_demand(slanted, polygon_edges(active_face_polygons(skirt)), {}, {}, {}, span);
+  ASSERT_EQ(levels.size(), 8u);
+  EXPECT_NEAR(levels.front().height, top_low - (top_low - bottom_high) / 16.0, 1e-12);
+  EXPECT_NEAR(levels.back().height, bottom_high + (top_low - bottom_high) / 16.0, 1e-12);
+  // A span given is kept; a mesh that is not a tube is left alone.
+  HoopDemandOptions given;
+  given.top = 1.0;
+  given.bottom = 0.9;
+  EXPECT_EQ(full_round_span(skirt, slanted, given).top, 1.0);
+  const Eigen::MatrixX3d trousers = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(trousers_->mesh.n_vertices()), 3);
+  EXPECT_TRUE(std::isnan(full_round_span(trousers_->mesh, trousers, {}).top));
+  HoopDemandOptions upside_down;
+  upside_down.top = 0.9;
+  upside_down.bottom = 1.0;
+  EXPECT_THROW(hoop_demand(slanted, polygon_edges(active_face_polygons(skirt)), {}, {}, {}, upside_down), ArgumentError);
 }
 
 // A skirt narrowed by s about a vertical line has every level's girth
