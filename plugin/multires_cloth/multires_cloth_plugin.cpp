@@ -800,7 +800,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // same for every refinement of one garment (the pipeline says it once).
   const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
   if (!pinned_warning.isEmpty() && request.character->fitWarning) emit log(LOGWARN, pinned_warning);
-  if (report.preroll.initial_penetration > 1e-6)  // clearing the garment leaves round-off
+  // Where the garment starts is its own and the body's, the same for
+  // every refinement of it: said with the fit (the pipeline says it once
+  // per motion; the report has initialPenetration either way).
+  if (report.preroll.initial_penetration > 1e-6 && request.character->fitWarning)  // clearing leaves round-off
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body (or its "
                                      "thickness); it is pushed out on the first step: check option 'place'")
                           .arg(slot).arg(1000.0 * report.preroll.initial_penetration, 0, 'f', 1));
@@ -1012,8 +1015,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
             "steps per second >= fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
             "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool), fitWarning: bool = true (log a "
-            "warning when a tube garment is too narrow for the motion, or when the body overlaps its pins' targets "
-            "by more than 1 mm; the report's fit, maxPinYield and maxPinnedDepth have them either way). With "
+            "warning when a tube garment is too narrow for the motion, when the body overlaps its pins' targets "
+            "by more than 1 mm, or when the cloth starts inside the body; the report's fit, maxPinYield, "
+            "maxPinnedDepth and preroll.initialPenetration have them either way). With "
             "output, the rest mesh "
             "is written beside the cache as <name>.obj (restMesh in the report)")}},
       {QStringLiteral("extractModes(int id, string cachePath, object options = {}) -> object"),
