@@ -258,9 +258,15 @@ function baseName(path) {
   return path.split("/").pop().replace(/\.[^.]*$/, "");
 }
 
+/// The defaults that decide results, by revision: a run resumes only what
+/// the same revision made. Bump it with a change of default that moves
+/// results without an option saying so. 2: the limiter's estimate from the
+/// garment's chain (861bb6d); before it (no revision recorded), 0.97.
+const SOLVER_REVISION = 2;
+
 /// What decides the results: a resumed run must have been started with the same.
 function resultOptions(options) {
-  const copy = Object.assign({}, options);
+  const copy = Object.assign({solverRevision: SOLVER_REVISION}, options);
   delete copy.resume;
   delete copy.help;
   delete copy.out;
@@ -290,6 +296,11 @@ class Stages {
       if (previous !== wanted) {
         const before = JSON.parse(previous), now = JSON.parse(wanted);
         const differing = Object.keys(now).filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key]));
+        if (differing.includes("solverRevision"))
+          throw pipelineError("--resume: " + out + " holds a run made with other solver defaults (revision " +
+                              (before.solverRevision === undefined ? 1 : before.solverRevision) + "; this build's " +
+                              SOLVER_REVISION + "), whose results would mix with new ones; run without --resume or " +
+                              "use another --out");
         throw pipelineError("--resume: " + out + " holds a run with other options (" + differing.join(", ") +
                             "); run without --resume or use another --out");
       }

@@ -43,6 +43,17 @@ grep -q "complete from an earlier run, skipped" "$tmp/resume.err" || fail "no sk
 code=$?
 [ "$code" -eq 1 ] || fail "resume with other options: exit code $code"
 grep -q "holds a run with other options (modes)" "$tmp/other.err" || fail "other options: $(cat "$tmp/other.err")"
+# So is a run made before a change of solver defaults (its options.json
+# names no revision): its results would mix with this build's.
+cp "$tmp/command/stages/options.json" "$tmp/options.json.kept"
+sed -i 's/"solverRevision":[0-9]*,//' "$tmp/command/stages/options.json"
+grep -q solverRevision "$tmp/command/stages/options.json" && fail "the test could not remove the revision"
+"$host" -q pipeline $small --out "$tmp/command" --resume > /dev/null 2> "$tmp/revision.err"
+code=$?
+[ "$code" -eq 1 ] || fail "resume of another solver revision: exit code $code"
+grep -q "holds a run made with other solver defaults (revision 1; this build's [0-9]*)" "$tmp/revision.err" ||
+  fail "other revision: $(cat "$tmp/revision.err")"
+cp "$tmp/options.json.kept" "$tmp/command/stages/options.json"
 
 # 4b. The solve and bend options reach every run: the report says so, the
 # runs' settings carry them, and the instance moves otherwise.
