@@ -115,20 +115,22 @@ std::vector<int> wavefront_order(const DynamicsModel& model) {
   return stretch;
 }
 
+// Per vertex, the vertices joined to it by stretch springs, in spring order.
+std::vector<std::vector<int>> stretch_neighbours(const DynamicsModel& model) {
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(model.num_vertices));
+  for (const Spring& s : model.springs)
+    if (s.kind == SpringKind::stretch) {
+      neighbours[static_cast<std::size_t>(s.i)].push_back(s.j);
+      neighbours[static_cast<std::size_t>(s.j)].push_back(s.i);
+    }
+  return neighbours;
+}
+
 }  // namespace
 
-// A spring from T-node h (halfway between parents a and b) to c on the
-// finer side, and c's neighbours ca and cb along the row beside the coarse
-// edge (joined by stretch springs to c and to a or b): the row whose bulge
-// says where the fine cloth would put h.
 double chain_spectral_radius(const DynamicsModel& model) {
   if (model.pinned_vertices.empty()) return 0.0;
-  std::vector<std::vector<int>> neighbours(model.num_vertices);
-  for (const Spring& s : model.springs) {
-    if (s.kind != SpringKind::stretch) continue;
-    neighbours[s.i].push_back(s.j);
-    neighbours[s.j].push_back(s.i);
-  }
+  const std::vector<std::vector<int>> neighbours = stretch_neighbours(model);
   std::vector<int> links(model.num_vertices, -1), queue;
   for (int v : model.pinned_vertices) {
     links[v] = 0;
@@ -146,13 +148,12 @@ double chain_spectral_radius(const DynamicsModel& model) {
   return c * c;
 }
 
+// A spring from T-node h (halfway between parents a and b) to c on the
+// finer side, and c's neighbours ca and cb along the row beside the coarse
+// edge (joined by stretch springs to c and to a or b): the row whose bulge
+// says where the fine cloth would put h.
 std::vector<FineRow> t_node_fine_rows(const DynamicsModel& model) {
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(model.num_vertices));  // along stretch springs
-  for (const Spring& s : model.springs)
-    if (s.kind == SpringKind::stretch) {
-      neighbours[static_cast<std::size_t>(s.i)].push_back(s.j);
-      neighbours[static_cast<std::size_t>(s.j)].push_back(s.i);
-    }
+  const std::vector<std::vector<int>> neighbours = stretch_neighbours(model);
   const auto joined = [&](int u, int v) {
     const std::vector<int>& n = neighbours[static_cast<std::size_t>(u)];
     return std::find(n.begin(), n.end(), v) != n.end();

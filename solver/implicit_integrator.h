@@ -152,12 +152,12 @@ class ImplicitIntegrator {
   /// outlive the integrator) and the options. Throws ArgumentError for bad options.
   void precompute(const DynamicsModel& model, const IntegratorOptions& options);
 
-  /// Advances `state` by one time step to time + h, with the pinned vertices
-  /// moving to `pinned_next` (#pinned x 3), colliding with `scene` as posed
-  /// for the end of the step.
   /// The Chebyshev estimate the limiter uses: the options', raised to the
   /// chain's with acceleration_from_chain (valid after precompute).
   double limiter_acceleration() const { return rho_; }
+  /// Advances `state` by one time step to time + h, with the pinned vertices
+  /// moving to `pinned_next` (#pinned x 3), colliding with `scene` as posed
+  /// for the end of the step.
   StepReport step(ClothState& state, const Positions& pinned_next, const CollisionScene& scene);
   /// The same with a fixed set of analytic colliders.
   StepReport step(ClothState& state, const Positions& pinned_next, const std::vector<Collider>& colliders);
