@@ -800,13 +800,13 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // same for every refinement of one garment (the pipeline says it once).
   const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
   if (!pinned_warning.isEmpty() && request.character->fitWarning) emit log(LOGWARN, pinned_warning);
-  // Where the garment starts is its own and the body's, the same for
-  // every refinement of it: said with the fit (the pipeline says it once
-  // per motion; the report has initialPenetration either way).
-  // Capsules are shrunk to the garment and the skinned mesh clears it
-  // before the run, so what is left is cloth modelled within the
-  // thickness (the MakeHuman trousers on fitted capsules: 4.3 mm, 0.3 mm
-  // past a capsule): said with both depths rather than as a misplacement.
+  // Where the garment starts is its own and the body's, the same for every
+  // refinement of it, so it is said with the fit (the pipeline: once per
+  // motion; the report has initialPenetration either way). Capsules are
+  // shrunk to the garment and the skinned mesh clears it before the run,
+  // so what is left is cloth modelled within the thickness (the MakeHuman
+  // trousers on fitted capsules: 4.3 mm, 0.3 mm past a capsule): said with
+  // both depths rather than as a misplacement.
   const double initial = report.preroll.initial_penetration, thickness = wanted.setup.thickness;
   if (initial > 1e-6 && request.character->fitWarning)  // clearing leaves round-off
     emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body's surface and its %3 mm "
