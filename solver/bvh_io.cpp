@@ -16,6 +16,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -117,6 +118,9 @@ const char* channel_name(Channel c) {
 }
 
 bool is_position(Channel c) { return c == Channel::x_position || c == Channel::y_position || c == Channel::z_position; }
+
+/// The axis (0-2) a position channel moves along.
+int position_axis(Channel c) { return c == Channel::x_position ? 0 : c == Channel::y_position ? 1 : 2; }
 
 /// A token quoted for a message, shortened, with control and non-ASCII bytes escaped (garbage files).
 std::string quoted(std::string_view s) {
@@ -269,9 +273,8 @@ class BvhParser {
     if (end_site) {
       const Token& site = next("'End' without 'Site'", "'End Site'");
       if (site.text != "Site") fail(site.line, "'End' followed by " + quoted(site.text), "'End Site'");
-      const std::string base = skeleton.joints[parent].name + "_end";
-      joint.name = base;
-      for (int k = 2; names_.count(joint.name) > 0; ++k) joint.name = base + std::to_string(k);
+      joint.name = unused_name(skeleton.joints[parent].name + "_end");
+      site_names_[joint.name] = static_cast<int>(skeleton.joints.size());
     } else {
       // The name is every token on the keyword's line up to '{' (names with
       // spaces exist), one space between tokens that white space parted;
@@ -286,6 +289,17 @@ class BvhParser {
         previous_end = part.data() + part.size();
       }
       if (joint.name.empty()) fail(keyword.line, quoted(keyword.text) + " without a name", "a joint name");
+      // A name the reader made up for an End Site gives way to the file's own.
+      if (const auto site = site_names_.find(joint.name); site != site_names_.end()) {
+        const int index = site->second;
+        site_names_.erase(site);
+        Joint& site_joint = skeleton.joints[static_cast<std::size_t>(index)];
+        const std::string renamed = unused_name(site_joint.name);  // while the old one is still taken
+        names_.erase(site_joint.name);
+        site_joint.name = renamed;
+        names_.insert(renamed);
+        site_names_[renamed] = index;
+      }
       if (names_.count(joint.name) > 0)
         fail(keyword.line, "a second joint named " + quoted(joint.name), "unique joint names");
     }
@@ -295,6 +309,13 @@ class BvhParser {
     names_.insert(joint.name);
     skeleton.joints.push_back(std::move(joint));
     return {static_cast<int>(skeleton.joints.size()) - 1, brace.line, false, false, 0};
+  }
+
+  /// `base`, or base2, base3, ...: the first no joint has yet.
+  std::string unused_name(const std::string& base) const {
+    std::string name = base;
+    for (int k = 2; names_.count(name) > 0; ++k) name = base + std::to_string(k);
+    return name;
   }
 
   void parse_channels(const Token& keyword, Joint& joint) {
@@ -362,6 +383,7 @@ class BvhParser {
     std::string expectation = std::to_string(rows) + " frames x " + std::to_string(channels) + " channels";
     if (rows <= std::numeric_limits<long long>::max() / std::max(channels, 1LL))
       expectation += " = " + std::to_string(rows * channels) + " values";
+    check_rows(channels);
     if (!fits) {
       // Report a bad value first if there is one: it comes earlier in the file.
       for (std::size_t k = pos_; k < tokens_.size(); ++k) check_value(tokens_[k], k - pos_, channels);
@@ -382,12 +404,37 @@ class BvhParser {
         const double value = check_value(token, static_cast<std::size_t>(r * channels + c), channels);
         ++pos_;
         if (r < skip) continue;
-        motion_.frames(r - skip, c) = is_position(channel_of_column(c)) ? value * options_.scale : value;
+        motion_.frames(r - skip, c) =
+            is_position(channel_of_column(c)) ? value * options_.scale - rest_of_column_[static_cast<std::size_t>(c)] : value;
       }
     if (!at_end())
       fail(tokens_[pos_].line,
            "extra value " + quoted(tokens_[pos_].text) + " after " + std::to_string(rows) + " frames",
            "the end of the file after " + expectation);
+  }
+
+  /// Where the data's first line holds one whole frame, every line before
+  /// the last must: a row short by a value and the next long by one would
+  /// otherwise shift a frame's channels silently, and a short row within
+  /// the data is named, not the end of the file. (The last line is checked
+  /// against the frame count; rows that wrap over lines are read as one
+  /// stream of values.)
+  void check_rows(long long channels) const {
+    if (channels <= 0 || at_end()) return;
+    std::size_t k = pos_;
+    long long first_count = 0;
+    const int first_line = tokens_[k].line;
+    for (; k < tokens_.size() && tokens_[k].line == first_line; ++k) ++first_count;
+    if (first_count != channels) return;
+    while (k < tokens_.size()) {
+      const int line = tokens_[k].line;
+      long long count = 0;
+      for (; k < tokens_.size() && tokens_[k].line == line; ++k) ++count;
+      if (count != channels && k < tokens_.size())
+        fail(line, "a row of " + std::to_string(count) + " values",
+             std::to_string(channels) + " values per row, as the first frame's row (line " + std::to_string(first_line) +
+                 ")");
+    }
   }
 
   double check_value(const Token& token, std::size_t index, long long channels) const {
@@ -402,9 +449,15 @@ class BvhParser {
   Channel channel_of_column(long long column) {
     if (column_channels_.empty()) {
       column_channels_.resize(channel_total_);
+      rest_of_column_.assign(static_cast<std::size_t>(channel_total_), 0.0);
+      const bool absolute = options_.position_channels == PositionChannels::absolute;
       for (const Joint& joint : motion_.skeleton.joints)
-        for (std::size_t k = 0; k < joint.channels.size(); ++k)
-          column_channels_[joint.first_channel + k] = joint.channels[k];
+        for (std::size_t k = 0; k < joint.channels.size(); ++k) {
+          const auto column_k = static_cast<std::size_t>(joint.first_channel) + k;
+          const Channel channel = joint.channels[k];
+          column_channels_[column_k] = channel;
+          if (absolute && is_position(channel)) rest_of_column_[column_k] = joint.offset[position_axis(channel)];
+        }
     }
     return column_channels_[column];
   }
@@ -416,7 +469,11 @@ class BvhParser {
   Motion motion_;
   int channel_total_ = 0;
   std::vector<Channel> column_channels_;
+  /// Per column, what its value is measured from beyond the offset's (the
+  /// offset's component for an absolute position channel, else 0), metres.
+  std::vector<double> rest_of_column_;
   std::unordered_set<std::string> names_;  ///< of the joints so far (End Sites included)
+  std::unordered_map<std::string, int> site_names_;  ///< the names made up for End Sites, to their joints
 };
 
 // ---- writing ------------------------------------------------------------
@@ -532,7 +589,8 @@ void write_bvh(const std::string& path, const Motion& motion, double scale) {
         if (!first) text += ' ';
         first = false;
         const double value = motion.frames(r, joint.first_channel + static_cast<Eigen::Index>(k));
-        append_number(text, is_position(joint.channels[k]) ? value / scale : value);
+        const Channel channel = joint.channels[k];
+        append_number(text, is_position(channel) ? (value + joint.offset[position_axis(channel)]) / scale : value);
       }
     }
     text += '\n';

@@ -34,13 +34,27 @@ struct Skeleton {
 struct Motion {
   Skeleton skeleton;
   double frame_time = 1.0 / 120.0;  ///< seconds per frame, > 0
-  Eigen::MatrixXd frames;           ///< #frames x channel_count, positions in metres, angles in degrees
+  /// #frames x channel_count, angles in degrees, positions in metres as
+  /// displacements from the joint's offset (read_bvh and write_bvh convert).
+  Eigen::MatrixXd frames;
   double duration() const { return frames.rows() > 1 ? (frames.rows() - 1) * frame_time : 0.0; }
+};
+
+/// What a joint's position channels hold in a BVH file.
+enum class PositionChannels {
+  /// The joint's translation from its parent; its OFFSET is only where it
+  /// rests. Blender, MotionBuilder and three.js read and write this.
+  absolute,
+  /// A displacement added to the OFFSET (some converters write this).
+  relative,
 };
 
 struct BvhReadOptions {
   double scale = 1.0;             ///< metres per file unit (CMU: 0.056444; centimetres: 0.01)
   bool skip_first_frame = false;  ///< drop frame 0 (every CMU clip starts with an added T-pose)
+  /// The two readings differ only where a joint with position channels has
+  /// a non-zero OFFSET (a CMU clip's root has none: both read it alike).
+  PositionChannels position_channels = PositionChannels::absolute;
 };
 
 /// Reads a BVH file (any channel order and subset per joint, End Sites,
@@ -53,7 +67,9 @@ Motion read_bvh(const std::string& path, const BvhReadOptions& options = {});
 /// `scale`: the same numbers as reading its file with that scale.
 void scale_motion(Motion& motion, double scale);
 
-/// Writes a motion as BVH (offsets and positions divided by `scale`), atomically.
+/// Writes a motion as BVH (offsets and positions divided by `scale`), atomically,
+/// its position channels absolute (offset plus displacement): read back with
+/// the default options it gives the same motion.
 void write_bvh(const std::string& path, const Motion& motion, double scale = 1.0);
 
 /// Global transform of every joint (index as in the skeleton).
@@ -62,7 +78,7 @@ struct Pose {
   Eigen::Vector3d position(int joint) const { return global[joint].translation(); }
 };
 
-/// The rest pose: every channel 0 (for CMU: the T-pose).
+/// The rest pose: every rotation 0, every joint at its offset (for CMU: the T-pose).
 Pose rest_pose(const Skeleton& skeleton);
 
 /// The pose of frame f exactly.

@@ -293,6 +293,14 @@ std::vector<Malformed> malformed_variants() {
     cases.push_back({"no_motion_data", lines, 18, "27 values"});
   }
   cases.push_back({"extra_value", edit(21, "2 3 4 12 22 32 42 52 62 72"), 21, "'72'"});
+  // A short row within the data is named, not the end of the file; short
+  // then long by one would shift a frame's channels.
+  cases.push_back({"short_middle_row", edit(20, "1.5 2.5 3.5 11 21 31 41 51"), 20, "a row of 8 values"});
+  {
+    std::vector<std::string> lines = edit(20, "1.5 2.5 3.5 11 21 31 41 51");
+    lines[20] = "61 2 3 4 12 22 32 42 52 62";
+    cases.push_back({"short_then_long_row", lines, 20, "9 values per row"});
+  }
   {
     std::vector<std::string> lines = small_lines();
     lines.push_back("3 4 5 13 23 33 43 53 63");
@@ -316,6 +324,49 @@ std::vector<Malformed> malformed_variants() {
   cases.push_back({"channels_in_end_site", insert(12, "\t\t\tCHANNELS 1 Xrotation"), 12, "End Site"});
   cases.push_back({"duplicate_name", edit(6, "\tJOINT Hips"), 6, "'Hips'"});
   return cases;
+}
+
+TEST(BvhRead, PositionChannelsAreAbsoluteByDefaultOrAddedToTheOffset) {
+  // The root rests 0.9 up and its channels say where it is (Blender and
+  // MotionBuilder write this); Spine has 6 channels, 1 up from the root.
+  std::vector<std::string> lines = small_lines();
+  lines[3] = "\tOFFSET 0 0.9 0";
+  lines[8] = "\t\tCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation";
+  lines.resize(16);
+  lines.insert(lines.end(), {"Frames: 1", "Frame Time: 0.01", "0.5 1 0 0 0 0 0 1.25 0 0 0 0"});
+  const fs::path dir = empty_folder("positions");
+  const std::string path = write_text(dir, "absolute.bvh", join_lines(lines));
+  const Pose absolute = frame_pose(read_bvh(path), 0);
+  EXPECT_NEAR((absolute.position(0) - Eigen::Vector3d(0.5, 1.0, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((absolute.position(1) - Eigen::Vector3d(0.5, 2.25, 0.0)).norm(), 0.0, 1e-12);
+  BvhReadOptions relative_options;
+  relative_options.position_channels = PositionChannels::relative;
+  const Pose relative = frame_pose(read_bvh(path, relative_options), 0);
+  EXPECT_NEAR((relative.position(0) - Eigen::Vector3d(0.5, 1.9, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((relative.position(1) - Eigen::Vector3d(0.5, 4.15, 0.0)).norm(), 0.0, 1e-12);
+  // Written back, the channels are absolute again: the same poses.
+  const std::string again = (dir / "again.bvh").string();
+  write_bvh(again, read_bvh(path));
+  const Pose reread = frame_pose(read_bvh(again), 0);
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR((reread.position(j) - absolute.position(j)).norm(), 0.0, 1e-12);
+}
+
+TEST(BvhRead, AJointNamedLikeAnEndSiteKeepsItsName) {
+  // The End Site of Spine would be called "Spine_end"; a later joint of that
+  // name is the file's own, and the End Site gives way.
+  std::vector<std::string> lines = small_lines();
+  lines.insert(lines.begin() + 13, {"\t\tJOINT Spine_end", "\t\t{", "\t\t\tOFFSET 0 0.2 0",
+                                    "\t\t\tCHANNELS 1 Zrotation", "\t\t}"});
+  for (int row = 0; row < 3; ++row) lines[static_cast<std::size_t>(23 + row)] += " 5";
+  const fs::path dir = empty_folder("end_site_name");
+  const Motion motion = read_bvh(write_text(dir, "named.bvh", join_lines(lines)));
+  const int joint = motion.skeleton.find("Spine_end");
+  ASSERT_GE(joint, 0);
+  EXPECT_FALSE(motion.skeleton.joints[static_cast<std::size_t>(joint)].end_site);
+  const int site = motion.skeleton.find("Spine_end2");
+  ASSERT_GE(site, 0);
+  EXPECT_TRUE(motion.skeleton.joints[static_cast<std::size_t>(site)].end_site);
+  EXPECT_EQ(motion.frames(2, 9), 5.0);
 }
 
 TEST(BvhRead, MalformedFilesNameTheFileAndTheLine) {

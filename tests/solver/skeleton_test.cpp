@@ -33,13 +33,14 @@ fs::path empty_folder(const std::string& name) {
   return dir;
 }
 
-Motion read_text(const std::string& name, const std::string& text, double scale = 1.0) {
+Motion read_text(const std::string& name, const std::string& text, double scale = 1.0,
+                 PositionChannels positions = PositionChannels::absolute) {
   const fs::path path = empty_folder(name) / (name + ".bvh");
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << text;
   }
-  return read_bvh(path.string(), {scale, false});
+  return read_bvh(path.string(), {scale, false, positions});
 }
 
 bool have_motions() { return fs::exists(test::shared_data("motions")); }
@@ -192,14 +193,18 @@ TEST(ForwardKinematics, EveryEulerOrderMatchesHandWrittenMatrices) {
   }
 }
 
-TEST(ForwardKinematics, PositionChannelsAddToTheOffsetAndAreScaled) {
+TEST(ForwardKinematics, PositionChannelsAreTheTranslationOrAddToTheOffsetAndAreScaled) {
   const std::string text =
       "HIERARCHY\nROOT Root\n{\n\tOFFSET 1 0 0\n\tCHANNELS 4 Zrotation Xposition Zposition Yposition\n"
       "\tEnd Site\n\t{\n\t\tOFFSET 0 2 0\n\t}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n90 2 3 4\n";
-  const Motion m = read_text("positions", text, 0.01);
-  const Pose pose = frame_pose(m, 0);
-  EXPECT_LT((pose.position(0) - Eigen::Vector3d(0.03, 0.04, 0.03)).norm(), 1e-15);
-  EXPECT_LT((pose.position(1) - Eigen::Vector3d(0.03 - 0.02, 0.04, 0.03)).norm(), 1e-15);
+  // Absolute (the default): the channels say where the root is.
+  const Pose pose = frame_pose(read_text("positions", text, 0.01), 0);
+  EXPECT_LT((pose.position(0) - Eigen::Vector3d(0.02, 0.04, 0.03)).norm(), 1e-15);
+  EXPECT_LT((pose.position(1) - Eigen::Vector3d(0.02 - 0.02, 0.04, 0.03)).norm(), 1e-15);
+  // Relative: they move it from its offset.
+  const Pose moved = frame_pose(read_text("positions_relative", text, 0.01, PositionChannels::relative), 0);
+  EXPECT_LT((moved.position(0) - Eigen::Vector3d(0.03, 0.04, 0.03)).norm(), 1e-15);
+  EXPECT_LT((moved.position(1) - Eigen::Vector3d(0.03 - 0.02, 0.04, 0.03)).norm(), 1e-15);
 }
 
 TEST(ForwardKinematics, RestPoseIsEveryChannelZero) {
