@@ -50,7 +50,7 @@ ClipChanges standardise_clip(Motion& clip, const ClipConventions& conventions) {
   ClipChanges changes;
   changes.renamed = conventions.auto_joint_names ? cmu_renaming(clip.skeleton) : conventions.joint_names;
   rename_joints(clip.skeleton, changes.renamed);
-  if (conventions.auto_axes) changes.turned = upright_turn(clip.skeleton);  // reads the renamed joints
+  if (conventions.auto_axes) changes.turned = upright_turn(clip.skeleton, &changes.axes_undecided);  // reads the renamed joints
   turn_axes(clip, changes.turned);
   return changes;
 }

@@ -100,6 +100,7 @@ struct ClipConventions {
 struct ClipChanges {
   JointRenaming renamed;  ///< joints renamed onto CMU names
   AxisTurn turned;        ///< the axes turned to stand it upright
+  std::string axes_undecided;  ///< with axes "auto": why no turn could be worked out ("": one was, or none asked)
 };
 
 /// Renames the clip's joints onto CMU names and stands it Y up, left along

@@ -13,13 +13,15 @@ std::string metres(double value) {
   return text;
 }
 
+/// Each leg's hip and ankle joints, by CMU names.
+constexpr std::pair<const char*, const char*> kLegs[] = {{"LeftUpLeg", "LeftFoot"}, {"RightUpLeg", "RightFoot"}};
+
 }  // namespace
 
 double leg_length(const Skeleton& skeleton, const std::vector<Eigen::Vector3d>& joints) {
   double sum = 0.0;
   int legs = 0;
-  for (const auto& [hip, ankle] : {std::pair<const char*, const char*>{"LeftUpLeg", "LeftFoot"},
-                                   std::pair<const char*, const char*>{"RightUpLeg", "RightFoot"}}) {
+  for (const auto& [hip, ankle] : kLegs) {
     const int h = skeleton.find(hip), a = skeleton.find(ankle);
     if (h < 0 || a < 0 || static_cast<std::size_t>(std::max(h, a)) >= joints.size()) continue;
     sum += (joints[static_cast<std::size_t>(h)] - joints[static_cast<std::size_t>(a)]).norm();
@@ -35,6 +37,8 @@ FigureScale figure_scale(const Skeleton& skeleton, double body_legs) {
   for (const auto& transform : rest.global) joints.push_back(transform.translation());
   FigureScale scale;
   scale.legs = leg_length(skeleton, joints);
+  for (const auto& [hip, ankle] : kLegs)
+    scale.measured = scale.measured || (skeleton.find(hip) >= 0 && skeleton.find(ankle) >= 0);
   scale.against_body = body_legs > 0.0;
   scale.expected = scale.against_body ? body_legs : kReferenceLegs;
   return scale;

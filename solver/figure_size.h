@@ -26,10 +26,12 @@ constexpr double kReferenceLegs = 0.79;
 /// The figure's size against what it should be.
 struct FigureScale {
   double legs = 0.0;      ///< metres, hip joint to ankle in the rest pose, the mean of the legs found (CMU names); 0: none found
+  bool measured = false;  ///< whether a leg was found (its joints by CMU names), even one of length 0
   double expected = 0.0;  ///< metres, the legs it is measured against: a body's own, or kReferenceLegs
   bool against_body = false;  ///< whether `expected` is a body's legs
-  /// legs / expected (1 without legs: nothing to measure).
-  double factor() const { return legs > 0.0 && expected > 0.0 ? legs / expected : 1.0; }
+  /// legs / expected (1 without legs: nothing to measure; 0 for legs of
+  /// length 0, a skeleton whose joints all stand at one point).
+  double factor() const { return (measured || legs > 0.0) && expected > 0.0 ? legs / expected : 1.0; }
 };
 
 /// The legs (metres; 0 if neither leg is found) of a skeleton whose joints

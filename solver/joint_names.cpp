@@ -39,13 +39,18 @@ JointRenaming daz_renaming() {
 JointConvention joint_convention(const Skeleton& skeleton) {
   if (skeleton.find("Hips") >= 0) return JointConvention::cmu;
   if (skeleton.find("hip") >= 0 && skeleton.find("lThigh") >= 0 && skeleton.find("rThigh") >= 0) return JointConvention::daz;
-  bool any = false, all_mixamo = true;
-  for (const Joint& joint : skeleton.joints) {
-    if (joint.end_site) continue;
-    any = true;
-    all_mixamo = all_mixamo && mixamo_prefix(joint.name) > 0;
+  // Every joint from the first prefixed one on is prefixed; the joints
+  // before it, if any, are the chain above it (a DCC tool's "Armature").
+  std::size_t first = 0;
+  while (first < skeleton.joints.size() && mixamo_prefix(skeleton.joints[first].name) == 0) ++first;
+  if (first == skeleton.joints.size() || skeleton.joints[first].end_site) return JointConvention::unknown;
+  for (int up = skeleton.joints[first].parent, k = static_cast<int>(first) - 1; k >= 0; --k) {
+    if (k != up) return JointConvention::unknown;
+    up = skeleton.joints[static_cast<std::size_t>(k)].parent;
   }
-  return any && all_mixamo ? JointConvention::mixamo : JointConvention::unknown;
+  for (std::size_t j = first; j < skeleton.joints.size(); ++j)
+    if (!skeleton.joints[j].end_site && mixamo_prefix(skeleton.joints[j].name) == 0) return JointConvention::unknown;
+  return JointConvention::mixamo;
 }
 
 JointRenaming cmu_renaming(const Skeleton& skeleton) {
@@ -62,7 +67,7 @@ JointRenaming cmu_renaming(const Skeleton& skeleton) {
     case JointConvention::mixamo: {
       const JointRenaming spine = {{"Spine", "LowerBack"}, {"Spine1", "Spine"}, {"Spine2", "Spine1"}};
       for (const Joint& joint : skeleton.joints) {
-        if (joint.end_site) continue;
+        if (joint.end_site || mixamo_prefix(joint.name) == 0) continue;  // the chain above keeps its names
         std::string name = joint.name.substr(mixamo_prefix(joint.name));
         const auto found = spine.find(name);
         out[joint.name] = found != spine.end() ? found->second : name;

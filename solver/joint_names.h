@@ -19,7 +19,7 @@ using JointRenaming = std::map<std::string, std::string>;
 enum class JointConvention {
   cmu,      ///< the CMU MotionBuilder names: a joint "Hips"
   daz,      ///< DAZ/Poser (the CMU clips' DAZ-friendly conversion): "hip", "lThigh", "rThigh", ...
-  mixamo,   ///< Mixamo: every joint "mixamorig:<name>" (or "mixamorig<digits>:", "_" for ":")
+  mixamo,   ///< Mixamo: every joint "mixamorig:<name>" (or "mixamorig<digits>:", "_" for ":"), below a chain of others at most (Blender's "Armature")
   unknown,  ///< none of these
 };
 

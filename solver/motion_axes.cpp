@@ -3,6 +3,8 @@
 #include "mesh_ops/errors.h"
 
 #include <cmath>
+#include <initializer_list>
+#include <string>
 
 namespace mrcloth {
 namespace {
@@ -76,14 +78,35 @@ std::string AxisTurn::describe() const {
   return out;
 }
 
-AxisTurn upright_turn(const Skeleton& skeleton) {
-  const int hips = skeleton.find("Hips"), head = skeleton.find("Head");
-  const int left = skeleton.find("LeftUpLeg"), right = skeleton.find("RightUpLeg");
-  if (hips < 0 || head < 0 || left < 0 || right < 0) return {};
+AxisTurn upright_turn(const Skeleton& skeleton, std::string* undecided) {
+  // The first of each list the skeleton has (a clip renamed by hand may
+  // lack the head, or the hips' leg joints).
+  const auto first_of = [&](std::initializer_list<const char*> names) {
+    for (const char* name : names)
+      if (const int j = skeleton.find(name); j >= 0) return j;
+    return -1;
+  };
+  const int hips = skeleton.find("Hips");
+  const int top = first_of({"Head", "Neck1", "Neck", "Spine2", "Spine1", "Spine"});
+  const int left = first_of({"LeftUpLeg", "LeftShoulder", "LeftArm", "LeftFoot"});
+  const int right = left < 0 ? -1
+                             : skeleton.find(std::string("Right") + skeleton.joints[static_cast<std::size_t>(left)].name.substr(4));
+  const auto refuse = [&](const std::string& why) {
+    if (undecided) *undecided = why;
+    return AxisTurn{};
+  };
+  if (hips < 0 || top < 0 || left < 0 || right < 0)
+    return refuse(std::string("it has no ") +
+                  (hips < 0 ? "Hips" : top < 0 ? "Head, Neck or Spine" : "left and right legs, shoulders, arms or feet") +
+                  " by CMU names");
   const Pose rest = rest_pose(skeleton);
-  const auto [up_axis, up_sign] = nearest_axis(rest.position(head) - rest.position(hips));
-  const auto [left_axis, left_sign] = nearest_axis(rest.position(left) - rest.position(right));
-  if (up_axis == left_axis) return {};
+  const Eigen::Vector3d up = rest.position(top) - rest.position(hips);
+  const Eigen::Vector3d across = rest.position(left) - rest.position(right);
+  if (!(up.norm() > 0.0) || !(across.norm() > 0.0)) return refuse("its rest pose puts those joints at one point");
+  const auto [up_axis, up_sign] = nearest_axis(up);
+  const auto [left_axis, left_sign] = nearest_axis(across);
+  if (up_axis == left_axis) return refuse("its up and its left snap to the same axis");
+  if (undecided) undecided->clear();
   AxisTurn turn;
   turn.axis = {left_axis, up_axis, 3 - left_axis - up_axis};
   turn.sign = {left_sign, up_sign, 1.0};

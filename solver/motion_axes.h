@@ -27,9 +27,12 @@ struct AxisTurn {
 
 /// The turn that stands the skeleton's rest pose upright: up (Hips to
 /// Head) onto +Y and left (RightUpLeg to LeftUpLeg) onto +X, each snapped
-/// to its nearest signed axis. The identity when a joint of those is
-/// missing (CMU names; see joint_names.h) or both snap to one axis.
-AxisTurn upright_turn(const Skeleton& skeleton);
+/// to its nearest signed axis; without a Head, up to the neck or spine,
+/// and without the legs, left across the shoulders, arms or feet (CMU
+/// names; see joint_names.h). The identity when none of those is there or
+/// both snap to one axis; then `undecided`, if given, says why (else it is
+/// cleared).
+AxisTurn upright_turn(const Skeleton& skeleton, std::string* undecided = nullptr);
 
 /// Turns the motion in place: offsets, position channels and rotation
 /// channels as the header says. Throws ArgumentError for a turn that is not

@@ -45,6 +45,22 @@ Skeleton legs(bool both) {
   return s;
 }
 
+TEST(FigureSize, LegsOfLengthZeroAreNotPlausible) {
+  // Every joint at one point (offsets 0): measured, and no figure at all.
+  Skeleton collapsed = legs(true);
+  for (Joint& j : collapsed.joints) j.offset.setZero();
+  const FigureScale scale = figure_scale(collapsed);
+  EXPECT_TRUE(scale.measured);
+  EXPECT_EQ(scale.legs, 0.0);
+  EXPECT_EQ(scale.factor(), 0.0);
+  EXPECT_FALSE(plausible(scale));
+  // No leg joints at all: nothing to measure, nothing refused.
+  Skeleton hips_only;
+  hips_only.joints.push_back(joint("Hips", -1, {0, 1, 0}));
+  EXPECT_FALSE(figure_scale(hips_only).measured);
+  EXPECT_TRUE(plausible(figure_scale(hips_only)));
+}
+
 Motion clip(const std::string& path, double scale) {
   BvhReadOptions options;
   options.scale = scale;

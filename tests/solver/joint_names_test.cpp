@@ -61,7 +61,12 @@ TEST(JointNames, MixamoPrefixesAreDroppedAndTheSpineShifted) {
     rename_joints(s, cmu_renaming(s));
     EXPECT_EQ(names_of(s), (std::vector<std::string>{"Hips", "LowerBack", "Spine", "Spine1", "Neck", "Neck_end"})) << prefix;
   }
-  // One joint without the prefix: not Mixamo's names.
+  // Below a chain of other joints (Blender's "Armature" root), which keep their names.
+  Skeleton armature = chain({"Armature", "mixamorig:Hips", "mixamorig:Spine"});
+  ASSERT_EQ(joint_convention(armature), JointConvention::mixamo);
+  rename_joints(armature, cmu_renaming(armature));
+  EXPECT_EQ(names_of(armature), (std::vector<std::string>{"Armature", "Hips", "LowerBack", "LowerBack_end"}));
+  // One joint without the prefix below a prefixed one: not Mixamo's names.
   EXPECT_EQ(joint_convention(chain({"mixamorig:Hips", "Spine"})), JointConvention::unknown);
   EXPECT_EQ(joint_convention(chain({"mixamorig:", "mixamorigX:Spine"})), JointConvention::unknown);
 }

@@ -145,10 +145,30 @@ TEST(MotionAxes, ZUpIsNamedAndMirrorsAreRefused) {
   AxisTurn twice;
   twice.axis = {0, 0, 2};
   EXPECT_THROW(turn_axes(m, twice), ArgumentError);
-  // Without the joints it reads, no turn.
+  // Without the joints it reads, no turn, and it says why.
   Skeleton bare;
   bare.joints.push_back({"root", -1, {0, 0, 0}, {}, 0, false});
-  EXPECT_TRUE(upright_turn(bare).identity());
+  std::string why = "stale";
+  EXPECT_TRUE(upright_turn(bare, &why).identity());
+  EXPECT_EQ(why, "it has no Hips by CMU names");
+}
+
+TEST(MotionAxes, WithoutAHeadTheNeckSaysWhichWayIsUp) {
+  // A Z-up figure (up +Z, left +X) named by hand without its head: the neck
+  // and the shoulders stand in for the head and the legs.
+  Skeleton s;
+  s.joints.push_back({"Hips", -1, {0, 0, 1}, {}, 0, false});
+  s.joints.push_back({"Neck", 0, {0, 0, 0.5}, {}, 0, false});
+  s.joints.push_back({"LeftShoulder", 1, {0.2, 0, 0}, {}, 0, false});
+  s.joints.push_back({"RightShoulder", 1, {-0.2, 0, 0}, {}, 0, false});
+  std::string why = "stale";
+  const AxisTurn turn = upright_turn(s, &why);
+  EXPECT_EQ(turn.describe(), "x = x, y = z, z = -y");
+  EXPECT_EQ(why, "");
+  // Without a right side to match, no turn: it says what is missing.
+  s.joints.pop_back();
+  EXPECT_TRUE(upright_turn(s, &why).identity());
+  EXPECT_EQ(why, "it has no left and right legs, shoulders, arms or feet by CMU names");
 }
 
 }  // namespace
