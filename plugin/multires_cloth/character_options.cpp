@@ -8,6 +8,7 @@
 #include <QDir>
 #include <QFileInfo>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -103,13 +104,19 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
     return;
   }
   if (!options::isObjectLike(value))
-    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints, axes}, got %2")
+    fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints, axes, "
+                        "positions}, got %2")
              .arg(optionLabel(key), script::describeValue(value)));
   const Fields fields(value, key,
                       {QStringLiteral("path"), QStringLiteral("units"), QStringLiteral("scale"),
                        QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints"),
-                       QStringLiteral("axes")});
+                       QStringLiteral("axes"), QStringLiteral("positions")});
   parseJointNames(fields, request);
+  request.positionChannels = fields.choice(QStringLiteral("positions"), QStringLiteral("absolute"),
+                                           {QStringLiteral("absolute"), QStringLiteral("relative")}) ==
+                                     QLatin1String("relative")
+                                 ? PositionChannels::relative
+                                 : PositionChannels::absolute;
   request.conventions.auto_axes = fields.choice(QStringLiteral("axes"), QStringLiteral("auto"),
                                    {QStringLiteral("auto"), QStringLiteral("asIs")}) == QLatin1String("auto");
   const QString path = script::toString(fields.required(QStringLiteral("path")), fields.label(QStringLiteral("path")));
@@ -310,15 +317,21 @@ Motion readClip(CharacterRequest& request, ClipChanges& changes) {
   BvhReadOptions read_options;
   read_options.scale = automatic ? 1.0 : request.motionScale;
   read_options.skip_first_frame = false;  // frame 0 is needed for place "firstFrame"; make_character drops it
+  read_options.position_channels = request.positionChannels;
   Motion clip = naming(motion_label, [&] { return read_bvh(request.motionPath.toStdString(), read_options); });
   // Every later step reads joints by their CMU names, the body standing Y up.
-  changes = naming(motion_label, [&] { return standardise_clip(clip, request.conventions); });
+  // Its errors (a joint map naming no joint, two joints alike) name the clip.
+  changes = naming(QStringLiteral("%1: %2").arg(motion_label, QDir::toNativeSeparators(request.motionPath)),
+                   [&] { return standardise_clip(clip, request.conventions); });
   if (!automatic) return clip;
   const FigureScale figure = figure_scale(clip.skeleton);
   if (!(figure.legs > 0.0))
-    throw InputError(QStringLiteral("%1: %2 has no legs to measure (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, "
+    throw InputError(QStringLiteral("%1: %2 has %3 (LeftUpLeg to LeftFoot, RightUpLeg to RightFoot, "
                                     "after renaming), so units \"auto\" cannot choose; give the units")
-                         .arg(motion_label, QDir::toNativeSeparators(request.motionPath))
+                         .arg(motion_label, QDir::toNativeSeparators(request.motionPath),
+                              figure.measured ? QStringLiteral("legs of length 0 (its rest pose puts hip and ankle at "
+                                                               "one point)")
+                                              : QStringLiteral("no legs to measure"))
                          .toStdString());
   const QString units = nearestUnits(figure.legs, kReferenceLegs);
   request.motionUnits = QStringLiteral("auto: %1").arg(units);
@@ -341,14 +354,29 @@ Character loadCharacter(CharacterRequest& request, const QuadMesh& garment, Clip
   const CharacterRunOptions defaults;
   if (full.skeleton.joints.empty() || full.frames.rows() < 1)
     throw InputError(QStringLiteral("%1: %2 has no joints or no frames").arg(motion_label, file).toStdString());
-  if (full.skeleton.find(defaults.pelvis_joint) < 0)
+  if (full.skeleton.find(defaults.pelvis_joint) < 0) {
+    // The joint to suggest: one whose name says pelvis or hips, else the
+    // first with position channels (the one that carries the figure).
+    const auto& joints = full.skeleton.joints;
+    const auto says_pelvis = [](const Joint& j) {
+      const QString name = QString::fromStdString(j.name).toLower();
+      return !j.end_site && (name.contains(QLatin1String("hip")) || name.contains(QLatin1String("pelvis")));
+    };
+    const auto moves = [](const Joint& j) {
+      return std::any_of(j.channels.begin(), j.channels.end(), [](Channel c) {
+        return c == Channel::x_position || c == Channel::y_position || c == Channel::z_position;
+      });
+    };
+    auto suggested = std::find_if(joints.begin(), joints.end(), says_pelvis);
+    if (suggested == joints.end()) suggested = std::find_if(joints.begin(), joints.end(), moves);
+    if (suggested == joints.end()) suggested = joints.begin();
     throw InputError(QStringLiteral("%1: %2 has no joint '%3', which the pinned waist follows (rename the joints "
                                     "onto the CMU MotionBuilder names with %4 {name in the file: CMU name, ...}, e.g. "
                                     "{\"%5\": \"%3\"}; \"auto\" knows the DAZ/Poser and Mixamo names)")
                          .arg(motion_label, file, QString::fromStdString(defaults.pelvis_joint),
-                              optionLabel(QStringLiteral("motion.joints")),
-                              QString::fromStdString(full.skeleton.joints[0].name))
+                              optionLabel(QStringLiteral("motion.joints")), QString::fromStdString(suggested->name))
                          .toStdString());
+  }
   if (setup.skip_first && full.frames.rows() < 2)
     throw InputError(QStringLiteral("%1: %2 has a single frame, so skipFirst leaves nothing (set skipFirst: false)")
                          .arg(motion_label, file)

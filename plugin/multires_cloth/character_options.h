@@ -25,6 +25,7 @@ struct CharacterRequest {
   double motionScale = 1.0;     ///< metres per BVH unit (0 while the units are "auto": loadCharacter resolves them)
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01", "auto" / resolved "auto: cm")
   ClipConventions conventions;  ///< motion.joints and motion.axes
+  PositionChannels positionChannels = PositionChannels::absolute;  ///< motion.positions
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
   bool fitWarning = true;       ///< log a warning when the fit check finds the garment too narrow (the report's fit has it either way)

@@ -619,7 +619,8 @@ QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
                        {QStringLiteral("legs"), reading.figure.legs},
                        {QStringLiteral("legsFactor"), reading.figure.factor()},
                        {QStringLiteral("jointsRenamed"), renamed},
-                       {QStringLiteral("axesTurned"), QString::fromStdString(reading.changes.turned.describe())}};
+                       {QStringLiteral("axesTurned"), QString::fromStdString(reading.changes.turned.describe())},
+                       {QStringLiteral("axesUndecided"), QString::fromStdString(reading.changes.axes_undecided)}};
   });
 }
 
@@ -639,6 +640,12 @@ std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest
     lines.push_back({LOGINFO, QStringLiteral("%1: %2 stands upright with its axes turned (%3)")
                           .arg(slot, QFileInfo(wanted.motionPath).fileName(),
                                QString::fromStdString(changes.turned.describe()))});
+  if (!changes.axes_undecided.empty())
+    lines.push_back({LOGWARN, QStringLiteral("%1: cannot tell which way %2 stands (%3), so it is read as it is, Y up; "
+                                             "rename its joints onto CMU names with motion.joints, or give motion.axes "
+                                             "\"asIs\" if it stands Y up")
+                                  .arg(slot, QFileInfo(wanted.motionPath).fileName(),
+                                       QString::fromStdString(changes.axes_undecided))});
   if (!renamed.empty())
     lines.push_back({LOGINFO, QStringLiteral("%1: %2 joints of %3 renamed onto CMU names (%4 -> %5, ...)")
                           .arg(slot).arg(renamed.size()).arg(QFileInfo(wanted.motionPath).fileName(),
@@ -917,12 +924,14 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "and returns path, units (resolved: \"auto: cm\"), metresPerUnit, joints (names, End Sites "
                       "left out), frames (frame 0 included), frameTime (s), duration (s), legs (m, hip joint to ankle "
                       "in the rest pose, 0: no legs by CMU names), legsFactor (legs / an adult's 0.79 m), "
-                      "jointsRenamed, axesTurned. A figure whose legs are not 0.4-2 times an adult's is refused "
+                      "jointsRenamed, axesTurned, axesUndecided (why axes \"auto\" could not tell which way the "
+                      "clip stands, \"\" when it could). A figure whose legs are not 0.4-2 times an adult's is refused "
                       "(InputError naming the units that would fit): its units look wrong. For checking clips "
                       "before a long batch."),
        {QStringLiteral("motion")},
        {QStringLiteral("simulate's `motion` option: a BVH path or {path, units: \"m\" | \"cmu\" | \"dm\" | "
-                       "\"cm\" | \"mm\" | \"inch\" | \"auto\" = \"m\" or scale, skipFirst, start, joints, axes}")}},
+                       "\"cm\" | \"mm\" | \"inch\" | \"auto\" = \"m\" or scale, skipFirst, start, joints, axes, "
+                       "positions}")}},
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
@@ -996,7 +1005,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "\"auto\" (the joints renamed onto the CMU MotionBuilder names the waist, rig and capsules read; auto "
             "knows the DAZ/Poser and Mixamo names; joint names in other options are the renamed ones), axes: \"auto\" | "
             "\"asIs\" = \"auto\" (a clip whose rest pose is not Y up with the figure's left along +X, e.g. Z up, is "
-            "turned by multiples of 90 degrees to stand so, as the MakeHuman body stands; exact)}, "
+            "turned by multiples of 90 degrees to stand so, as the MakeHuman body stands; exact), positions: \"absolute\" | "
+            "\"relative\" = \"absolute\" (position channels are the joint's translation, its OFFSET only where it "
+            "rests, as Blender and MotionBuilder write them; or added to the OFFSET; a CMU clip reads alike either "
+            "way)}, "
             "skipFirst (also at the top level), body: \"capsules\" "
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "

@@ -38,6 +38,11 @@ const USAGE = [
   "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
   "  --motion-units U       m, cmu, dm, cm, mm, inch, or auto (per file, the units giving an adult's legs):",
   "                         the BVH files' units [m]",
+  "  --motion-positions P   absolute | relative: the BVH position channels are each joint's translation",
+  "                         (its OFFSET only where it rests; Blender, MotionBuilder) or are added to",
+  "                         the OFFSET; CMU clips read alike either way [absolute]",
+  "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
+  "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
   "Method:",
   "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
   "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
@@ -88,6 +93,7 @@ const DEFAULTS = {
   garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", body: "capsules", place: null,
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
+  motionPositions: "absolute", jointMap: "",
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
@@ -100,6 +106,7 @@ const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence":
 const VALUED = {
   "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
+  "--motion-positions": "motionPositions", "--joint-map": "jointMap",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
   "--threads": "threads", "--step-rate": "stepRate", "--newton-cg": "newtonCg", "--bend-model": "bendModel",
@@ -187,6 +194,7 @@ function parseOptions(args) {
         break;
       case "units": options.units = choiceOption(name, text, UNITS); break;
       case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
+      case "motionPositions": options.motionPositions = choiceOption(name, text, ["absolute", "relative"]); break;
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
       case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
       case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
@@ -215,6 +223,7 @@ function parseOptions(args) {
   if (options.stepRate !== null && options.stepRate < options.fps)
     throw pipelineError("option --step-rate: expected at least --fps (" + options.fps + " frames per second), got " +
                         options.stepRate);
+  if (options.jointMap) options.joints = readJointMap(options.jointMap);
   if (options.units === null) options.units = options.makehuman ? "dm" : "m";
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)
@@ -224,6 +233,58 @@ function parseOptions(args) {
   if (options.place === "makehuman" && !options.makehuman)
     throw pipelineError("option --place makehuman needs --makehuman DIR (the body the garment was modelled on)");
   return options;
+}
+
+/// The clips' joint map read from its JSON file: an object of names to names.
+function readJointMap(path) {
+  if (!core.fileExists(path)) throw pipelineError("option --joint-map: no such file: " + path);
+  if (!core.fileReadable(path)) throw pipelineError("option --joint-map: cannot read " + path);
+  let map;
+  try {
+    map = JSON.parse(core.readTextFile(path));
+  } catch (error) {
+    throw pipelineError("option --joint-map: " + path + " is not JSON (" + error.message +
+                        "); expected {\"name in the clip\": \"CMU name\", ...}");
+  }
+  if (map === null || typeof map !== "object" || Array.isArray(map))
+    throw pipelineError("option --joint-map: " + path + " holds " + (Array.isArray(map) ? "an array" : typeof map) +
+                        "; expected an object {\"name in the clip\": \"CMU name\", ...}");
+  for (const [from, to] of Object.entries(map))
+    if (typeof to !== "string")
+      throw pipelineError("option --joint-map: " + path + ": \"" + from + "\" maps to " + JSON.stringify(to) +
+                          "; expected a joint name (a string)");
+  return map;
+}
+
+/// A clip's joint names as in its file (its units only matter to the size
+/// check, which a clip of unknown names passes in metres).
+const fileJointNames = {};
+function jointsInFile(options, path) {
+  if (!(path in fileJointNames)) {
+    const read = (units) => multirescloth.motionInfo(
+        {path: path, units: units, positions: options.motionPositions, joints: "asIs", axes: "asIs"}).joints;
+    try {
+      fileJointNames[path] = read(options.motionUnits);
+    } catch (error) {
+      fileJointNames[path] = read("m");
+    }
+  }
+  return fileJointNames[path];
+}
+
+/// How every run reads a clip: simulate's `motion` option. The joint map's
+/// names a clip has rename them; a clip with none of them is named
+/// automatically (the embedded walks beside a clip of other names).
+function motionOption(options, path) {
+  const motion = {path: path, units: options.motionUnits, positions: options.motionPositions};
+  if (options.joints) {
+    const names = jointsInFile(options, path);
+    const own = {};
+    for (const [from, to] of Object.entries(options.joints))
+      if (names.includes(from)) own[from] = to;
+    if (Object.keys(own).length > 0) motion.joints = own;
+  }
+  return motion;
 }
 
 /// Every input must exist and be readable before any work starts.
@@ -238,12 +299,30 @@ function checkInputs(options) {
   }
   // Every clip read and its figure sized now, not after the instance's hours:
   // a clip in the wrong units is refused with the units that would fit.
-  for (const [name, path] of inputs.filter(([name]) => name === "--instance" || name === "--test")) {
+  const clips = inputs.filter(([name]) => name === "--instance" || name === "--test");
+  if (options.joints) {
+    const named = new Set();
+    for (const [, path] of clips) jointsInFile(options, path).forEach((joint) => named.add(joint));
+    const unknown = Object.keys(options.joints).filter((from) => !named.has(from));
+    if (unknown.length > 0)
+      throw pipelineError("option --joint-map: " + options.jointMap + " renames " +
+                          unknown.map((from) => "\"" + from + "\"").join(", ") + ", a joint of none of the clips",
+                          "InputError");
+  }
+  for (const [name, path] of clips) {
+    let info;
     try {
-      multirescloth.motionInfo({path: path, units: options.motionUnits});
+      info = multirescloth.motionInfo(motionOption(options, path));
     } catch (error) {
       throw pipelineError("option " + name + ": " + error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, ""),
                           error.name);
+    }
+    // The waist follows the pelvis: a clip without it fails only at its run.
+    if (!info.joints.includes("Hips")) {
+      const shown = info.joints.slice(0, 8).join(", ") + (info.joints.length > 8 ? ", ..." : "");
+      throw pipelineError("option " + name + ": " + path + " has no joint 'Hips' (after renaming), which the pinned " +
+                          "waist follows; its joints: " + shown + "; expected CMU, DAZ/Poser or Mixamo names, or " +
+                          "give --joint-map FILE.json {\"its pelvis\": \"Hips\", ...}", "InputError");
     }
   }
 }
@@ -276,6 +355,12 @@ function resultOptions(options) {
   if (copy.bendModel === "distance") delete copy.bendModel;
   if (copy.bendStiffness === null) delete copy.bendStiffness;
   if (copy.limiterAcceleration === null) delete copy.limiterAcceleration;
+  // Runs from before the clips' reading options, read as these defaults do.
+  if (copy.motionPositions === "absolute") delete copy.motionPositions;
+  if (!copy.jointMap) {
+    delete copy.jointMap;
+    delete copy.joints;
+  }
   if (!copy.makehuman) delete copy.waistSmoothing;  // no skin to follow: it decides nothing
   return copy;
 }
@@ -366,7 +451,7 @@ function runPipeline(options) {
   const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2],
                             waistSmoothing: options.waistSmoothing}
                          : options.body;
-  const motion = (path) => ({path: path, units: options.motionUnits});
+  const motion = (path) => motionOption(options, path);
   // What a run on the character is given besides its motion and files.
   const material = options.bendStiffness === null ? options.material
                                                    : {preset: options.material, bendStiffness: options.bendStiffness};

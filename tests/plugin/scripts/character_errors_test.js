@@ -131,6 +131,23 @@ expectThrows(() => multirescloth.motionInfo({path: legless, units: "auto"}), "In
              + "units \"auto\" cannot choose; give the units");
 expectEqual([multirescloth.motionInfo({path: legless, units: "cm"}).legs, multirescloth.motionInfo(legless).frames],
             [0, 2], "a clip without legs, units given");
+// Nor can "auto" axes tell which way it stands: it is read as it is, and says why.
+expectEqual([multirescloth.motionInfo(legless).axesTurned, multirescloth.motionInfo(legless).axesUndecided],
+            ["", "it has no Head, Neck or Spine by CMU names"], "a clip whose way up is unknown");
+expectEqual(multirescloth.motionInfo({path: legless, axes: "asIs"}).axesUndecided, "", "axes asIs: nothing to decide");
+// A skeleton collapsed to one point (every OFFSET 0) has legs of length 0: refused.
+const collapsed = tmpDir + "/collapsed.bvh";
+core.writeTextFile(collapsed, core.readTextFile(walk).replace(/OFFSET [-0-9. ]+/g, "OFFSET 0 0 0"));
+expectThrows(() => multirescloth.motionInfo(collapsed), "InputError", "collapsed.bvh read in units 'm'",
+             "the figure's legs are 0.00 m long");
+expectThrows(() => multirescloth.motionInfo({path: collapsed, units: "auto"}), "InputError",
+             "collapsed.bvh has legs of length 0 (its rest pose puts hip and ankle at one point)");
+// A clip without Hips: the message suggests the joint that says hips.
+const hipless = tmpDir + "/hipless.bvh";
+core.writeTextFile(hipless, core.readTextFile(walk).replace("ROOT Hips", "ROOT Armature\n{\n OFFSET 0 0 0\n CHANNELS 0\n JOINT my_hips"
+                                                            ).replace(/\nMOTION/, "}\nMOTION"));
+expectThrows(() => multirescloth.simulate(skirt, {motion: hipless, frames: 1}), "InputError", "hipless.bvh has no joint 'Hips'",
+             "e.g. {\"my_hips\": \"Hips\"}");
 
 // motionInfo: the clip as a run reads it, units "auto" resolved.
 const info = multirescloth.motionInfo({path: walk, units: "auto"});

@@ -59,6 +59,30 @@ refused "option --resume takes no value" --resume=yes
 refused "InputError: pipeline: option --instance: .*walk_instance.bvh read in units 'cm' \(0.01 m per unit\): the figure's legs are 0.01 m long .* expected 0.4-2 times: check the units; in 'm' they are 0.79 m" \
   --motion-units cm
 refused "option --motion-units: expected one of m, cmu, dm, cm, mm, inch, auto, got \"feet\"" --motion-units feet
+refused "option --motion-positions: expected one of absolute, relative, got \"local\"" --motion-positions local
+# A clip whose pelvis is not called Hips (the embedded new walk, renamed) is
+# refused before any work, with its joints and the option that renames them.
+sed 's/ROOT Hips/ROOT pelvis/' "$resources/characters/walk_new.bvh" > "$tmp/pelvis_walk.bvh"
+refused "InputError: pipeline: option --test: .*pelvis_walk.bvh has no joint 'Hips' \(after renaming\), which the pinned waist follows; its joints: pelvis, LHipJoint, .*give --joint-map FILE.json" \
+  --test "$tmp/pelvis_walk.bvh"
+printf '{"pelvis": "Hips"' > "$tmp/broken_map.json"
+refused "option --joint-map: .*broken_map.json is not JSON" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/broken_map.json"
+printf '["pelvis", "Hips"]' > "$tmp/array_map.json"
+refused "option --joint-map: .*array_map.json holds an array; expected an object" --joint-map "$tmp/array_map.json"
+printf '{"pelvis": 3}' > "$tmp/number_map.json"
+refused "option --joint-map: .*number_map.json: \"pelvis\" maps to 3; expected a joint name" --joint-map "$tmp/number_map.json"
+printf '{"pelvis": "Hips", "pelvsi": "Hips"}' > "$tmp/typo_map.json"
+refused "option --joint-map: .*typo_map.json renames \"pelvsi\", a joint of none of the clips" \
+  --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/typo_map.json"
+refused "option --joint-map: no such file" --joint-map "$tmp/no_map.json"
+# With the map it runs; the embedded instance, which has none of its names,
+# is named automatically beside it.
+printf '{"pelvis": "Hips"}' > "$tmp/map.json"
+n=$((n + 1))
+"$host" pipeline -q --out "$tmp/out$n" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/map.json" --levels 1 \
+  --instance-frames 4 --test-frames 4 --preroll 0.05 --size 64x64 > /dev/null 2> "$tmp/stderr$n" ||
+  { echo "FAILED (--joint-map): exit code $?: $(cat "$tmp/stderr$n")"; failed=1; }
+grep -q "^### pelvis_walk" "$tmp/out$n/report.md" || { echo "FAILED (--joint-map): no pelvis_walk in the report"; failed=1; }
 # An unreadable input (skipped when running as root, who reads everything).
 touch "$tmp/locked.obj" && chmod 000 "$tmp/locked.obj"
 if ! cat "$tmp/locked.obj" > /dev/null 2>&1; then
