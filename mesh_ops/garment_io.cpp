@@ -24,7 +24,11 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <system_error>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace mrcloth {
 namespace {
@@ -186,10 +190,12 @@ struct TextScan {
   std::vector<OpenMesh::Vec2d> texcoords;
   std::vector<std::vector<std::pair<long, long>>> face_corners;
   bool uv_readable = true;
-  /// ASCII OFF without comments and blank lines, to be read instead of the
-  /// file: OpenMesh's OFF reader misreads a comment after the header as
-  /// element counts (garbage counts, then garbage or very slow reads).
-  std::string off_without_comments;
+  /// What OpenMesh reads instead of the file, if not empty: ASCII OFF
+  /// without comments and blank lines (its OFF reader misreads a comment
+  /// after the header as element counts: garbage counts, then garbage or
+  /// very slow reads), or an OBJ without its byte-order mark (its OBJ
+  /// reader drops the first line's vertex and shifts every face).
+  std::string text_for_reader;
 };
 
 std::vector<std::string> split_words(const std::string& line) {
@@ -235,6 +241,11 @@ double parse_coordinate(const std::string& path, const std::string& token, std::
   if (!std::isfinite(value))
     throw InputError(
         with_path(path, vertex_text + " has a non-finite coordinate (" + token + "); expected finite numbers"));
+  // OpenMesh's readers hold coordinates as float and drop a vertex beyond
+  // its range, which shifts every later index.
+  if (std::abs(value) > static_cast<double>(std::numeric_limits<float>::max()))
+    throw InputError(with_path(path, vertex_text + " has a coordinate beyond single precision's range (" + token +
+                                         "); expected |coordinate| < 3.4e38 (check the file's units)"));
   return value;
 }
 
@@ -298,8 +309,19 @@ TextScan scan_obj(const std::string& path, std::istream& in) {
   TextScan scan;
   long n_faces = 0;
   std::size_t line_number = 0;
+  const std::string byte_order_mark = "\xEF\xBB\xBF";
   for (std::string line; std::getline(in, line);) {
     ++line_number;
+    if (line_number == 1 && line.rfind(byte_order_mark, 0) == 0) {
+      line.erase(0, byte_order_mark.size());
+      std::ostringstream rest;
+      rest << in.rdbuf();
+      scan.text_for_reader = line + "\n" + rest.str();
+      std::istringstream again(scan.text_for_reader);
+      TextScan unmarked = scan_obj(path, again);
+      unmarked.text_for_reader = std::move(scan.text_for_reader);
+      return unmarked;
+    }
     const std::vector<std::string> words = split_words(strip_comment(line));
     if (words.empty()) continue;
     if (words[0] == "v") {
@@ -364,7 +386,7 @@ TextScan scan_off(const std::string& path, std::istream& in) {
   while (!next_words().empty()) {
   }
   scan.understood = true;
-  scan.off_without_comments = std::move(cleaned);
+  scan.text_for_reader = std::move(cleaned);
   return scan;
 }
 
@@ -404,8 +426,12 @@ TextScan scan_ply(const std::string& path, std::istream& in) {
       elements.back().properties.push_back({words.back(), words[1] == "list"});
     }
   }
+  // OpenMesh's PLY reader never returns from a header without its end.
+  if (!header_done)
+    throw InputError(with_path(path, "the PLY header has no 'end_header' line; expected one after the element and "
+                                     "property lines"));
   scan.binary = !ascii;
-  if (!ascii || !header_done) return scan;
+  if (!ascii) return scan;
   auto next_token = [&](std::string& token) { return static_cast<bool>(in >> token); };
   for (const Element& element : elements) {
     const bool is_vertex = element.name == "vertex";
@@ -623,6 +649,121 @@ void read_texture_coords(const TextScan& scan, QuadMesh& mesh, std::size_t faces
   set_record_uvs(mesh, std::move(uvs));
 }
 
+/// What the reader accepts but a garment cannot be: a vertex where two fans
+/// of faces meet (a bow-tie, which the boundary loops and the waist would
+/// pass twice), a vertex in no face (no mass: the solver refuses it), or a
+/// face without area (the same: its corners coincide, lie on a line or
+/// cross). Faces are named in file order, vertices by their index.
+void check_garment_surface(const std::string& path, const QuadMesh& mesh) {
+  for (const auto v : mesh.vertices()) {
+    if (mesh.is_isolated(v)) {
+      std::size_t loose = 0;
+      for (const auto u : mesh.vertices()) loose += mesh.is_isolated(u) ? 1 : 0;
+      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) + " belongs to no face" +
+                                           (loose > 1 ? " (nor do " + std::to_string(loose - 1) + " more)" : "") +
+                                           "; expected every vertex in a face (delete loose vertices)"));
+    }
+    if (!mesh.is_manifold(v))
+      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) +
+                                           " is non-manifold (two fans of faces meet only at it, a bow-tie); "
+                                           "expected an oriented 2-manifold quad mesh"));
+  }
+  for (const auto f : mesh.faces()) {
+    // Twice the polygon's vector area (Newell), against its longest edge:
+    // zero up to round-off (exact zeros, underflow), not merely thin.
+    OpenMesh::Vec3d twice_area(0, 0, 0);
+    double longest2 = 0.0;
+    for (const auto h : mesh.fh_range(f)) {
+      const OpenMesh::Vec3d a = mesh.point(mesh.from_vertex_handle(h)), b = mesh.point(mesh.to_vertex_handle(h));
+      twice_area += OpenMesh::cross(a, b);
+      longest2 = std::max(longest2, (b - a).sqrnorm());
+    }
+    if (!(twice_area.norm() > 1e-24 * longest2))
+      throw InputError(with_path(path, face_label(f.idx()) +
+                                           " has no area (its corners coincide, lie on a line, or cross as a "
+                                           "bow-tie); expected faces with area"));
+  }
+}
+
+/// A warning when boundary vertices lie on one another (within a
+/// millionth of the median edge): panels exported with their seams not
+/// welded, which the simulation would let fall apart, only the pinned
+/// piece staying up. Empty when there are none.
+std::string unwelded_seams_warning(const std::string& path, const QuadMesh& mesh) {
+  std::vector<std::pair<OpenMesh::Vec3d, int>> rim;
+  for (const auto v : mesh.vertices())
+    if (mesh.is_boundary(v)) rim.emplace_back(mesh.point(v), v.idx());
+  std::vector<double> lengths;
+  for (const auto e : mesh.edges()) lengths.push_back(mesh.calc_edge_length(e));
+  if (rim.empty() || lengths.empty()) return {};
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  const double tolerance = 1e-6 * lengths[lengths.size() / 2];
+  // Sorted along x, each vertex meets only those within the tolerance there.
+  std::sort(rim.begin(), rim.end(), [](const auto& a, const auto& b) { return a.first[0] < b.first[0]; });
+  std::size_t pairs = 0;
+  int first_a = -1, first_b = -1;
+  for (std::size_t i = 0; i < rim.size(); ++i)
+    for (std::size_t j = i + 1; j < rim.size() && rim[j].first[0] - rim[i].first[0] <= tolerance; ++j)
+      if ((rim[j].first - rim[i].first).norm() <= tolerance) {
+        if (pairs++ == 0) std::tie(first_a, first_b) = std::minmax(rim[i].second, rim[j].second);
+      }
+  if (pairs == 0) return {};
+  return with_path(path, std::to_string(pairs) + " pair" + (pairs > 1 ? "s" : "") +
+                             " of boundary vertices lie on one another (vertex " + std::to_string(first_a) +
+                             " on vertex " + std::to_string(first_b) +
+                             "): seams that are not welded, along which the garment falls apart; weld them (merge "
+                             "by distance) before simulating");
+}
+
+/// The refinement hierarchy of a `.om` file, checked before anything reads
+/// it: a truncated or damaged file can hold records that point anywhere.
+void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
+  const std::vector<QuadRecord>& forest = quadtree(mesh);
+  const auto n = static_cast<std::int32_t>(forest.size());
+  const auto n_vertices = static_cast<std::int32_t>(mesh.n_vertices());
+  std::size_t active = 0;
+  const auto corrupt = [&](std::size_t r, const std::string& what) {
+    throw InputError(with_path(path, "the stored refinement hierarchy is damaged (record " + std::to_string(r) + " " +
+                                         what + "); expected a .om file as save_mesh writes it, whole"));
+  };
+  for (std::size_t r = 0; r < forest.size(); ++r) {
+    const QuadRecord& record = forest[r];
+    if (record.level < 1 || (record.active != 0 && record.active != 1)) corrupt(r, "has level or state out of range");
+    if ((record.parent < 0) != (record.level == 1) || record.parent >= n ||
+        (record.parent >= 0 && forest[static_cast<std::size_t>(record.parent)].level != record.level - 1))
+      corrupt(r, "has a parent out of place");
+    const bool leaf = record.children[0] < 0;
+    for (const std::int32_t child : record.children) {
+      if ((child < 0) != leaf || child >= n ||
+          (child >= 0 && forest[static_cast<std::size_t>(child)].parent != static_cast<std::int32_t>(r)))
+        corrupt(r, "has a child out of place");
+    }
+    for (const std::int32_t corner : record.corners)
+      if (corner < 0 || corner >= n_vertices) corrupt(r, "has a corner that is not a vertex");
+    active += record.active ? 1 : 0;
+  }
+  if (active != mesh.n_faces())
+    throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + std::to_string(active) +
+                                         " active records for " + std::to_string(mesh.n_faces()) +
+                                         " faces); expected a .om file as save_mesh writes it, whole"));
+  const Layers layers = get_layers(mesh);
+  for (const auto f : mesh.faces()) {
+    const int r = mesh.property(layers.quad, f);
+    if (r < 0 || r >= n || !forest[static_cast<std::size_t>(r)].active)
+      throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + face_label(f.idx()) +
+                                           " names no active record); expected a .om file as save_mesh writes it, "
+                                           "whole"));
+  }
+}
+
+/// Whether an OM file names the forest's property: save_mesh writes it
+/// into every .om, so a file that names it and yields none was cut short.
+bool file_names_forest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return bytes.find(layer::quadtree) != std::string::npos;
+}
+
 }  // namespace
 
 LoadResult load_garment(const std::string& path, const LoadOptions& options) {
@@ -651,11 +792,11 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   bool read = false;
   {
     QuietOpenMesh quiet;
-    if (scan.off_without_comments.empty()) {
+    if (scan.text_for_reader.empty()) {
       read = OpenMesh::IO::IOManager().read(path, importer, io_options);
     } else {
-      std::istringstream text(scan.off_without_comments);
-      read = OpenMesh::IO::IOManager().read(text, ".off", importer, io_options);
+      std::istringstream text(scan.text_for_reader);
+      read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
     }
   }
   const FaceProblem problem = earlier(scan.face_problem, importer.problem());
@@ -681,7 +822,16 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   }
 
   // A refined mesh saved by save_mesh: its forest and layers are the truth.
-  if (*format == Format::om && !quadtree(mesh).empty()) return result;
+  if (*format == Format::om && !quadtree(mesh).empty()) {
+    check_stored_forest(path, mesh);
+    return result;
+  }
+  if (*format == Format::om && file_names_forest(path))
+    throw InputError(with_path(path, "the file names mrcloth's refinement hierarchy, but it could not be read (the "
+                                     "file is truncated or damaged); expected a .om file as save_mesh writes it, whole"));
+  check_garment_surface(path, mesh);
+  if (std::string unwelded = unwelded_seams_warning(path, mesh); !unwelded.empty())
+    result.warnings.push_back(std::move(unwelded));
 
   const std::size_t faces_read = mesh.n_faces();
   std::vector<SplitQuad> split;

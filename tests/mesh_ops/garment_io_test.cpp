@@ -460,16 +460,18 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
   }
   for (const auto f : mesh.faces()) {
     mesh.property(l.level, f) = f.idx() + 2;
-    mesh.property(l.quad, f) = 100 - f.idx();
+    mesh.property(l.quad, f) = 5 - f.idx();  // the roots, in reverse: a hierarchy the loader accepts
   }
   auto& forest = mesh.property(l.quadtree);
-  forest[1].active = 0;
   forest[1].children = {6, 7, 8, 9};
-  mrcloth::QuadRecord child;
-  child.level = 2;
-  child.parent = 1;
-  child.corners = {1, 12, 13, 14};
-  forest.push_back(child);
+  for (int k = 0; k < 4; ++k) {
+    mrcloth::QuadRecord child;
+    child.level = 2;
+    child.active = 0;
+    child.parent = 1;
+    child.corners = {1, 2 + k, 3 + k, 11 - k};
+    forest.push_back(child);
+  }
 
   const std::string path = dir.file("saved.om");
   mrcloth::save_mesh(mesh, path);
@@ -492,7 +494,7 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
   for (const auto f : mesh.faces()) {
     const auto g = QuadMesh::FaceHandle(f.idx());
     EXPECT_EQ(copy.property(c.level, g), f.idx() + 2);
-    EXPECT_EQ(copy.property(c.quad, g), 100 - f.idx());
+    EXPECT_EQ(copy.property(c.quad, g), 5 - f.idx());
     EXPECT_EQ(canonical_loop(copy, g), canonical_loop(mesh, f));
   }
   const auto& restored = copy.property(c.quadtree);
@@ -504,6 +506,70 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
     EXPECT_EQ(restored[i].children, forest[i].children) << i;
     EXPECT_EQ(restored[i].corners, forest[i].corners) << i;
   }
+}
+
+TEST(GarmentLoadErrors, WhatNoGarmentCanBeIsRefusedAtLoading) {
+  ScratchDir dir;
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  // Two quads that share only a corner: a bow-tie vertex.
+  EXPECT_LOAD_ERROR(write_file(dir.file("bowtie.obj"),
+                               square + "v 2 1 0\nv 2 2 0\nv 1 2 0\nf 1 2 3 4\nf 3 5 6 7\n"),
+                    "vertex 2 is non-manifold (two fans of faces meet only at it, a bow-tie)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("loose.obj"), square + "v 5 5 5\nv 6 6 6\nf 1 2 3 4\n"),
+                    "vertex 4 belongs to no face (nor do 1 more)");
+  EXPECT_LOAD_ERROR(write_file(dir.file("line.obj"), "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n" + square +
+                                                         "f 5 6 7 8\nf 1 2 3 4\n"),
+                    "face 1 has no area");
+  // Crossed as a bow-tie: the halves cancel.
+  EXPECT_LOAD_ERROR(write_file(dir.file("twisted.obj"), "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\n"),
+                    "face 0 has no area");
+  // Beyond float range OpenMesh's reader would drop the vertex and shift the faces.
+  EXPECT_LOAD_ERROR(write_file(dir.file("huge.obj"), "v 0 0 0\nv 1e39 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
+                    "vertex 1 (line 2) has a coordinate beyond single precision's range (1e39)");
+  // OpenMesh's PLY reader never returns from a header without its end.
+  EXPECT_LOAD_ERROR(write_file(dir.file("open.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"),
+                    "the PLY header has no 'end_header' line");
+}
+
+TEST(GarmentLoad, UnweldedSeamsAreNamedInAWarning) {
+  ScratchDir dir;
+  // Two squares side by side, their shared side written twice (as panels are exported).
+  const std::string panels = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n"
+                             "f 1 2 3 4\nf 5 6 7 8\n";
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("panels.obj"), panels));
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("2 pairs of boundary vertices lie on one another (vertex 1 on vertex 4)"),
+            std::string::npos)
+      << loaded.warnings[0];
+  // Welded, nothing to say.
+  const std::string welded = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n";
+  EXPECT_TRUE(mrcloth::load_garment(write_file(dir.file("welded.obj"), welded)).warnings.empty());
+}
+
+TEST(GarmentLoad, AByteOrderMarkBeforeTheFirstVertexIsSkipped) {
+  ScratchDir dir;
+  const mrcloth::LoadResult marked =
+      mrcloth::load_garment(write_file(dir.file("marked.obj"), "\xEF\xBB\xBF" + grid_obj().substr(std::string("# grid\no grid\n").size())));
+  expect_grid_as_read(marked, 1.0);
+}
+
+TEST(GarmentLoadErrors, ADamagedStoredHierarchyIsRefused) {
+  ScratchDir dir;
+  mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  QuadMesh& mesh = loaded.mesh;
+  const mrcloth::Layers l = mrcloth::get_layers(mesh);
+  // As a cut-short file reads: a child that is not there, a corner that is no vertex.
+  mesh.property(l.quadtree)[2].children = {6, 7, 8, 9};
+  mrcloth::save_mesh(mesh, dir.file("child.om"));
+  EXPECT_LOAD_ERROR(dir.file("child.om"), "the stored refinement hierarchy is damaged (record 2 has a child out of place)");
+  mesh.property(l.quadtree)[2].children = {-1, -1, -1, -1};
+  mesh.property(l.quadtree)[3].corners[1] = 12;
+  mrcloth::save_mesh(mesh, dir.file("corner.om"));
+  EXPECT_LOAD_ERROR(dir.file("corner.om"), "(record 3 has a corner that is not a vertex)");
+  mesh.property(l.quadtree)[3].corners[1] = 1;
+  mesh.property(l.quadtree)[4].active = 0;
+  mrcloth::save_mesh(mesh, dir.file("inactive.om"));
+  EXPECT_LOAD_ERROR(dir.file("inactive.om"), "(5 active records for 6 faces)");
 }
 
 TEST(GarmentSave, OmWithoutForestIsMadeRefinable) {
