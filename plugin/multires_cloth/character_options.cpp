@@ -342,7 +342,30 @@ Motion readClip(CharacterRequest& request, ClipChanges& changes) {
 
 }  // namespace
 
+namespace {
+
+/// The largest side of the garment's bounding box, metres.
+double garment_span(const QuadMesh& garment) {
+  OpenMesh::Vec3d low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+  for (const auto v : garment.vertices()) {
+    low.minimize(garment.point(v));
+    high.maximize(garment.point(v));
+  }
+  return garment.n_vertices() > 0 ? (high - low).max() : 0.0;
+}
+
+}  // namespace
+
 Character loadCharacter(CharacterRequest& request, const QuadMesh& garment, ClipChanges* changes) {
+  // A garment loaded in the wrong units (centimetres read as metres: a
+  // 54 m skirt) would run to the end far from the body or crushed onto it.
+  const double span = garment_span(garment);
+  if (!(span >= kGarmentSpanLow && span <= kGarmentSpanHigh))
+    throw InputError(QStringLiteral("the garment spans %1 m (its bounding box's largest side); expected %2-%3 m for a "
+                                    "garment worn by a person: check the units it was loaded in (core.loadObject's "
+                                    "units; the pipeline's --units)")
+                         .arg(span, 0, 'g', 3).arg(kGarmentSpanLow).arg(kGarmentSpanHigh)
+                         .toStdString());
   const CharacterSetup& setup = request.setup;
   const QString motion_label = optionLabel(QStringLiteral("motion"));
   ClipChanges changed;

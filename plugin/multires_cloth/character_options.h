@@ -31,6 +31,12 @@ struct CharacterRequest {
   bool fitWarning = true;       ///< log a warning when the fit check finds the garment too narrow (the report's fit has it either way)
 };
 
+/// The largest side (metres) a garment worn by a person may span on a
+/// character run: outside it the garment was loaded in the wrong units
+/// (resources/scripts/pipeline.js checks the same before any work).
+constexpr double kGarmentSpanLow = 0.1;
+constexpr double kGarmentSpanHigh = 4.0;
+
 /// The top-level keys only a character run accepts (each needs `motion`).
 QStringList characterOptionKeys();
 

@@ -434,11 +434,31 @@ try {
   core.exitApplication(1);
 }
 
+/// A garment in the wrong units (centimetres read as metres: a 54 m skirt)
+/// is refused before any work, with the units that would fit: the span
+/// multirescloth.simulate accepts on a character (kGarmentSpanLow/High).
+function checkGarmentSize(options, info) {
+  const [low, high] = [0.1, 4.0];
+  const span = Math.max(...[0, 1, 2].map((k) => info.bbox.max[k] - info.bbox.min[k]));
+  if (span >= low && span <= high) return;
+  const metres = {m: 1, dm: 0.1, cm: 0.01, mm: 0.001, inch: 0.0254};
+  const fitting = Object.keys(metres).filter((units) => {
+    const there = span / metres[options.units] * metres[units];
+    return units !== options.units && there >= low && there <= high;
+  });
+  const hint = fitting.length > 0 ? " (in '" + fitting[0] + "' it spans " +
+                                     (span / metres[options.units] * metres[fitting[0]]).toFixed(2) + " m)" : "";
+  throw pipelineError("option --units: " + options.garment + " read in '" + options.units + "' spans " +
+                      span.toPrecision(3) + " m (its bounding box's largest side); expected " + low + "-" + high +
+                      " m for a garment worn by a person: check the units" + hint, "InputError");
+}
+
 function runPipeline(options) {
   const out = options.out;
   // The garment is read before anything is written: a broken file stops the run here.
   const coarse = core.loadObject(options.garment, {units: options.units});
   const coarseInfo = core.objectInfo(coarse);
+  checkGarmentSize(options, coarseInfo);
   core.makePath(out);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and

@@ -142,6 +142,10 @@ expectThrows(() => multirescloth.motionInfo(collapsed), "InputError", "collapsed
              "the figure's legs are 0.00 m long");
 expectThrows(() => multirescloth.motionInfo({path: collapsed, units: "auto"}), "InputError",
              "collapsed.bvh has legs of length 0 (its rest pose puts hip and ankle at one point)");
+// A garment loaded in the wrong units is refused on a character, before the run.
+const tiny = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj", {units: "cm"});
+expectThrows(() => multirescloth.simulate(tiny, {motion: walk, frames: 1}), "InputError",
+             "the garment spans 0.00", "expected 0.1-4 m for a garment worn by a person: check the units");
 // A clip without Hips: the message suggests the joint that says hips.
 const hipless = tmpDir + "/hipless.bvh";
 core.writeTextFile(hipless, core.readTextFile(walk).replace("ROOT Hips", "ROOT Armature\n{\n OFFSET 0 0 0\n CHANNELS 0\n JOINT my_hips"

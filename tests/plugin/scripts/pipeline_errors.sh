@@ -59,6 +59,9 @@ refused "option --resume takes no value" --resume=yes
 refused "InputError: pipeline: option --instance: .*walk_instance.bvh read in units 'cm' \(0.01 m per unit\): the figure's legs are 0.01 m long .* expected 0.4-2 times: check the units; in 'm' they are 0.79 m" \
   --motion-units cm
 refused "option --motion-units: expected one of m, cmu, dm, cm, mm, inch, auto, got \"feet\"" --motion-units feet
+# A garment in the wrong units is refused before any work, with the units that fit.
+refused "InputError: pipeline: option --units: .*default_skirt.obj read in 'cm' spans 0.00[0-9]* m .*expected 0.1-4 m for a garment worn by a person: check the units \(in 'm' it spans 0.5[0-9] m\)" \
+  --units cm
 refused "option --motion-positions: expected one of absolute, relative, got \"local\"" --motion-positions local
 # A clip whose pelvis is not called Hips (the embedded new walk, renamed) is
 # refused before any work, with its joints and the option that renames them.
