@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -305,23 +306,12 @@ std::vector<std::pair<long, long>> obj_face_corners(const std::vector<std::strin
   return corners;
 }
 
-TextScan scan_obj(const std::string& path, std::istream& in) {
+TextScan scan_obj_lines(const std::string& path, std::istream& in) {
   TextScan scan;
   long n_faces = 0;
   std::size_t line_number = 0;
-  const std::string byte_order_mark = "\xEF\xBB\xBF";
   for (std::string line; std::getline(in, line);) {
     ++line_number;
-    if (line_number == 1 && line.rfind(byte_order_mark, 0) == 0) {
-      line.erase(0, byte_order_mark.size());
-      std::ostringstream rest;
-      rest << in.rdbuf();
-      scan.text_for_reader = line + "\n" + rest.str();
-      std::istringstream again(scan.text_for_reader);
-      TextScan unmarked = scan_obj(path, again);
-      unmarked.text_for_reader = std::move(scan.text_for_reader);
-      return unmarked;
-    }
     const std::vector<std::string> words = split_words(strip_comment(line));
     if (words.empty()) continue;
     if (words[0] == "v") {
@@ -344,8 +334,50 @@ TextScan scan_obj(const std::string& path, std::istream& in) {
   return scan;
 }
 
+/// An OBJ's text as OpenMesh's reader can take it, or "" when the file is
+/// that already: without a byte-order mark (the reader would drop the first
+/// line's vertex and shift every face) and with lines continued by a
+/// trailing backslash joined (legal OBJ the reader does not know). A joined
+/// line keeps the first line's number, and blank lines after it keep the
+/// numbers of the lines below.
+std::string obj_text_for_reader(const std::string& text) {
+  const std::string byte_order_mark = "\xEF\xBB\xBF";
+  const bool marked = text.rfind(byte_order_mark, 0) == 0;
+  if (!marked && text.find("\\\n") == std::string::npos && text.find("\\\r\n") == std::string::npos) return {};
+  std::istringstream in(marked ? text.substr(byte_order_mark.size()) : text);
+  std::string out, logical;
+  std::size_t joined = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && line.back() == '\\') {
+      logical += line.substr(0, line.size() - 1) + ' ';
+      ++joined;
+      continue;
+    }
+    out += logical + line + '\n';
+    out.append(joined, '\n');
+    logical.clear();
+    joined = 0;
+  }
+  if (!logical.empty()) out += logical + '\n' + std::string(joined, '\n');
+  return out;
+}
+
+TextScan scan_obj(const std::string& path, std::istream& in) {
+  std::ostringstream whole;
+  whole << in.rdbuf();
+  std::string reader_text = obj_text_for_reader(whole.str());
+  std::istringstream lines(reader_text.empty() ? whole.str() : reader_text);
+  TextScan scan = scan_obj_lines(path, lines);
+  scan.text_for_reader = std::move(reader_text);
+  return scan;
+}
+
 /// Plain ASCII OFF, optionally with colours/normals/texture coordinates after
 /// x y z (COFF, NOFF, STOFF...). 4OFF, nOFF and binary OFF are left to OpenMesh.
+/// Refuses a header OpenMesh would misread: a word that is no OFF variant
+/// (it accepted "OFFX"), and counts more than the lines after it hold (it
+/// would allocate for them, or read faces as vertices).
 TextScan scan_off(const std::string& path, std::istream& in) {
   TextScan scan;
   std::size_t line_number = 0;
@@ -368,23 +400,41 @@ TextScan scan_off(const std::string& path, std::istream& in) {
   for (const char* prefix : {"ST", "C", "N"}) {
     if (header.rfind(prefix, 0) == 0) header.erase(0, std::string(prefix).size());
   }
+  if (header != "OFF" && header != "4OFF" && header != "nOFF")
+    throw InputError(with_path(path, "the file starts with '" + words[0] +
+                                         "'; expected OFF (or COFF, NOFF, STOFF, 4OFF, nOFF)"));
   scan.binary = words.size() > 1 && words[1] == "BINARY";
   if (header != "OFF" || scan.binary) return scan;
+  const std::string magic = words[0];
   words.erase(words.begin());
+  if (!words.empty()) {
+    // Counts on the header's line: OpenMesh reads them only on their own.
+    cleaned = magic + "\n";
+    for (const std::string& word : words) cleaned += word + ' ';
+    cleaned += '\n';
+  }
   if (words.empty()) words = next_words();
   if (words.empty()) return scan;
-  std::size_t n_vertices = 0;
-  {
-    const auto [stop, error] = std::from_chars(words[0].data(), words[0].data() + words[0].size(), n_vertices);
-    if (error != std::errc() || stop != words[0].data() + words[0].size()) return scan;
+  std::size_t counts[2] = {0, 0};  // vertices, faces
+  for (int k = 0; k < 2; ++k) {
+    if (static_cast<std::size_t>(k) >= words.size()) return scan;
+    const std::string& word = words[static_cast<std::size_t>(k)];
+    const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), counts[k]);
+    if (error != std::errc() || stop != word.data() + word.size())
+      throw InputError(with_path(path, "the OFF header's " + std::string(k == 0 ? "vertex" : "face") + " count '" +
+                                           word + "'" + at_line(line_number) + " is not a count; expected 'V F E'"));
   }
-  for (std::size_t v = 0; v < n_vertices; ++v) {
-    words = next_words();
-    if (words.empty()) return scan;  // truncated; OpenMesh decides what that means
-    scan.points.push_back(parse_point(path, words, 0, v, at_line(line_number)));
-  }
-  while (!next_words().empty()) {
-  }
+  const std::size_t header_line = line_number;
+  std::vector<std::pair<std::size_t, std::vector<std::string>>> lines;  // (line number, words)
+  for (std::vector<std::string> next = next_words(); !next.empty(); next = next_words())
+    lines.emplace_back(line_number, std::move(next));
+  if (lines.size() < counts[0] || lines.size() - counts[0] < counts[1])
+    throw InputError(with_path(path, "the OFF header" + at_line(header_line) + " declares " +
+                                         std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
+                                         " faces, but only " + std::to_string(lines.size()) +
+                                         " lines of data follow; expected one line per vertex and per face"));
+  for (std::size_t v = 0; v < counts[0]; ++v)
+    scan.points.push_back(parse_point(path, lines[v].second, 0, v, at_line(lines[v].first)));
   scan.understood = true;
   scan.text_for_reader = std::move(cleaned);
   return scan;
@@ -792,11 +842,18 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   bool read = false;
   {
     QuietOpenMesh quiet;
-    if (scan.text_for_reader.empty()) {
-      read = OpenMesh::IO::IOManager().read(path, importer, io_options);
-    } else {
-      std::istringstream text(scan.text_for_reader);
-      read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
+    try {
+      if (scan.text_for_reader.empty()) {
+        read = OpenMesh::IO::IOManager().read(path, importer, io_options);
+      } else {
+        std::istringstream text(scan.text_for_reader);
+        read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
+      }
+    } catch (const std::bad_alloc&) {
+      // A binary header's counts misread (a big-endian OFF) or simply huge.
+      throw InputError(with_path(path, std::string("cannot be read as ") + format_name(*format) +
+                                           ": its header asks for more elements than memory holds; expected a valid " +
+                                           extension + " mesh (binary OFF: little-endian, as OpenMesh reads it)"));
     }
   }
   const FaceProblem problem = earlier(scan.face_problem, importer.problem());

@@ -459,6 +459,10 @@ function runPipeline(options) {
   const coarse = core.loadObject(options.garment, {units: options.units});
   const coarseInfo = core.objectInfo(coarse);
   checkGarmentSize(options, coarseInfo);
+  // Refined again, an already refined mesh would make every model the same.
+  if (coarseInfo.maxLevel > 1)
+    throw pipelineError("option --garment: " + options.garment + " is already refined (its faces reach level " +
+                        coarseInfo.maxLevel + "); expected the coarse garment the method starts from", "InputError");
   core.makePath(out);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and

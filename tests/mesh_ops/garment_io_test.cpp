@@ -531,6 +531,23 @@ TEST(GarmentLoadErrors, WhatNoGarmentCanBeIsRefusedAtLoading) {
                     "the PLY header has no 'end_header' line");
 }
 
+TEST(GarmentLoadErrors, OffHeadersOpenMeshWouldMisreadAreRefused) {
+  ScratchDir dir;
+  const std::string body = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  // More than the data holds: OpenMesh read faces as vertices, or allocated for 1e12.
+  EXPECT_LOAD_ERROR(write_file(dir.file("few.off"), "OFF\n5 1 0\n" + body),
+                    "the OFF header (line 2) declares 5 vertices and 1 faces, but only 5 lines of data follow");
+  EXPECT_LOAD_ERROR(write_file(dir.file("huge.off"), "OFF\n999999999999 1 0\n" + body), "declares 999999999999 vertices");
+  EXPECT_LOAD_ERROR(write_file(dir.file("words.off"), "OFF\nabc 1 0\n" + body),
+                    "the OFF header's vertex count 'abc' (line 2) is not a count");
+  // Not an OFF variant: OpenMesh took "OFFX" for one.
+  EXPECT_LOAD_ERROR(write_file(dir.file("offx.off"), "OFFX\n4 1 0\n" + body), "the file starts with 'OFFX'");
+  // The counts on the header's line are legal, though OpenMesh reads them only on their own.
+  const mrcloth::LoadResult same_line = mrcloth::load_garment(write_file(dir.file("same.off"), "OFF 4 1 0\n" + body));
+  EXPECT_EQ(same_line.mesh.n_vertices(), 4u);
+  EXPECT_EQ(same_line.mesh.n_faces(), 1u);
+}
+
 TEST(GarmentLoad, UnweldedSeamsAreNamedInAWarning) {
   ScratchDir dir;
   // Two squares side by side, their shared side written twice (as panels are exported).
@@ -544,6 +561,17 @@ TEST(GarmentLoad, UnweldedSeamsAreNamedInAWarning) {
   // Welded, nothing to say.
   const std::string welded = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n";
   EXPECT_TRUE(mrcloth::load_garment(write_file(dir.file("welded.obj"), welded)).warnings.empty());
+}
+
+TEST(GarmentLoad, LinesContinuedByABackslashAreJoinedAndLaterLinesKeepTheirNumbers) {
+  ScratchDir dir;
+  const std::string square = "v 0 0 0\nv 1 0 \\\n0\nv 1 1 0\nv 0 1 0\n";
+  const mrcloth::LoadResult joined = mrcloth::load_garment(write_file(dir.file("joined.obj"), square + "f 1 2 \\\n3 4\n"));
+  EXPECT_EQ(joined.mesh.n_vertices(), 4u);
+  EXPECT_EQ(joined.mesh.n_faces(), 1u);
+  EXPECT_EQ(joined.mesh.point(QuadMesh::VertexHandle(1)), OpenMesh::Vec3d(1, 0, 0));
+  // Line 6 (after the continued line 2-3) is named as line 6.
+  EXPECT_LOAD_ERROR(write_file(dir.file("bad.obj"), square + "f 1 2 3 9\n"), "face 0 (line 6) refers to vertex 9");
 }
 
 TEST(GarmentLoad, AByteOrderMarkBeforeTheFirstVertexIsSkipped) {

@@ -62,6 +62,12 @@ refused "option --motion-units: expected one of m, cmu, dm, cm, mm, inch, auto, 
 # A garment in the wrong units is refused before any work, with the units that fit.
 refused "InputError: pipeline: option --units: .*default_skirt.obj read in 'cm' spans 0.00[0-9]* m .*expected 0.1-4 m for a garment worn by a person: check the units \(in 'm' it spans 0.5[0-9] m\)" \
   --units cm
+# An already refined garment (a .om the refinement wrote) is not a coarse one.
+printf 'const id = core.loadObject(core.scriptArguments()[0]);\ncore.saveObject(multirescloth.refineUniform(id, 1), core.scriptArguments()[1]);\n' > "$tmp/refine.js"
+"$host" -q -b "$tmp/refine.js" -- "$resources/garments/default_skirt.obj" "$tmp/refined.om" ||
+  { echo "FAILED: could not write the refined garment"; failed=1; }
+refused "InputError: pipeline: option --garment: .*refined.om is already refined \\(its faces reach level 2\\); expected the coarse garment" \
+  --garment "$tmp/refined.om"
 refused "option --motion-positions: expected one of absolute, relative, got \"local\"" --motion-positions local
 # A clip whose pelvis is not called Hips (the embedded new walk, renamed) is
 # refused before any work, with its joints and the option that renames them.
