@@ -2,6 +2,7 @@
 
 #include "host_log.h"
 #include "mesh_ops/atomic_file.h"
+#include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/lumped_mass.h"
@@ -134,6 +135,7 @@ QVariantMap ScriptCore::objectInfo(QVariant id) {
         {QStringLiteral("verticesPerMode"), script::toVariantList(verticesPerMode(mesh))},
         {QStringLiteral("maxLevel"), highestLevel(faces_by_level)},
         {QStringLiteral("textureCoordinates"), has_texture_coords(mesh)},
+        {QStringLiteral("boundaryLoops"), static_cast<qlonglong>(boundary_loops(mesh).size())},
         {QStringLiteral("bbox"), boundingBox(mesh)}};
   });
 }
@@ -309,7 +311,7 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Returns {id, name, path, vertices, faces, hangingNodes, area (m^2), arealDensity (kg/m^2), "
                       "totalMass (kg), facesPerLevel, verticesPerLevel, verticesPerMode, maxLevel, "
                       "textureCoordinates (bool: UVs from the file, carried through refinement into OBJs written), "
-                      "bbox: {min: [x, y, z], max: [x, y, z]} (m)}. Per-level lists: element L = level L "
+                      "boundaryLoops (openings: a skirt's waist and hem), bbox: {min: [x, y, z], max: [x, y, z]} (m)}. Per-level lists: element L = level L "
                       "(coarse = 1, element 0 unused); verticesPerMode: element m = mode m."),
        {QStringLiteral("id")},
        {id_text}},

@@ -459,6 +459,10 @@ function runPipeline(options) {
   const coarse = core.loadObject(options.garment, {units: options.units});
   const coarseInfo = core.objectInfo(coarse);
   checkGarmentSize(options, coarseInfo);
+  // The waist is the highest opening; a closed surface has none to pin.
+  if (coarseInfo.boundaryLoops === 0)
+    throw pipelineError("option --garment: " + options.garment + " is a closed surface (no boundary loop); expected " +
+                        "a garment with openings, the highest of which is pinned as its waist", "InputError");
   // Refined again, an already refined mesh would make every model the same.
   if (coarseInfo.maxLevel > 1)
     throw pipelineError("option --garment: " + options.garment + " is already refined (its faces reach level " +

@@ -68,6 +68,9 @@ printf 'const id = core.loadObject(core.scriptArguments()[0]);\ncore.saveObject(
   { echo "FAILED: could not write the refined garment"; failed=1; }
 refused "InputError: pipeline: option --garment: .*refined.om is already refined \\(its faces reach level 2\\); expected the coarse garment" \
   --garment "$tmp/refined.om"
+# A closed surface (a cube of six quads) has no opening to pin as the waist.
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n' > "$tmp/cube.obj"
+refused "InputError: pipeline: option --garment: .*cube.obj is a closed surface \\(no boundary loop\\)" --garment "$tmp/cube.obj"
 refused "option --motion-positions: expected one of absolute, relative, got \"local\"" --motion-positions local
 # A clip whose pelvis is not called Hips (the embedded new walk, renamed) is
 # refused before any work, with its joints and the option that renames them.

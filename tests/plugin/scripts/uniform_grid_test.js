@@ -8,7 +8,8 @@ core.include("test_asserts.js");
 const grid = core.loadObject(dataDir + "/grid3x3.obj");
 expectEqual(grid, 1, "first object id");
 const coarse = core.objectInfo(grid);
-expectEqual([coarse.vertices, coarse.faces, coarse.hangingNodes, coarse.maxLevel], [16, 9, 0, 1], "coarse grid");
+expectEqual([coarse.vertices, coarse.faces, coarse.hangingNodes, coarse.maxLevel, coarse.boundaryLoops], [16, 9, 0, 1, 1],
+            "coarse grid");
 expectEqual(coarse.facesPerLevel, [0, 9], "coarse facesPerLevel");
 expectEqual(coarse.verticesPerLevel, [0, 16], "coarse verticesPerLevel");
 expectEqual(coarse.verticesPerMode, [0, 16], "every vertex starts in mode 1");
