@@ -961,7 +961,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "armsOpened {maxDegrees, steps, clearance}, jointsRenamed {name in the file: CMU name} "
                       "(motion.joints), axesTurned (motion.axes: \"\" or e.g. \"x = x, y = z, z = -y\"). The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
-                      "not the character; the cache stays in the clip's coordinates."),
+                      "not the character; the cache is in the clip's coordinates once its axes are turned "
+                      "(axesTurned: Y up), in metres."),
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
         QStringLiteral(
