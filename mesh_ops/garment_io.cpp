@@ -194,8 +194,9 @@ struct TextScan {
   /// What OpenMesh reads instead of the file, if not empty: ASCII OFF
   /// without comments and blank lines (its OFF reader misreads a comment
   /// after the header as element counts: garbage counts, then garbage or
-  /// very slow reads), or an OBJ without its byte-order mark (its OBJ
-  /// reader drops the first line's vertex and shifts every face).
+  /// very slow reads; counts moved off the magic word's line), or an OBJ
+  /// without its byte-order mark (its OBJ reader drops the first line's
+  /// vertex and shifts every face) and with continued lines joined.
   std::string text_for_reader;
 };
 

@@ -26,8 +26,11 @@ struct LoadResult {
 /// unless units is not "m").
 /// Throws InputError, naming the file and the problem, for: a missing or
 /// unreadable file, an unknown extension, no vertices or no faces, a
-/// non-finite coordinate (naming the vertex), a non-manifold edge or vertex
-/// or a face with repeated vertices (naming the face).
+/// non-finite coordinate or one beyond float range (naming the vertex), a
+/// non-manifold edge or vertex, a vertex in no face, a face with repeated
+/// vertices or without area (naming the face), an OFF or PLY header
+/// OpenMesh would misread or hang on, and a `.om` whose stored hierarchy is
+/// damaged. Warns of boundary vertices lying on one another (unwelded seams).
 LoadResult load_garment(const std::string& path, const LoadOptions& options = {});
 
 /// Saves the whole refinable mesh with forest and every layer. `.om` keeps

@@ -311,7 +311,8 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Returns {id, name, path, vertices, faces, hangingNodes, area (m^2), arealDensity (kg/m^2), "
                       "totalMass (kg), facesPerLevel, verticesPerLevel, verticesPerMode, maxLevel, "
                       "textureCoordinates (bool: UVs from the file, carried through refinement into OBJs written), "
-                      "boundaryLoops (openings: a skirt's waist and hem), bbox: {min: [x, y, z], max: [x, y, z]} (m)}. Per-level lists: element L = level L "
+                      "boundaryLoops (openings: a skirt's waist and hem), bbox: {min: [x, y, z], max: [x, y, z]} "
+                      "(m)}. Per-level lists: element L = level L "
                       "(coarse = 1, element 0 unused); verticesPerMode: element m = mode m."),
        {QStringLiteral("id")},
        {id_text}},

@@ -340,10 +340,6 @@ Motion readClip(CharacterRequest& request, ClipChanges& changes) {
   return clip;
 }
 
-}  // namespace
-
-namespace {
-
 /// The largest side of the garment's bounding box, metres.
 double garment_span(const QuadMesh& garment) {
   OpenMesh::Vec3d low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
