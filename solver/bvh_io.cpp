@@ -141,6 +141,9 @@ std::string quoted(std::string_view s) {
   return out + "'";
 }
 
+/// The longest frame a clip may hold, seconds.
+constexpr double kLongestFrameTime = 60.0;
+
 class BvhParser {
  public:
   BvhParser(std::string path, std::string_view text, const BvhReadOptions& options)
@@ -373,6 +376,10 @@ class BvhParser {
            "a positive number of seconds");
     if (!(*time > 0.0))
       fail(time_token.line, "frame time " + std::string(time_token.text), "a positive number of seconds");
+    // Keyframed clips hold a frame a second or so; "1e300" plays as a still pose.
+    if (*time > kLongestFrameTime)
+      fail(time_token.line, "frame time " + std::string(time_token.text) + " s",
+           "at most " + std::to_string(static_cast<int>(kLongestFrameTime)) + " seconds per frame");
     motion_.frame_time = *time;
 
     const long long channels = channel_total_;
