@@ -734,6 +734,33 @@ SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton) {
   return out;
 }
 
+void carry_uvs(const SkinnedBody& from, SkinnedBody& to) {
+  to.triangle_uvs.clear();
+  if (from.triangle_uvs.size() != from.triangles.size()) return;
+  std::map<std::array<int, 3>, std::size_t> same;  // a triangle of `from`, as its corners run, to its index
+  std::map<int, Eigen::Vector2d> at_vertex;
+  for (std::size_t t = 0; t < from.triangles.size(); ++t) {
+    const Eigen::Vector3i& c = from.triangles[t];
+    same[{c[0], c[1], c[2]}] = t;
+    for (int k = 0; k < 3; ++k) at_vertex.emplace(c[k], from.triangle_uvs[t][static_cast<std::size_t>(k)]);
+  }
+  for (const Eigen::Vector3i& c : to.triangles) {
+    if (const auto found = same.find({c[0], c[1], c[2]}); found != same.end()) {
+      to.triangle_uvs.push_back(from.triangle_uvs[found->second]);
+      continue;
+    }
+    std::array<Eigen::Vector2d, 3> uvs;
+    Eigen::Vector2d fallback = Eigen::Vector2d::Zero();
+    for (int k = 2; k >= 0; --k)
+      if (const auto uv = at_vertex.find(c[k]); uv != at_vertex.end()) fallback = uv->second;
+    for (int k = 0; k < 3; ++k) {
+      const auto uv = at_vertex.find(c[k]);
+      uvs[static_cast<std::size_t>(k)] = uv != at_vertex.end() ? uv->second : fallback;
+    }
+    to.triangle_uvs.push_back(uvs);
+  }
+}
+
 Eigen::MatrixX3d skin(const SkinnedBody& body, const Skeleton& skeleton, const Pose& pose) {
   const std::size_t n = skeleton.joints.size();
   if (pose.global.size() != n) {

@@ -131,4 +131,12 @@ std::vector<int> hand_vertices(const SkinnedBody& body, const Skeleton& skeleton
 /// that has vertices (a body without hand vertices comes back unchanged).
 SkinnedBody without_hands(const SkinnedBody& body, const Skeleton& skeleton);
 
+/// Gives `to` (a body made from `from`: the same vertices first, perhaps
+/// more appended, and other triangles, as without_hands makes) `from`'s
+/// texture coordinates: a triangle `from` has keeps its UVs, any other
+/// corner takes a UV its vertex has in `from`, and a vertex `from` has in no
+/// triangle (a cap's centre) the UV of its triangle's first corner that has
+/// one. Leaves `to` untextured when `from` is.
+void carry_uvs(const SkinnedBody& from, SkinnedBody& to);
+
 }  // namespace mrcloth

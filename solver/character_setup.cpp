@@ -147,9 +147,13 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
     capsules.bones = mittens;
     character.hand_mittens = static_cast<int>(mittens.size());
     if (character.hand_mittens > 0) {
+      // Drawn as it collides (its caches are what a reviewer measures the
+      // cloth against), textured as the whole body is.
       SkinnedBody collided = without_hands(*skinned, skeleton);
+      SkinnedBody drawn = collided;
+      carry_uvs(*skinned, drawn);
       character.body = std::make_unique<SkinnedPosedBody>(std::move(collided), skeleton, setup.thickness,
-                                                          setup.friction, std::move(capsules), std::move(*skinned));
+                                                          setup.friction, std::move(capsules), std::move(drawn));
     } else {
       character.body = std::make_unique<SkinnedPosedBody>(std::move(*skinned), skeleton, setup.thickness,
                                                           setup.friction, std::move(capsules));

@@ -56,7 +56,7 @@ struct CharacterSetup {
   /// Skinned mesh body: the hands leave the collision mesh (without_hands:
   /// wrists capped) and collide as fitted capsules (hand_mitten_capsules),
   /// which have no gaps between fingers for cloth to be caught in and torn.
-  /// The body is still drawn with its hands.
+  /// The body is drawn as it collides: capped wrists and mittens.
   bool hand_mittens = true;
   /// Automatic: the skin whenever the MakeHuman body is given, else the pelvis.
   WaistFollows waist = WaistFollows::automatic;

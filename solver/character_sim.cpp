@@ -114,12 +114,11 @@ BodySurface SkinnedPosedBody::surface(const Pose& pose) const {
   for (const Eigen::Vector3i& t : shown.triangles) surface.faces.push_back({t[0], t[1], t[2]});
   if (shown.triangle_uvs.size() == shown.triangles.size())
     for (const auto& uv : shown.triangle_uvs) surface.uvs.push_back({uv[0], uv[1], uv[2]});
-  if (bridges_ && !bridges_->rig().bridges.empty()) {
-    // The bridges stand for skin between the legs; the mittens stand in for
-    // hands the drawn body has.
-    CapsuleRig bridges = bridges_->rig();
-    bridges.bones.clear();
-    append_surface(surface, capsule_surface(posed_capsules(bridges, proportioned_pose(skeleton_, body_.joint_rest, pose))));
+  if (bridges_) {
+    // The bridges stand for skin between the legs, the mittens for the
+    // hands: drawn, so the surface is what the cloth collides with.
+    append_surface(surface,
+                   capsule_surface(posed_capsules(bridges_->rig(), proportioned_pose(skeleton_, body_.joint_rest, pose))));
   }
   return surface;
 }

@@ -52,7 +52,7 @@ class CapsulePosedBody : public PosedBody {
 /// optional capsules posed by the same skeleton on the body's proportions:
 /// bridges between the legs (add_leg_bridges) and bones (the hands' mittens,
 /// hand_mitten_capsules, for a body cut by without_hands). surface() draws
-/// `drawn` (the whole body; empty: `body`) and the bridges.
+/// `drawn` (`body` textured; empty: `body`), the bridges and the mittens.
 class SkinnedPosedBody : public PosedBody {
  public:
   SkinnedPosedBody(SkinnedBody body, const Skeleton& skeleton, double thickness = 0.004, double friction = 0.3,

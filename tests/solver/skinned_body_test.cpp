@@ -1220,8 +1220,30 @@ TEST_F(SkinnedBodyTest, CarriesTheFilesTextureCoordinatesPerTriangleCorner) {
   ASSERT_EQ(body_->triangle_uvs.size(), body_->triangles.size());
   for (std::size_t t = 0; t < expected.size(); ++t)
     for (int k = 0; k < 3; ++k) ASSERT_EQ(body_->triangle_uvs[t][k], expected[t][k]) << "triangle " << t;
-  // The body made for collisions (hands capped) is drawn from this one: none.
-  EXPECT_TRUE(without_hands(*body_, skeleton()).triangle_uvs.empty());
+  // The body made for collisions (hands capped) has none of its own; drawn,
+  // it carries these: a kept triangle its own, a cap the UVs its rim
+  // vertices have, the cap's centre its triangle's first rim vertex's.
+  SkinnedBody cut = without_hands(*body_, skeleton());
+  EXPECT_TRUE(cut.triangle_uvs.empty());
+  carry_uvs(*body_, cut);
+  ASSERT_EQ(cut.triangle_uvs.size(), cut.triangles.size());
+  std::map<std::array<int, 3>, std::size_t> original;
+  for (std::size_t t = 0; t < body_->triangles.size(); ++t)
+    original[{body_->triangles[t][0], body_->triangles[t][1], body_->triangles[t][2]}] = t;
+  std::size_t kept = 0, capped = 0;
+  for (std::size_t t = 0; t < cut.triangles.size(); ++t) {
+    const Vector3i& c = cut.triangles[t];
+    if (const auto found = original.find({c[0], c[1], c[2]}); found != original.end()) {
+      ++kept;
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(cut.triangle_uvs[t][k], body_->triangle_uvs[found->second][k]) << t;
+      continue;
+    }
+    ++capped;
+    ASSERT_GE(c[2], static_cast<int>(body_->rest_vertices.rows())) << "a cap's third corner is its centre";
+    EXPECT_EQ(cut.triangle_uvs[t][2], cut.triangle_uvs[t][0]) << "the centre takes its first rim vertex's UV";
+  }
+  EXPECT_GT(kept, 20000u);
+  EXPECT_GT(capped, 20u);
 }
 
 TEST_F(SkinnedBodyTest, RestPoseReproducesRestVertices) {
