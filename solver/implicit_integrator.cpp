@@ -545,6 +545,9 @@ void ImplicitIntegrator::newton_direction(const Positions& grad, Positions& delt
   cg_direction_ = grad;
   solver_.solve_in_place(cg_direction_);
   double rz = dot(cg_residual_, cg_direction_);
+  // Converged once the preconditioned residual is a 1e-12th of the first:
+  // iterating on round-off (newtonCg 1e9) divided 0 by 0 into NaN.
+  const double converged = 1e-24 * rz;
   for (int it = 0; it < options_.newton_cg; ++it) {
     hessian_product(cg_direction_, cg_product_);
     const double curvature = dot(cg_direction_, cg_product_);
@@ -556,6 +559,7 @@ void ImplicitIntegrator::newton_direction(const Positions& grad, Positions& delt
     Positions z = cg_residual_;
     solver_.solve_in_place(z);
     const double rz_next = dot(cg_residual_, z);
+    if (!(rz_next > converged)) break;
     cg_direction_ = z + (rz_next / rz) * cg_direction_;
     rz = rz_next;
   }

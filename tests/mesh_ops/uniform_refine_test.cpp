@@ -27,6 +27,21 @@ TEST(UniformRefine, GridCountsAreExact) {
   }
 }
 
+TEST(UniformRefine, MoreFacesThanMemoryHoldsAreRefusedBeforeAnyWork) {
+  // 9 faces: 9 * 4^11 = 37.7 million faces pass the bound, 9 * 4^12 = 151 million do not.
+  QuadMesh mesh = test::make_grid(3, 3);
+  try {
+    uniform_refine(mesh, 12);
+    ADD_FAILURE() << "refined into 151 million faces";
+  } catch (const ArgumentError& error) {
+    EXPECT_NE(std::string(error.what()).find("uniform refinement by 12 levels would make more than 50000000 faces from 9"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(uniform_refine(mesh, 1000000000), ArgumentError);
+  EXPECT_EQ(mesh.n_faces(), 9u) << "untouched";
+}
+
 TEST(UniformRefine, RefiningInStepsEqualsRefiningAtOnce) {
   QuadMesh once = test::make_grid(3, 2);
   uniform_refine(once, 2);
