@@ -237,17 +237,15 @@ void check_obj_sequence(const std::string& prefix, const std::vector<FramePositi
   }
 }
 
-/// "<prefix>_0007.obj": at least four digits so that the files sort by name,
-/// more when the sequence needs them.
-std::string sequence_path(const std::string& prefix, std::size_t index, std::size_t count) {
+}  // namespace
+
+std::string obj_sequence_path(const std::string& prefix, std::size_t index, std::size_t count) {
   std::size_t width = 4;
   for (std::size_t last = count - 1; last >= 10000; last /= 10) ++width;
   std::string number = std::to_string(index);
   if (number.size() < width) number.insert(0, width - number.size(), '0');
   return prefix + "_" + number + ".obj";
 }
-
-}  // namespace
 
 // ---------------------------------------------------------------------------
 // Pc2Writer
@@ -401,7 +399,7 @@ std::vector<std::string> write_obj_sequence(const std::string& prefix, const std
   check_obj_sequence(prefix, frames, faces, uvs);
   paths.reserve(frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    const std::string path = sequence_path(prefix, k, frames.size());
+    const std::string path = obj_sequence_path(prefix, k, frames.size());
     write_obj(path, frames[k], faces, uvs);
     paths.push_back(path);
   }

@@ -85,6 +85,11 @@ class Pc2Reader {
 /// or empty for none.
 using FaceUVs = std::vector<std::vector<Eigen::Vector2d>>;
 
+/// Frame `index` of an OBJ sequence of `count` frames: "<prefix>_0007.obj",
+/// at least four digits so that the files sort by name, more when the
+/// sequence needs them.
+std::string obj_sequence_path(const std::string& prefix, std::size_t index, std::size_t count);
+
 /// Writes `frames` as an OBJ sequence `<prefix>_0000.obj`, ... sharing the
 /// faces of `faces` (each a vertex-index polygon, 0-based) and their corners'
 /// texture coordinates `uvs` (written as vt, if given). Every file is

@@ -298,6 +298,10 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   }
 
   request.setup.preroll_seconds = fields.numberFrom(QStringLiteral("preroll"), request.setup.preroll_seconds, 0.0, false);
+  // A pre-roll settles the cloth for a second or two; 1e8 s overflowed its frame count and was skipped.
+  if (request.setup.preroll_seconds > 60.0)
+    fail(QStringLiteral("%1 must be a number of seconds from 0 to 60, got %2")
+             .arg(fields.label(QStringLiteral("preroll"))).arg(request.setup.preroll_seconds));
   request.setup.step_rate = fields.numberFrom(QStringLiteral("stepRate"), request.setup.step_rate, 0.0, true);
   if (request.setup.step_rate < fps)
     fail(QStringLiteral("%1 must be at least option 'fps' (%2 frames per second), got %3")

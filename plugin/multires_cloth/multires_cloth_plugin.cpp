@@ -52,11 +52,7 @@ ColorBy toColorBy(const QString& name) {
   return ColorBy::none;
 }
 
-/// `<folder>/<name>.obj` for a cache `<folder>/<name>.pc2`: where a cache's rest mesh goes.
-QString restMeshPath(const std::string& cache_path) {
-  const QFileInfo cache(QString::fromStdString(cache_path));
-  return cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
-}
+QString restMeshPath(const std::string& cache_path) { return mrcloth::restMeshPath(QString::fromStdString(cache_path)); }
 
 /// The mesh a cache animates, as OBJ beside it (Blender's Mesh Cache
 /// modifier goes on this mesh); empty when there is no cache.
@@ -433,6 +429,8 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
             .toStdString());
     modes.seed = static_cast<std::uint64_t>(given.integerAtLeast(QStringLiteral("seed"), 1, 0));
     modes.restarts = given.integerAtLeast(QStringLiteral("restarts"), modes.restarts, 1);
+    if (modes.restarts > 10000)  // each restart is a whole k-means run, with no progress between them
+      options::fail(QStringLiteral("option 'restarts' must be an integer from 1 to 10000, got %1").arg(modes.restarts));
     CurvatureAnalysisOptions analysis;
     analysis.skip_frames = given.integerAtLeast(QStringLiteral("skipFrames"), 0, 0);
     analysis.max_frames = given.has(QStringLiteral("maxFrames"))
@@ -966,8 +964,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
         QStringLiteral(
-            "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int >= 1 = 4 (steps per frame), "
-            "iterations: int >= 1 = 2 (per step), newtonCg: int >= 0 = 0 (k: each iteration a Newton step solved by k "
+            "{frames: int >= 1 = 60, fps: number > 0 = 30, substeps: int 1..1000 = 4 (steps per frame), "
+            "iterations: int 1..100 = 2 (per step), newtonCg: int >= 0 = 0 (k: each iteration a Newton step solved by k "
             "preconditioned conjugate-gradient iterations, less damped; 0: the plain iteration), limiterSweeps: int >= 0 = 6 (strain-limiting sweeps per round), "
             "limiterAcceleration: \"auto\" | number in [0, 1) = \"auto\" (Chebyshev acceleration of those sweeps, a spectral radius "
             "estimate; a number fixes it, 0: plain Gauss-Seidel sweeps; \"auto\": 0.97 or, if larger and the cloth is not near rest, "
@@ -1031,7 +1029,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "the mittens, as the cloth collides; false: the hands' own triangles)}, place: \"none\" (the garment is "
             "already on the rest pose, standing where the clip starts) | \"makehuman\" (modelled on base.obj, loaded with units \"dm\"; needs the "
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
-            "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s >= 0 = 1, stepRate: "
+            "\"none\", waist: like pins = \"top\" (or give pins, not both), preroll: s 0..60 = 1, stepRate: "
             "steps per second >= fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
             "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool), fitWarning: bool = true (log a "
             "warning when a tube garment is too narrow for the motion, when the body overlaps its pins' targets "
@@ -1051,7 +1049,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("cachePath"), QStringLiteral("options")},
        {id_text, QStringLiteral("a PC2 cache of this mesh's vertices (recordInstance's output), metres"),
         QStringLiteral("{clusters: int >= 1 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
-                       "= 1, restarts: int >= 1 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
+                       "= 1, restarts: int 1..10000 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
       {QStringLiteral("compareResults(int id, string cachePath, int referenceId, string referenceCachePath, object "
                       "options = {}) -> object"),
        QStringLiteral("Measures a model's recorded result against the high-resolution one, frame by frame, at the "

@@ -7,6 +7,7 @@
 #include "plugin/core/script_values.h"
 #include "solver/colliders.h"
 #include "solver/material.h"
+#include "solver/point_cache.h"
 #include "solver/worker_pool.h"
 
 #include <QDir>
@@ -169,6 +170,39 @@ std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, const QS
 }
 
 /// The folder a file (or an OBJ sequence prefix) goes into must exist.
+/// Refuses two outputs of one run that name one file (the later write
+/// would replace the earlier: a body cache over the garment's, a rest mesh
+/// over an OBJ sequence's frame), naming both options.
+void requireDistinctOutputs(const QString& output, const QString& bodyOutput, const QString& objSequence, int frames) {
+  std::vector<std::pair<QString, QString>> files;  // (what, absolute path)
+  const auto add = [&](const QString& what, const QString& path) {
+    if (!path.isEmpty()) files.emplace_back(what, QFileInfo(path).absoluteFilePath());
+  };
+  add(QStringLiteral("option 'output'"), output);
+  if (!output.isEmpty()) add(QStringLiteral("the rest mesh beside option 'output'"), restMeshPath(output));
+  add(QStringLiteral("option 'bodyOutput'"), bodyOutput);
+  if (!bodyOutput.isEmpty()) add(QStringLiteral("the rest mesh beside option 'bodyOutput'"), restMeshPath(bodyOutput));
+  for (std::size_t a = 0; a < files.size(); ++a) {
+    for (std::size_t b = a + 1; b < files.size(); ++b)
+      if (files[a].second == files[b].second)
+        fail(QStringLiteral("%1 and %2 are one file, %3; expected outputs that do not overwrite each other")
+                 .arg(files[a].first, files[b].first, files[a].second));
+    if (objSequence.isEmpty()) continue;
+    // A frame of the sequence: "<prefix>_<digits>.obj" with a frame's number.
+    const QString prefix = QFileInfo(objSequence).absoluteFilePath() + QStringLiteral("_");
+    const QString& path = files[a].second;
+    if (!path.startsWith(prefix) || !path.endsWith(QLatin1String(".obj"))) continue;
+    bool number = false;
+    const long long index = path.mid(prefix.size(), path.size() - prefix.size() - 4).toLongLong(&number);
+    if (number && index >= 0 && index < frames &&
+        QFileInfo(QString::fromStdString(obj_sequence_path(objSequence.toStdString(), static_cast<std::size_t>(index),
+                                                           static_cast<std::size_t>(frames))))
+                .absoluteFilePath() == path)
+      fail(QStringLiteral("%1 is frame %2 of option 'objSequence', %3; expected outputs that do not overwrite each other")
+               .arg(files[a].first).arg(index).arg(path));
+  }
+}
+
 QString checkedOutputPath(const Fields& fields, const QString& key) {
   const QString path = fields.string(key);
   if (path.isEmpty()) return path;
@@ -183,6 +217,11 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
 }
 
 }  // namespace
+
+QString restMeshPath(const QString& cache_path) {
+  const QFileInfo cache(cache_path);
+  return cache.dir().filePath(cache.completeBaseName() + QStringLiteral(".obj"));
+}
 
 QStringList simulationOptionKeys() {
   return QStringList{QStringLiteral("frames"),    QStringLiteral("fps"),         QStringLiteral("substeps"),
@@ -218,8 +257,9 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   SimulationOptions& sim = request.simulation;
   sim.frames = fields.integerAtLeast(QStringLiteral("frames"), record ? 200 : sim.frames, 1);
   sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
-  if (!character) sim.substeps = fields.integerAtLeast(QStringLiteral("substeps"), sim.substeps, 1);
-  sim.iterations = fields.integerAtLeast(QStringLiteral("iterations"), sim.iterations, 1);
+  // Progress and Ctrl-C come between frames: a frame's work is bounded.
+  if (!character) sim.substeps = fields.integerBetween(QStringLiteral("substeps"), sim.substeps, 1, 1000);
+  sim.iterations = fields.integerBetween(QStringLiteral("iterations"), sim.iterations, 1, 100);
   sim.newton_cg = fields.integerAtLeast(QStringLiteral("newtonCg"), sim.newton_cg, 0);
   sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
   // "auto": the default estimate raised to the garment's chain's
@@ -285,7 +325,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
     sim.self_contact.thickness = metres;
   }
   const QString output = checkedOutputPath(fields, QStringLiteral("output"));
-  if (record && QFileInfo(output).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
+  if (QFileInfo(output).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
     fail(QStringLiteral("option 'output' must be the PC2 cache (e.g. walk.pc2), not an .obj: the rest mesh is written "
                         "beside it as <name>.obj, got \"%1\"").arg(output));
   sim.cache_path = output.toStdString();
@@ -322,6 +362,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
       fail(QStringLiteral("option 'bodyOutput' must be the body's PC2 cache (e.g. body.pc2), not an .obj: its rest "
                           "mesh is written beside it as <name>.obj, got \"%1\"").arg(request.character->bodyOutput));
   }
+  requireDistinctOutputs(output, request.character ? request.character->bodyOutput : QString(), request.objSequence,
+                         sim.frames);
   return request;
 }
 

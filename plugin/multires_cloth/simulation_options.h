@@ -36,6 +36,9 @@ struct SimulationRequest {
 /// them: the plain simulation's, then the character's (characterOptionKeys).
 QStringList simulationOptionKeys();
 
+/// `<folder>/<name>.obj` for a cache `<folder>/<name>.pc2`: where a cache's rest mesh goes.
+QString restMeshPath(const QString& cache_path);
+
 /// Checks a script's options object against `mesh` (loop names in "pins" are
 /// resolved on it) and fills a request; every field absent keeps its solver
 /// default. Throws ArgumentError naming the option for an unknown key, a wrong

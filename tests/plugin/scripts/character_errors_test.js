@@ -146,6 +146,13 @@ expectThrows(() => multirescloth.motionInfo({path: collapsed, units: "auto"}), "
 const tiny = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj", {units: "cm"});
 expectThrows(() => multirescloth.simulate(tiny, {motion: walk, frames: 1}), "InputError",
              "the garment spans 0.00", "expected 0.1-4 m for a garment worn by a person: check the units");
+// A pre-roll is a second or two: 1e8 s overflowed its frame count and was skipped.
+expectThrows(() => multirescloth.simulate(skirt, {motion: walk, frames: 1, preroll: 1e8}), "ArgumentError",
+             "option 'preroll' must be a number of seconds from 0 to 60, got 1e+08");
+// The body's cache on the garment's: refused before the run.
+expectThrows(() => multirescloth.recordInstance(skirt, {motion: walk, frames: 1, preroll: 0, output: tmpDir + "/same.pc2",
+                                                        bodyOutput: tmpDir + "/same.pc2"}),
+             "ArgumentError", "option 'output' and option 'bodyOutput' are one file");
 // A clip without Hips: the message suggests the joint that says hips.
 const hipless = tmpDir + "/hipless.bvh";
 core.writeTextFile(hipless, core.readTextFile(walk).replace("ROOT Hips", "ROOT Armature\n{\n OFFSET 0 0 0\n CHANNELS 0\n JOINT my_hips"

@@ -139,6 +139,16 @@ expectThrows(() => core.fileSize(cache), "InputError", "core.fileSize: ", "never
 expectThrows(() => core.fileSize(tmpDir), "InputError", "core.fileSize: ", "not a file");
 expectThrows(() => core.filesEqual(dataDir + "/grid3x3.obj", cache), "InputError", "core.filesEqual: ", "never.pc2");
 
+// Outputs that would overwrite each other, and a cache named like a mesh.
+expectThrows(sim({output: tmpDir + "/cache.obj"}), "ArgumentError",
+             "option 'output' must be the PC2 cache (e.g. walk.pc2), not an .obj");
+expectThrows(sim({output: tmpDir + "/clash_0000.pc2", objSequence: tmpDir + "/clash", frames: 2}), "ArgumentError",
+             "the rest mesh beside option 'output' is frame 0 of option 'objSequence'");
+expectEqual(core.fileExists(tmpDir + "/clash_0000.obj"), false, "nothing written by the refused call");
+// A frame's work is bounded: progress and Ctrl-C come between frames.
+expectThrows(sim({substeps: 1e9}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 1e+09");
+expectThrows(sim({iterations: 101}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number 101");
+
 // The script carries on; the objects are as they were.
 expectEqual(core.objectList().length, 2, "no objects added by failed calls");
 expectEqual(multirescloth.simulate(grid, {frames: 1}).frames, 1, "a good call after the failures");

@@ -26,13 +26,13 @@ else
 const [resources, tmpDir] = core.scriptArguments();
 const skirt = core.loadObject(resources + "/garments/default_skirt.obj");
 multirescloth.simulate(skirt, {motion: {path: resources + "/characters/walk_instance.bvh", units: "m"},
-                               body: {type: "capsules"}, place: "firstFrame", preroll: 1000, frames: 10,
+                               body: {type: "capsules"}, place: "firstFrame", preroll: 60, frames: 10,
                                output: tmpDir + "/never.pc2"});
 print("not reached: the simulation finished");
 JS
   data=$resources
-  cancelled='simulate: cancelled during the pre-roll, after [0-9]* of its 30000 frames'
-  stopped='^\[job\] simulate: stopped at [0-9]*/30010'
+  cancelled='simulate: cancelled during the pre-roll, after [0-9]* of its 1800 frames'
+  stopped='^\[job\] simulate: stopped at [0-9]*/1810'
 fi
 "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
 pid=$!
