@@ -9,6 +9,8 @@
 #include <QJSValue>
 #include <QStringList>
 
+#include <csignal>
+
 namespace mrcloth {
 namespace {
 
@@ -47,8 +49,9 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   const QJSValue result = engine.evaluate(program, path, 1, &stack);
   // Ctrl-C wins over everything the interrupted script did afterwards.
   if (interrupted.load()) {
-    log.error(QStringLiteral("%1: interrupted (SIGINT)").arg(path));
-    return kInterruptedExitCode;
+    const bool terminated = interruptSignal() == SIGTERM;
+    log.error(QStringLiteral("%1: interrupted (%2)").arg(path, terminated ? QStringLiteral("SIGTERM") : QStringLiteral("SIGINT")));
+    return terminated ? 128 + SIGTERM : kInterruptedExitCode;
   }
   if (core.exitRequested()) return core.exitCode();
   // An uncaught `throw 42` is not an Error object, but it leaves a stack.

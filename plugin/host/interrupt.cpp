@@ -9,21 +9,30 @@ namespace mrcloth {
 namespace {
 
 std::atomic_bool g_interrupted{false};
-static_assert(std::atomic_bool::is_always_lock_free, "the SIGINT handler needs a lock-free flag");
+std::atomic_int g_signal{0};
+static_assert(std::atomic_bool::is_always_lock_free, "the signal handler needs a lock-free flag");
+static_assert(std::atomic_int::is_always_lock_free, "the signal handler needs a lock-free signal number");
 
-extern "C" void onInterrupt(int) {
+extern "C" void onInterrupt(int signal) {
+  g_signal.store(signal);
   g_interrupted.store(true);
-  // A second Ctrl-C must work even if the script never gets back to the host.
-  std::signal(SIGINT, SIG_DFL);
+  // A second signal must work even if the script never gets back to the host.
+  std::signal(signal, SIG_DFL);
 }
 
 }  // namespace
 
 const std::atomic_bool& interruptFlag() { return g_interrupted; }
 
+int interruptSignal() { return g_signal.load(); }
+
 InterruptHandler::InterruptHandler(QJSEngine& engine) : engine_(engine) {
   previous_ = std::signal(SIGINT, onInterrupt);
   if (previous_ == SIG_ERR) previous_ = SIG_DFL;
+  // A batch system's SIGTERM stops as Ctrl-C does: between frames, no
+  // half-written file left (its default would leave the temporary cache).
+  previous_term_ = std::signal(SIGTERM, onInterrupt);
+  if (previous_term_ == SIG_ERR) previous_term_ = SIG_DFL;
   watcher_ = std::thread([this] { watch(); });
 }
 
@@ -46,6 +55,7 @@ InterruptHandler::~InterruptHandler() {
   wake_.notify_all();
   watcher_.join();
   std::signal(SIGINT, previous_);
+  std::signal(SIGTERM, previous_term_);
 }
 
 void InterruptHandler::watch() {

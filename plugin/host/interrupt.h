@@ -3,7 +3,8 @@
 // running jobs see it through ProcessInterface::cancelRequested() and stop
 // early (a simulation leaves no cache), and the script engine is interrupted
 // so the script stops at its next statement; the host then exits with 130
-// (128 + SIGINT, as shells report it). A second SIGINT ends the process at once.
+// (128 + SIGINT, as shells report it). SIGTERM does the same, exit 143. A
+// second signal ends the process at once.
 #include <QObject>
 
 #include <atomic>
@@ -18,9 +19,13 @@ namespace mrcloth {
 /// Exit code of a script stopped by SIGINT.
 inline constexpr int kInterruptedExitCode = 130;
 
-/// The host's interrupt flag: false until SIGINT arrives while an
-/// InterruptHandler is installed. Lives for the whole process.
+/// The host's interrupt flag: false until SIGINT or SIGTERM arrives while
+/// an InterruptHandler is installed. Lives for the whole process.
 const std::atomic_bool& interruptFlag();
+
+/// The signal that raised the flag (SIGINT or SIGTERM; 0: none yet). The
+/// host exits with 128 plus it, as shells report a signal.
+int interruptSignal();
 
 /// While alive: SIGINT raises interruptFlag() and interrupts `engine`. A
 /// signal handler may only touch lock-free atomics, so a small thread waits
@@ -53,7 +58,8 @@ class InterruptHandler : public QObject {
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
-  void (*previous_)(int) = nullptr;
+  void (*previous_)(int) = nullptr;       ///< SIGINT's disposition before
+  void (*previous_term_)(int) = nullptr;  ///< SIGTERM's
   std::thread watcher_;
 };
 

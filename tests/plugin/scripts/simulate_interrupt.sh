@@ -5,9 +5,18 @@
 # interrupted in a long pre-roll, which is one job with the motion's frames
 # and cancels as they do.
 #
+# With SIGNAL=TERM in the environment, a batch system's SIGTERM instead:
+# the same, exit code 143.
+#
 # simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder> [<resources>]
 set -u
 host=$1 data=$2 tmp=$3 resources=${4:-}
+signal=${SIGNAL:-INT}
+case "$signal" in
+  INT) expected_code=130 ;;
+  TERM) expected_code=143 ;;
+  *) echo "SIGNAL must be INT or TERM, got $signal"; exit 1 ;;
+esac
 rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
 script="$tmp/long_simulation.js"
 if [ -z "$resources" ]; then
@@ -46,15 +55,15 @@ until grep -q '^\[job\] simulate: simulation of' "$tmp/stderr" 2>/dev/null; do
   sleep 0.1
 done
 sleep 0.5
-kill -INT "$pid"
+kill -"$signal" "$pid"
 wait "$pid"
 code=$?
 echo "--- stderr"; cat "$tmp/stderr"; echo "--- stdout"; cat "$tmp/stdout"; echo "---"
 failed=0
-[ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }
+[ "$code" -eq "$expected_code" ] || { echo "exit code $code, expected $expected_code"; failed=1; }
 grep -q "$cancelled" "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
 grep -q "$stopped" "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
-grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
+grep -q "interrupted (SIG$signal)" "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
 grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }
 leftovers=$(ls "$tmp" | grep -v -e '^stdout$' -e '^stderr$' -e '^long_simulation\.js$')
 [ -z "$leftovers" ] || { echo "files left behind: $leftovers"; failed=1; }
