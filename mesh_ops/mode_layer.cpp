@@ -5,13 +5,10 @@
 #include <cmath>
 
 namespace mrcloth {
-namespace {
-
 void check_mode(int mode) {
-  if (mode < 0) throw ArgumentError("mode must be >= 0, got " + std::to_string(mode));
+  if (mode < 0 || mode > kLargestMode)
+    throw ArgumentError("mode must be from 0 to " + std::to_string(kLargestMode) + ", got " + std::to_string(mode));
 }
-
-}  // namespace
 
 std::vector<int> get_modes(const QuadMesh& mesh) {
   const auto mode = get_layers(mesh).mode;

@@ -28,10 +28,6 @@ std::string shown_name(const std::string& name) {
   return name.rfind(kPrefix, 0) == 0 ? name.substr(std::string(kPrefix).size()) : name;
 }
 
-void check_mode(int mode) {
-  if (mode < 0) throw ArgumentError("mode must be >= 0, got " + std::to_string(mode));
-}
-
 OpenMesh::VPropHandleT<int> computed_handle(QuadMesh& mesh) {
   OpenMesh::VPropHandleT<int> handle;
   if (!mesh.get_property_handle(handle, layer::computed_mode)) {
@@ -297,7 +293,8 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
     const int mode = integer(fields[static_cast<std::size_t>(mode_column)], "mode");
     if (vertex < 0 || vertex >= n)
       fail(line, "vertex " + std::to_string(vertex) + " is out of range", "a vertex below " + std::to_string(n));
-    if (mode < 0) fail(line, "mode " + std::to_string(mode) + " is negative", "a mode >= 0");
+    if (mode < 0 || mode > kLargestMode)
+      fail(line, "mode " + std::to_string(mode) + " is out of range", "a mode from 0 to " + std::to_string(kLargestMode));
     assignments.emplace_back(vertex, mode);
   }
   const auto layer_handle = ensure_layers(mesh).mode;

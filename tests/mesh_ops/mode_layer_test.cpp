@@ -30,6 +30,8 @@ TEST(ModeLayer, BadIdsChangeNothing) {
   }
   EXPECT_EQ(get_modes(mesh), std::vector<int>(9, 1));
   EXPECT_THROW(set_modes(mesh, {0}, -1), ArgumentError);
+  EXPECT_THROW(set_modes(mesh, {0}, kLargestMode + 1), ArgumentError) << "lists per mode are as long as the largest";
+  EXPECT_NO_THROW(set_modes(mesh, {0}, kLargestMode));
 }
 
 TEST(ModeLayer, SphereBrushSelectsExactlyTheVerticesWithinRadius) {

@@ -174,7 +174,8 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   expect_error("id,mode\n0,2\n", ":1: the header has no 'vertex'");
   expect_error("vertex,mode\n0,2\n1,x\n", ":3: mode \"x\" is not an integer");
   expect_error("vertex,mode\n0,2\n9,1\n", ":3: vertex 9 is out of range");
-  expect_error("vertex,mode\n0,-1\n", ":2: mode -1 is negative");
+  expect_error("vertex,mode\n0,-1\n", ":2: mode -1 is out of range; expected a mode from 0 to 1000");
+  expect_error("vertex,mode\n0,1\n1,2147483647\n", ":3: mode 2147483647 is out of range");
   expect_error("vertex,mode\n0\n", ":2: 1 fields");
   expect_error("vertex,mode\n1.5,2\n", ":2: vertex \"1.5\" is not an integer");
   EXPECT_THROW(read_modes_csv(mesh, (dir / "missing.csv").string()), InputError);
