@@ -50,7 +50,8 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   // Ctrl-C wins over everything the interrupted script did afterwards.
   if (interrupted.load()) {
     const bool terminated = interruptSignal() == SIGTERM;
-    log.error(QStringLiteral("%1: interrupted (%2)").arg(path, terminated ? QStringLiteral("SIGTERM") : QStringLiteral("SIGINT")));
+    log.error(QStringLiteral("%1: interrupted (%2)")
+                  .arg(path, terminated ? QStringLiteral("SIGTERM") : QStringLiteral("SIGINT")));
     return terminated ? 128 + SIGTERM : kInterruptedExitCode;
   }
   if (core.exitRequested()) return core.exitCode();

@@ -169,7 +169,6 @@ std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, const QS
   return pins;
 }
 
-/// The folder a file (or an OBJ sequence prefix) goes into must exist.
 /// Refuses two outputs of one run that name one file (the later write
 /// would replace the earlier: a body cache over the garment's, a rest mesh
 /// over an OBJ sequence's frame), naming both options.
@@ -203,6 +202,7 @@ void requireDistinctOutputs(const QString& output, const QString& bodyOutput, co
   }
 }
 
+/// The folder a file (or an OBJ sequence prefix) goes into must exist.
 QString checkedOutputPath(const Fields& fields, const QString& key) {
   const QString path = fields.string(key);
   if (path.isEmpty()) return path;
