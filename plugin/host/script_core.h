@@ -41,25 +41,28 @@ class ScriptCore : public QObject, public ScriptInterface {
 
   // The scripting API; see slotDescriptions() for the types a script passes.
  public slots:
-  int loadObject(QVariant path, QVariant options = QVariant());
-  void saveObject(QVariant id, QVariant path);
-  QVariantMap objectInfo(QVariant id);
+  // Every argument defaults to undefined, so a call missing one reaches the
+  // slot's own check ("levels must be an integer, got undefined"), not Qt's
+  // "Unable to determine callable overload".
+  int loadObject(QVariant path = QVariant(), QVariant options = QVariant());
+  void saveObject(QVariant id = QVariant(), QVariant path = QVariant());
+  QVariantMap objectInfo(QVariant id = QVariant());
   QVariantList objectList();
-  void deleteObject(QVariant id);
+  void deleteObject(QVariant id = QVariant());
   void exitApplication(QVariant code = QVariant());
   void print(QJSValue value);
   void log(QJSValue value);
   void warn(QJSValue value);
   QString resourcePath();
   QStringList scriptArguments();
-  void makePath(QVariant path);
-  bool fileExists(QVariant path);
-  double fileSize(QVariant path);
-  bool filesEqual(QVariant pathA, QVariant pathB);
-  void writeTextFile(QVariant path, QVariant text);
-  QString readTextFile(QVariant path);
-  bool fileReadable(QVariant path);
-  bool include(QVariant path);
+  void makePath(QVariant path = QVariant());
+  bool fileExists(QVariant path = QVariant());
+  double fileSize(QVariant path = QVariant());
+  bool filesEqual(QVariant pathA = QVariant(), QVariant pathB = QVariant());
+  void writeTextFile(QVariant path = QVariant(), QVariant text = QVariant());
+  QString readTextFile(QVariant path = QVariant());
+  bool fileReadable(QVariant path = QVariant());
+  bool include(QVariant path = QVariant());
 
  private:
   template <class Body>

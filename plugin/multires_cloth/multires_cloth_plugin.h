@@ -52,24 +52,27 @@ class MultiresClothPlugin : public QObject,
   // reported by name (see plugin/core/script_values.h); slotDescriptions()
   // gives the types a script must pass.
  public slots:
-  int refineUniform(QVariant id, QVariant levels);
-  int setModes(QVariant id, QVariant vertexIds, QVariant mode);
-  int paintModes(QVariant id, QVariant brush);
-  QVariantList getModes(QVariant id);
-  int eraseModes(QVariant id, QVariant vertexIds = QVariant());
-  QVariantList getLayer(QVariant id, QVariant name);
-  void saveLayers(QVariant id, QVariant path);
-  int loadModes(QVariant id, QVariant path);
-  int refineAdaptive(QVariant id, QVariant options = QVariant());
+  // Every argument defaults to undefined, so a call missing one reaches the
+  // slot's own check ("levels must be an integer, got undefined"), not Qt's
+  // "Unable to determine callable overload".
+  int refineUniform(QVariant id = QVariant(), QVariant levels = QVariant());
+  int setModes(QVariant id = QVariant(), QVariant vertexIds = QVariant(), QVariant mode = QVariant());
+  int paintModes(QVariant id = QVariant(), QVariant brush = QVariant());
+  QVariantList getModes(QVariant id = QVariant());
+  int eraseModes(QVariant id = QVariant(), QVariant vertexIds = QVariant());
+  QVariantList getLayer(QVariant id = QVariant(), QVariant name = QVariant());
+  void saveLayers(QVariant id = QVariant(), QVariant path = QVariant());
+  int loadModes(QVariant id = QVariant(), QVariant path = QVariant());
+  int refineAdaptive(QVariant id = QVariant(), QVariant options = QVariant());
   QVariantMap lastReport();
-  void exportSurface(QVariant id, QVariant path, QVariant options = QVariant());
-  QVariantMap simulate(QVariant id, QVariant options = QVariant());
-  QVariantMap recordInstance(QVariant id, QVariant options = QVariant());
-  QVariantMap motionInfo(QVariant motion);
-  QVariantMap extractModes(QVariant id, QVariant cachePath, QVariant options = QVariant());
-  QVariantMap mapModes(QVariant refinedId, QVariant coarseId, QVariant options = QVariant());
-  QVariantMap compareResults(QVariant id, QVariant cachePath, QVariant referenceId, QVariant referenceCachePath,
-                             QVariant options = QVariant());
+  void exportSurface(QVariant id = QVariant(), QVariant path = QVariant(), QVariant options = QVariant());
+  QVariantMap simulate(QVariant id = QVariant(), QVariant options = QVariant());
+  QVariantMap recordInstance(QVariant id = QVariant(), QVariant options = QVariant());
+  QVariantMap motionInfo(QVariant motion = QVariant());
+  QVariantMap extractModes(QVariant id = QVariant(), QVariant cachePath = QVariant(), QVariant options = QVariant());
+  QVariantMap mapModes(QVariant refinedId = QVariant(), QVariant coarseId = QVariant(), QVariant options = QVariant());
+  QVariantMap compareResults(QVariant id = QVariant(), QVariant cachePath = QVariant(), QVariant referenceId = QVariant(),
+                             QVariant referenceCachePath = QVariant(), QVariant options = QVariant());
 
  private:
   ObjectStore& store() const;

@@ -42,11 +42,14 @@ class PreviewPlugin : public QObject,
   QList<SlotDescription> slotDescriptions() const override;
 
  public slots:
-  QVariantMap render(QVariant id, QVariant path, QVariant options = QVariant());
-  QVariantList renderSequence(QVariant id, QVariant prefix, QVariant options = QVariant());
-  QVariantMap contactSheet(QVariant images, QVariant path, QVariant options = QVariant());
-  void lineChart(QVariant path, QVariant chart);
-  void barChart(QVariant path, QVariant chart);
+  // Every argument defaults to undefined, so a call missing one reaches the
+  // slot's own check ("levels must be an integer, got undefined"), not Qt's
+  // "Unable to determine callable overload".
+  QVariantMap render(QVariant id = QVariant(), QVariant path = QVariant(), QVariant options = QVariant());
+  QVariantList renderSequence(QVariant id = QVariant(), QVariant prefix = QVariant(), QVariant options = QVariant());
+  QVariantMap contactSheet(QVariant images = QVariant(), QVariant path = QVariant(), QVariant options = QVariant());
+  void lineChart(QVariant path = QVariant(), QVariant chart = QVariant());
+  void barChart(QVariant path = QVariant(), QVariant chart = QVariant());
 
  private:
   template <class Body>

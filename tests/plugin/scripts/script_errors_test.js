@@ -11,6 +11,11 @@ const grid = core.loadObject(dataDir + "/grid3x3.obj");
 // Unknown ids.
 expectThrows(() => multirescloth.refineUniform(99, 1), "ArgumentError", "multirescloth.refineUniform: ", "no object with id 99");
 expectThrows(() => core.objectInfo(42), "ArgumentError", "core.objectInfo: no object with id 42");
+// A missing argument is named by the call's own check, not Qt's overload resolution.
+expectThrows(() => core.loadObject(), "ArgumentError", "core.loadObject: path must be a string, got undefined");
+expectThrows(() => multirescloth.refineUniform(1), "ArgumentError", "multirescloth.refineUniform: ",
+             "levels must be an integer, got undefined");
+expectThrows(() => preview.contactSheet(), "ArgumentError", "preview.contactSheet: ");
 expectThrows(() => multirescloth.getModes(0), "ArgumentError", "no object with id 0");
 expectThrows(() => core.deleteObject(7), "ArgumentError", "core.deleteObject: no object with id 7");
 
