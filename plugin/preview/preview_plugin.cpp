@@ -176,8 +176,9 @@ std::vector<double> numberList(const QVariant& value, const QString& what) {
 
 render::ChartOptions chartSize(const Fields& fields) {
   render::ChartOptions options;
-  options.width = fields.integerAtLeast(QStringLiteral("width"), options.width, 100);
-  options.height = fields.integerAtLeast(QStringLiteral("height"), options.height, 100);
+  // As render's: 1e9 pixels failed only at saving, after a flood of Qt warnings.
+  options.width = fields.integerBetween(QStringLiteral("width"), options.width, 100, 8192);
+  options.height = fields.integerBetween(QStringLiteral("height"), options.height, 100, 8192);
   return options;
 }
 
@@ -312,6 +313,7 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
 QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant options) {
   return guarded("contactSheet", [&] {
     const QVariantList list = script::toList(images, QStringLiteral("images"));
+    if (list.isEmpty()) options::fail(QStringLiteral("images is empty; expected at least one image"));
     const QString file = script::toString(path, QStringLiteral("path"));
     const Fields fields(options, QString(), {QStringLiteral("columns"), QStringLiteral("captions"), QStringLiteral("title")},
                         QStringLiteral("contactSheet options"));
@@ -326,6 +328,9 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
     std::vector<QString> captions;
     if (fields.has(QStringLiteral("captions"))) {
       const QVariantList texts = script::toList(fields.required(QStringLiteral("captions")), fields.label(QStringLiteral("captions")));
+      if (texts.size() != list.size())
+        options::fail(QStringLiteral("%1 has %2 entries for %3 images; expected one per image")
+                          .arg(fields.label(QStringLiteral("captions"))).arg(texts.size()).arg(list.size()));
       for (qsizetype k = 0; k < texts.size(); ++k)
         captions.push_back(script::toString(texts[k], QStringLiteral("captions[%1]").arg(k)));
     }
@@ -396,6 +401,10 @@ void PreviewPlugin::barChart(QVariant path, QVariant chart) {
       render::BarSeries s;
       s.name = one.string(QStringLiteral("name"));
       s.values = numberList(one.required(QStringLiteral("values")), one.key(QStringLiteral("values")));
+      // A missing bar would be drawn as 0.
+      if (!bars.categories.empty() && s.values.size() != bars.categories.size())
+        options::fail(QStringLiteral("%1 has %2 values for %3 categories; expected one per category")
+                          .arg(one.label(QStringLiteral("values"))).arg(s.values.size()).arg(bars.categories.size()));
       bars.series.push_back(s);
     }
     savePng(render::draw_bar_chart(bars, chartSize(fields)), file);
@@ -411,7 +420,7 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
       "is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
       "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction = 0.08, "
       "supersample: 1 .. 4 = 2}");
-  const QString chart_size = QStringLiteral("width, height: pixels = 800 x 500");
+  const QString chart_size = QStringLiteral("width, height: pixels 100..8192 = 800 x 500");
   return {
       {QStringLiteral("render(int id, string path, object options = {}) -> object"),
        QStringLiteral("Renders the object (at rest, or at a frame of its cache) off-screen, shaded, to a PNG "

@@ -193,6 +193,9 @@ expectThrows(() => preview.contactSheet([first.file, tmpDir + "/missing.png"], p
              "images[1]", "missing.png");
 expectThrows(() => preview.contactSheet([pc2], png("sheet_bad")), "InputError", "grid.pc2", "not an image");
 expectThrows(() => preview.contactSheet(three, png("sheet_bad"), {rows: 2}), "ArgumentError", "unknown option 'rows'");
+expectThrows(() => preview.contactSheet([], png("sheet_bad")), "ArgumentError", "images is empty");
+expectThrows(() => preview.contactSheet(three, png("sheet_bad"), {captions: ["a"]}), "ArgumentError",
+             "option 'captions' has 1 entries for 3 images; expected one per image");
 expectNoFile(png("sheet_bad"));
 
 // --- charts: written at their size (measured through a one-image sheet: s + w + s by s + h + c + s) ---
@@ -211,6 +214,10 @@ expectThrows(() => preview.lineChart(png("line_bad"), {series: [{x: [0, 1, 2], y
              "series[0]", "x has 3 values, y has 2");
 expectThrows(() => preview.lineChart(png("line_bad"), {title: "no series"}), "ArgumentError", "series");
 expectThrows(() => preview.lineChart(png("line_bad"), {series: [{y: [1, "two"]}]}), "ArgumentError", "series[0].y[1]");
+expectThrows(() => preview.barChart(png("line_bad"), {categories: ["a", "b"], series: [{name: "s", values: [1]}]}),
+             "ArgumentError", "has 1 values for 2 categories; expected one per category");
+expectThrows(() => preview.lineChart(png("line_bad"), {width: 1e9, series: [{name: "a", y: [1, 2]}]}), "ArgumentError",
+             "option 'width' must be an integer from 100 to 8192");
 expectThrows(() => preview.barChart(png("line_bad"), {series: [{name: "a", value: [1]}]}), "ArgumentError",
              "unknown option 'value'");
 expectThrows(() => preview.lineChart(tmpDir + "/no_such_folder/line.png", {series: [{y: [1, 2]}]}), "OutputError",
