@@ -807,14 +807,6 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   }
 }
 
-/// Whether an OM file names the forest's property: save_mesh writes it
-/// into every .om, so a file that names it and yields none was cut short.
-bool file_names_forest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return bytes.find(layer::quadtree) != std::string::npos;
-}
-
 }  // namespace
 
 LoadResult load_garment(const std::string& path, const LoadOptions& options) {
@@ -884,9 +876,6 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     check_stored_forest(path, mesh);
     return result;
   }
-  if (*format == Format::om && file_names_forest(path))
-    throw InputError(with_path(path, "the file names mrcloth's refinement hierarchy, but it could not be read (the "
-                                     "file is truncated or damaged); expected a .om file as save_mesh writes it, whole"));
   check_garment_surface(path, mesh);
   if (std::string unwelded = unwelded_seams_warning(path, mesh); !unwelded.empty())
     result.warnings.push_back(std::move(unwelded));
