@@ -117,8 +117,6 @@ const char* channel_name(Channel c) {
   return "?";
 }
 
-bool is_position(Channel c) { return c == Channel::x_position || c == Channel::y_position || c == Channel::z_position; }
-
 /// The axis (0-2) a position channel moves along.
 int position_axis(Channel c) { return c == Channel::x_position ? 0 : c == Channel::y_position ? 1 : 2; }
 

@@ -124,7 +124,7 @@ void turn_axes(Motion& motion, const AxisTurn& turn) {
       joint.offset(k) = turn.sign[static_cast<std::size_t>(k)] * old(turn.axis[static_cast<std::size_t>(k)]);
     for (std::size_t c = 0; c < joint.channels.size(); ++c) {
       Channel& channel = joint.channels[c];
-      const bool position = channel == Channel::x_position || channel == Channel::y_position || channel == Channel::z_position;
+      const bool position = is_position(channel);
       const int old_axis = channel == Channel::x_position || channel == Channel::x_rotation   ? 0
                            : channel == Channel::y_position || channel == Channel::y_rotation ? 1
                                                                                                 : 2;

@@ -145,7 +145,7 @@ void scale_motion(Motion& motion, double scale) {
     joint.offset *= scale;
     for (std::size_t k = 0; k < joint.channels.size(); ++k) {
       const Channel c = joint.channels[k];
-      if (c == Channel::x_position || c == Channel::y_position || c == Channel::z_position)
+      if (is_position(c))
         motion.frames.col(joint.first_channel + static_cast<Eigen::Index>(k)) *= scale;
     }
   }

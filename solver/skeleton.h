@@ -13,6 +13,11 @@ namespace mrcloth {
 
 enum class Channel { x_position, y_position, z_position, x_rotation, y_rotation, z_rotation };
 
+/// Whether a channel moves its joint (rather than turning it).
+inline bool is_position(Channel c) {
+  return c == Channel::x_position || c == Channel::y_position || c == Channel::z_position;
+}
+
 struct Joint {
   std::string name;                 ///< unique; an End Site is named "<parent>_end"
   int parent = -1;                  ///< index of the parent joint, -1 for a root

@@ -385,11 +385,7 @@ Character loadCharacter(CharacterRequest& request, const QuadMesh& garment, Clip
       const QString name = QString::fromStdString(j.name).toLower();
       return !j.end_site && (name.contains(QLatin1String("hip")) || name.contains(QLatin1String("pelvis")));
     };
-    const auto moves = [](const Joint& j) {
-      return std::any_of(j.channels.begin(), j.channels.end(), [](Channel c) {
-        return c == Channel::x_position || c == Channel::y_position || c == Channel::z_position;
-      });
-    };
+    const auto moves = [](const Joint& j) { return std::any_of(j.channels.begin(), j.channels.end(), is_position); };
     auto suggested = std::find_if(joints.begin(), joints.end(), says_pelvis);
     if (suggested == joints.end()) suggested = std::find_if(joints.begin(), joints.end(), moves);
     if (suggested == joints.end()) suggested = joints.begin();
