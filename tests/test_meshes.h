@@ -3,7 +3,11 @@
 #include "mesh_ops/quad_mesh.h"
 #include "mesh_ops/quadtree_forest.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace mrcloth::test {
@@ -57,6 +61,21 @@ inline QuadMesh make_sheet(int n, double side = 1.0, double y = 0.0) {
 /// Shared real data folder (may be absent: callers skip).
 inline std::string shared_data(const std::string& relative) {
   return std::string(MRCLOTH_SHARED_DATA) + "/" + relative;
+}
+
+/// A fresh, empty folder <tmp>/<suite>/<running test>/<name> (tmp:
+/// MRCLOTH_TEST_TMP, else the system's): per test, because ctest runs the
+/// tests of one binary side by side, and a folder shared by name was
+/// removed under another test reading it.
+inline std::filesystem::path fresh_folder(const std::string& suite, const std::string& name) {
+  const char* env = std::getenv("MRCLOTH_TEST_TMP");
+  const ::testing::TestInfo* running = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string test = running ? std::string(running->test_suite_name()) + "." + running->name() : "none";
+  const std::filesystem::path dir =
+      std::filesystem::path(env ? env : std::filesystem::temp_directory_path().string()) / suite / test / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace mrcloth::test

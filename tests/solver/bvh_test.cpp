@@ -25,13 +25,7 @@ namespace fs = std::filesystem;
 constexpr double kCmuScale = 0.056444;
 
 /// A fresh, empty folder per test.
-fs::path empty_folder(const std::string& name) {
-  const char* env = std::getenv("MRCLOTH_TEST_TMP");
-  const fs::path dir = fs::path(env ? env : fs::temp_directory_path().string()) / "bvh_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path empty_folder(const std::string& name) { return test::fresh_folder("bvh_test", name); }
 
 std::string write_text(const fs::path& dir, const std::string& name, const std::string& text) {
   const fs::path path = dir / name;

@@ -6,6 +6,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
+#include "test_meshes.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -22,13 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A fresh, empty folder per test, so "nothing else is left here" can be checked.
-fs::path empty_folder(const std::string& name) {
-  const char* env = std::getenv("MRCLOTH_TEST_TMP");
-  const fs::path dir = fs::path(env ? env : fs::temp_directory_path().string()) / "point_cache_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path empty_folder(const std::string& name) { return test::fresh_folder("point_cache_test", name); }
 
 std::vector<std::string> folder_contents(const fs::path& dir) {
   std::vector<std::string> names;

@@ -25,13 +25,7 @@ namespace fs = std::filesystem;
 constexpr double kCmuScale = 0.056444;
 constexpr double kDeg = M_PI / 180.0;
 
-fs::path empty_folder(const std::string& name) {
-  const char* env = std::getenv("MRCLOTH_TEST_TMP");
-  const fs::path dir = fs::path(env ? env : fs::temp_directory_path().string()) / "skeleton_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path empty_folder(const std::string& name) { return test::fresh_folder("skeleton_test", name); }
 
 Motion read_text(const std::string& name, const std::string& text, double scale = 1.0,
                  PositionChannels positions = PositionChannels::absolute) {
