@@ -162,8 +162,8 @@ auto translateRenderErrors(Body&& body) -> decltype(body()) {
   }
 }
 
-void savePng(const QImage& image, const QString& path) {
-  translateRenderErrors([&] { render::save_png(image, path.toStdString()); });
+void saveImage(const QImage& image, const QString& path) {
+  translateRenderErrors([&] { render::save_image(image, path.toStdString()); });
 }
 
 std::vector<double> numberList(const QVariant& value, const QString& what) {
@@ -235,7 +235,7 @@ auto PreviewPlugin::guarded(const char* slot, Body&& body) -> decltype(body()) {
 }
 
 QString PreviewPlugin::description() const {
-  return QStringLiteral("Off-screen PNG previews: renders of meshes and caches, contact sheets, charts");
+  return QStringLiteral("Off-screen previews (PNG, JPEG, BMP or PPM by the file's suffix): renders of meshes and caches, contact sheets, charts");
 }
 
 QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) {
@@ -249,7 +249,7 @@ QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) 
     if (fields.has(QStringLiteral("frame")) && request.cache.isEmpty())
       options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
     const QImage image = renderFrame(*object.mesh, request, frame);
-    savePng(image, file);
+    saveImage(image, file);
     if (request.color_by == ColorBy::curvature && preview::largest_curvature(*object.mesh) <= 0.0)
       emit log(LOGWARN, QStringLiteral("render: %1: the mean_curvature layer is zero everywhere: run "
                                        "multirescloth.extractModes on this mesh first").arg(file));
@@ -301,7 +301,7 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     for (std::size_t k = 0; k < frames.size(); ++k) {
       if (cancelRequested()) throw Error("cancelled");
       const QString file = QStringLiteral("%1_%2.png").arg(stem).arg(frames[k], digits, 10, QLatin1Char('0'));
-      savePng(renderFrame(*object.mesh, request, frames[k], framing), file);
+      saveImage(renderFrame(*object.mesh, request, frames[k], framing), file);
       files << file;
       job.progress(static_cast<int>(k + 1));
     }
@@ -338,7 +338,7 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
     sheet.columns = fields.integerAtLeast(QStringLiteral("columns"), 0, 0);
     sheet.title = fields.string(QStringLiteral("title"));
     const QImage result = render::contact_sheet(pictures, captions, sheet);
-    savePng(result, file);
+    saveImage(result, file);
     return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), result.width()},
                        {QStringLiteral("height"), result.height()}};
   });
@@ -373,7 +373,7 @@ void PreviewPlugin::lineChart(QVariant path, QVariant chart) {
       for (std::size_t i = 0; i < y.size(); ++i) s.points.emplace_back(x[i], y[i]);
       line.series.push_back(s);
     }
-    savePng(render::draw_line_chart(line, chartSize(fields)), file);
+    saveImage(render::draw_line_chart(line, chartSize(fields)), file);
   });
 }
 
@@ -407,7 +407,7 @@ void PreviewPlugin::barChart(QVariant path, QVariant chart) {
                           .arg(one.label(QStringLiteral("values"))).arg(s.values.size()).arg(bars.categories.size()));
       bars.series.push_back(s);
     }
-    savePng(render::draw_bar_chart(bars, chartSize(fields)), file);
+    saveImage(render::draw_bar_chart(bars, chartSize(fields)), file);
   });
 }
 
@@ -423,10 +423,10 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
   const QString chart_size = QStringLiteral("width, height: pixels 100..8192 = 800 x 500");
   return {
       {QStringLiteral("render(int id, string path, object options = {}) -> object"),
-       QStringLiteral("Renders the object (at rest, or at a frame of its cache) off-screen, shaded, to a PNG "
+       QStringLiteral("Renders the object (at rest, or at a frame of its cache) off-screen, shaded, to an image "
                       "(written atomically). Returns {file, width, height, frame}."),
        {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
-       {QStringLiteral("object id"), QStringLiteral("PNG file to write (its folder must exist)"), render_options}},
+       {QStringLiteral("object id"), QStringLiteral("image file to write, its format by suffix: .png, .jpg/.jpeg, .bmp, .ppm (its folder must exist)"), render_options}},
       {QStringLiteral("renderSequence(int id, string prefix, object options) -> string[]"),
        QStringLiteral("Renders frames of the object's cache to <prefix>_0000.png ... with one camera fitted to "
                       "the garment over all of them; returns the files. Cancellable (Ctrl-C)."),
@@ -436,21 +436,21 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
                        "animation: .gif (needs ImageMagick's convert) or .mp4 (needs ffmpeg) file = none, skipped "
                        "with a warning when the tool is missing; fps: number > 0 = 30 (the animation's rate)")}},
       {QStringLiteral("contactSheet(string[] images, string path, object options = {}) -> object"),
-       QStringLiteral("Composes images in a grid with captions and a title into one PNG; returns {file, width, "
+       QStringLiteral("Composes images in a grid with captions and a title into one image; returns {file, width, "
                       "height}."),
        {QStringLiteral("images"), QStringLiteral("path"), QStringLiteral("options")},
-       {QStringLiteral("image files (PNG, ...)"), QStringLiteral("PNG file to write"),
+       {QStringLiteral("image files (PNG, ...)"), QStringLiteral("image file to write (.png, .jpg/.jpeg, .bmp, .ppm)"),
         QStringLiteral("{columns: int >= 0 = 0 (0: about square), captions: string[] = none, title: string = none}")}},
       {QStringLiteral("lineChart(string path, object chart)"),
-       QStringLiteral("Draws a line chart to a PNG."),
+       QStringLiteral("Draws a line chart to an image file."),
        {QStringLiteral("path"), QStringLiteral("chart")},
-       {QStringLiteral("PNG file to write"),
+       {QStringLiteral("image file to write (.png, .jpg/.jpeg, .bmp, .ppm)"),
         QStringLiteral("{title, xLabel, yLabel: strings, series: [{name, y: number[], x: number[] = 0, 1, ...}], ") +
             chart_size + QLatin1Char('}')}},
       {QStringLiteral("barChart(string path, object chart)"),
-       QStringLiteral("Draws a grouped bar chart to a PNG."),
+       QStringLiteral("Draws a grouped bar chart to an image file."),
        {QStringLiteral("path"), QStringLiteral("chart")},
-       {QStringLiteral("PNG file to write"),
+       {QStringLiteral("image file to write (.png, .jpg/.jpeg, .bmp, .ppm)"),
         QStringLiteral("{title, xLabel, yLabel: strings, categories: string[], series: [{name, values: number[] (one "
                        "per category)}], ") +
             chart_size + QLatin1Char('}')}},

@@ -2,9 +2,9 @@
 // The "Preview" plugin: pictures a garment artist can look at, made
 // headless. Renders of a mesh or of any frame of its cache (shaded, with the
 // quad wireframe, coloured by mode, level or curvature with a legend, on its
-// body), frame sequences, contact sheets and report charts, all as PNG
-// written atomically. Every slot is a thin adapter over plugin/render and
-// preview_scene.h.
+// body), frame sequences, contact sheets and report charts, as PNG (JPEG,
+// BMP or PPM where the path's suffix says so), written atomically. Every
+// slot is a thin adapter over plugin/render and preview_scene.h.
 #include "plugin/interfaces/base_interface.h"
 #include "plugin/interfaces/load_save_interface.h"
 #include "plugin/interfaces/logging_interface.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Writing preview images so that a PNG either appears complete or not at
+// Writing preview images so that a file either appears complete or not at
 // all (a batch job interrupted mid-write must not leave a broken preview).
 #include <QImage>
 
@@ -7,12 +7,15 @@
 
 namespace mrcloth::render {
 
-/// Writes `image` as PNG to `path` (UTF-8) through a temporary file that
-/// replaces `path` only once complete (QSaveFile). Throws
-/// std::runtime_error naming `path` and the reason when the image is null,
-/// the folder is missing or not writable, or encoding fails; nothing is
-/// left behind then, and an existing file at `path` is kept.
-/// Needs no QGuiApplication.
-void save_png(const QImage& image, const std::string& path);
+/// Writes `image` to `path` (UTF-8) in the format its suffix names, case
+/// ignored: .png (also when there is no suffix), .jpg / .jpeg (quality 95),
+/// .bmp or .ppm; the last three have no alpha, so a translucent image is
+/// laid over white first. Through a temporary file that replaces `path`
+/// only once complete (QSaveFile). Throws std::invalid_argument naming
+/// `path` when its suffix names another format, std::runtime_error naming
+/// it and the reason when the image is null, the folder is missing or not
+/// writable, or encoding fails; nothing is left behind then, and an
+/// existing file at `path` is kept. Needs no QGuiApplication.
+void save_image(const QImage& image, const std::string& path);
 
 }  // namespace mrcloth::render

@@ -23,12 +23,12 @@ TEST(RenderImageIo, RoundTrip) {
   ASSERT_TRUE(dir.isValid());
   const std::string path = dir.filePath("preview.png").toStdString();
   const QImage image = pattern();
-  save_png(image, path);
+  save_image(image, path);
   const QImage loaded(QString::fromStdString(path));
   ASSERT_FALSE(loaded.isNull());
   EXPECT_EQ(loaded.convertToFormat(QImage::Format_ARGB32), image);
   // Overwriting works and leaves only the one file.
-  save_png(image.mirrored(), path);
+  save_image(image.mirrored(), path);
   EXPECT_EQ(QImage(QString::fromStdString(path)).convertToFormat(QImage::Format_ARGB32), image.mirrored());
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden), QStringList{"preview.png"});
 }
@@ -38,7 +38,7 @@ TEST(RenderImageIo, MissingFolderThrowsNamingThePath) {
   ASSERT_TRUE(dir.isValid());
   const std::string path = dir.filePath("no_such_folder/preview.png").toStdString();
   try {
-    save_png(pattern(), path);
+    save_image(pattern(), path);
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -51,12 +51,56 @@ TEST(RenderImageIo, FailureKeepsTheExistingFile) {
   QTemporaryDir dir;
   ASSERT_TRUE(dir.isValid());
   const std::string path = dir.filePath("preview.png").toStdString();
-  save_png(pattern(), path);
-  EXPECT_THROW(save_png(QImage(), path), std::runtime_error);
+  save_image(pattern(), path);
+  EXPECT_THROW(save_image(QImage(), path), std::runtime_error);
   EXPECT_EQ(QImage(QString::fromStdString(path)).convertToFormat(QImage::Format_ARGB32), pattern());
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden), QStringList{"preview.png"});
   // A folder where the file should be.
-  EXPECT_THROW(save_png(pattern(), dir.path().toStdString()), std::runtime_error);
+  EXPECT_THROW(save_image(pattern(), dir.path().toStdString()), std::runtime_error);
+}
+
+TEST(RenderImageIo, TheSuffixChoosesTheFormat) {
+  QTemporaryDir dir;
+  ASSERT_TRUE(dir.isValid());
+  // Half-transparent red: formats without alpha get it laid over white.
+  QImage translucent(8, 4, QImage::Format_ARGB32);
+  translucent.fill(qRgba(255, 0, 0, 128));
+  const auto magic = [&](const QString& name) {
+    QFile file(dir.filePath(name));
+    EXPECT_TRUE(file.open(QIODevice::ReadOnly)) << name.toStdString();
+    return file.read(4);
+  };
+  save_image(translucent, dir.filePath("a.PNG").toStdString());
+  EXPECT_EQ(magic("a.PNG"), QByteArray("\x89PNG"));
+  EXPECT_EQ(QImage(dir.filePath("a.PNG")).pixel(0, 0), qRgba(255, 0, 0, 128));
+  save_image(translucent, dir.filePath("plain").toStdString());  // no suffix: PNG
+  EXPECT_EQ(magic("plain"), QByteArray("\x89PNG"));
+  save_image(translucent, dir.filePath("b.jpg").toStdString());
+  EXPECT_EQ(magic("b.jpg").left(3), QByteArray("\xff\xd8\xff"));
+  save_image(translucent, dir.filePath("c.jpeg").toStdString());
+  EXPECT_EQ(magic("c.jpeg").left(3), QByteArray("\xff\xd8\xff"));
+  save_image(translucent, dir.filePath("d.bmp").toStdString());
+  EXPECT_EQ(magic("d.bmp").left(2), QByteArray("BM"));
+  EXPECT_EQ(QImage(dir.filePath("d.bmp")).pixel(0, 0), qRgb(255, 127, 127));  // (255 * 128 + 255 * 127 + 127) / 255 = 255, 0 -> 127
+  save_image(translucent, dir.filePath("e.ppm").toStdString());
+  EXPECT_EQ(magic("e.ppm").left(2), QByteArray("P6"));
+  EXPECT_EQ(QImage(dir.filePath("e.ppm")).pixel(3, 2), qRgb(255, 127, 127));
+  // A JPEG of it decodes near that colour (lossy).
+  const QRgb jpeg = QImage(dir.filePath("b.jpg")).pixel(4, 2);
+  EXPECT_NEAR(qRed(jpeg), 255, 6);
+  EXPECT_NEAR(qGreen(jpeg), 127, 6);
+  EXPECT_NEAR(qBlue(jpeg), 127, 6);
+  // A suffix we do not write is refused by name, and nothing is written.
+  const std::string tif = dir.filePath("f.tif").toStdString();
+  try {
+    save_image(translucent, tif);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(tif), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'.tif'"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(QFile::exists(QString::fromStdString(tif)));
+  EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden).size(), 6);
 }
 
 }  // namespace

@@ -27,6 +27,17 @@ if (!core.filesEqual(first.file, again.file)) throw new Error("the same render t
 const square = preview.render(grid, png("square"), {width: 100, height: 100});
 expectEqual([square.width, square.height], [100, 100], "100 x 100");
 expectEqual([preview.render(grid, png("default_size")).width], [800], "default width 800");
+// The path's suffix chooses the format (the bytes are checked in
+// render.RenderImageIo.TheSuffixChoosesTheFormat); one it does not name is
+// refused before anything is written.
+const jpeg = preview.render(grid, tmpDir + "/rest.JPG", {width: 120, height: 90});
+expectEqual([jpeg.width, jpeg.height], [120, 90], "a JPEG render's size");
+expectDiffer(jpeg.file, first.file, "the same render as JPEG and as PNG");
+expectEqual([preview.contactSheet([jpeg.file], tmpDir + "/from_jpeg.bmp", {columns: 1}).file], [tmpDir + "/from_jpeg.bmp"],
+            "a sheet of a JPEG, as BMP");
+expectThrows(() => preview.render(grid, tmpDir + "/rest.tif", {width: 120, height: 90}), "ArgumentError", "rest.tif",
+             "'.tif' is not an image format written here", ".png, .jpg");
+expectNoFile(tmpDir + "/rest.tif");
 
 // --- a cache: a few frames of the grid hanging from its top row, sagging
 // out of the plane; then modes and mean curvature from it ---
