@@ -2,6 +2,7 @@
 
 #include "host_log.h"
 #include "interrupt.h"
+#include "promise_jobs.h"
 #include "script_core.h"
 
 #include <QFile>
@@ -9,6 +10,7 @@
 #include <QJSValue>
 #include <QStringList>
 
+#include <algorithm>
 #include <csignal>
 
 namespace mrcloth {
@@ -22,14 +24,44 @@ struct StackFrame {
   QString file;  ///< the script or an included file; falls back to the main script
 };
 
+/// QJSEngine reports files as URLs when it was given a path: "file:///abs"
+/// or, for a relative one, "file:rel".
+QString withoutFileScheme(const QString& file) {
+  if (file.startsWith(QLatin1String("file://"))) return file.mid(7);
+  return file.startsWith(QLatin1String("file:")) ? file.mid(5) : file;
+}
+
 StackFrame parseFrame(const QString& frame, const QString& fallback_file) {
   StackFrame parsed{frame.section(QLatin1Char(':'), 0, 0), frame.section(QLatin1Char(':'), 1, 1),
                     frame.section(QLatin1Char(':'), 3)};
   if (parsed.function.isEmpty() || parsed.function == QLatin1String("%entry")) parsed.function = QStringLiteral("<script>");
-  // QJSEngine reports files as URLs when it was given a path.
-  if (parsed.file.startsWith(QLatin1String("file://"))) parsed.file = parsed.file.mid(7);
+  parsed.file = withoutFileScheme(parsed.file);
   if (parsed.file.isEmpty()) parsed.file = fallback_file;
   return parsed;
+}
+
+/// Reports a promise rejected with no handler as an uncaught exception is
+/// reported: where its Error was made, and the frames of its stack
+/// ("function@url:line" each; the promise tracking's own left out).
+void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog& log) {
+  if (!reason.isError()) {
+    log.raw(QStringLiteral("%1:?: uncaught (in promise): rejected with %2").arg(path, reason.toString()));
+    return;
+  }
+  log.raw(QStringLiteral("%1:%2: uncaught (in promise) %3")
+              .arg(withoutFileScheme(reason.property(QStringLiteral("fileName")).toString()),
+                   reason.property(QStringLiteral("lineNumber")).toString(), reason.toString()));
+  QStringList frames = reason.property(QStringLiteral("stack")).toString().split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+  frames.erase(std::remove_if(frames.begin(), frames.end(),
+                              [](const QString& frame) { return frame.contains(PromiseJobs::kTrackingFile); }),
+               frames.end());
+  if (frames.size() < 2) return;
+  for (const QString& frame : frames) {
+    const qsizetype at = frame.indexOf(QLatin1Char('@'));
+    QString function = frame.left(at);
+    if (function.isEmpty() || function == QLatin1String("%entry")) function = QStringLiteral("<script>");
+    log.raw(QStringLiteral("    at %1 (%2)").arg(function, withoutFileScheme(frame.mid(at + 1))));
+  }
 }
 
 }  // namespace
@@ -45,8 +77,12 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   // Allow "#!/usr/bin/env -S mrcloth -b" scripts; commenting the line out keeps line numbers.
   if (program.startsWith(QLatin1String("#!"))) program.prepend(QLatin1String("//"));
 
+  const PromiseJobs promises(engine);
   QStringList stack;
   const QJSValue result = engine.evaluate(program, path, 1, &stack);
+  // An uncaught `throw 42` is not an Error object, but it leaves a stack.
+  const bool threw = result.isError() || !stack.isEmpty();
+  if (!threw) promises.drain([&] { return interrupted.load() || core.exitRequested(); });
   // Ctrl-C wins over everything the interrupted script did afterwards.
   if (interrupted.load()) {
     const bool terminated = interruptSignal() == SIGTERM;
@@ -55,8 +91,11 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
     return terminated ? 128 + SIGTERM : kInterruptedExitCode;
   }
   if (core.exitRequested()) return core.exitCode();
-  // An uncaught `throw 42` is not an Error object, but it leaves a stack.
-  if (!result.isError() && stack.isEmpty()) return 0;
+  if (!threw) {
+    const QList<QJSValue> unhandled = promises.unhandled();
+    for (const QJSValue& reason : unhandled) reportUnhandled(reason, path, log);
+    return unhandled.isEmpty() ? 0 : 1;
+  }
 
   // The innermost frame names the file the error was thrown in, which is an
   // included helper when a shared assertion fails.

@@ -11,6 +11,7 @@
 #include "plugin_registry.h"
 #include "script_api.h"
 #include "script_core.h"
+#include "weak_collections.h"
 
 #include <QGuiApplication>
 #include <QJSEngine>
@@ -112,6 +113,7 @@ int main(int argc, char* argv[]) {
   // Declared after core so that it is destroyed first.
   QJSEngine engine;
   engine.installExtensions(QJSEngine::ConsoleExtension);
+  replaceWeakCollections(engine);
   exposeToScripts(engine, QStringLiteral("core"), &core);
   for (const LoadedPlugin& plugin : plugins.plugins()) exposeToScripts(engine, plugin.scriptName, plugin.object);
 
