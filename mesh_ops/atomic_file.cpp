@@ -3,6 +3,9 @@
 #include "errors.h"
 
 #include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -15,20 +18,49 @@ namespace fs = std::filesystem;
 
 std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
 
+/// The longest file name (bytes) the usual file systems take (ext4, XFS,
+/// tmpfs: NAME_MAX).
+constexpr std::size_t kLongestName = 255;
+
+/// At most `bytes` bytes of UTF-8 `name`, cut before a whole character.
+std::string utf8_prefix(const std::string& name, std::size_t bytes) {
+  if (name.size() <= bytes) return name;
+  std::size_t end = bytes;
+  while (end > 0 && (static_cast<unsigned char>(name[end]) & 0xC0) == 0x80) --end;
+  return name.substr(0, end);
+}
+
 /// "dir/.name.tmp-<random>.om": beside the target so the final rename stays
 /// within one file system, hidden, and ending in the real extension because
-/// OpenMesh chooses its writer by extension.
+/// OpenMesh chooses its writer by extension. The target's name is shortened
+/// where the whole would pass kLongestName: any name the target may have,
+/// its temporary may too.
 fs::path temporary_path(const fs::path& target, const std::string& extension) {
   static std::atomic<unsigned> counter{0};
   std::random_device entropy;
   for (int attempt = 0;; ++attempt) {
+    std::ostringstream suffix;
+    suffix << ".tmp-" << std::hex << entropy() << '-' << counter++ << extension;
+    const std::string tail = suffix.str();
+    const std::size_t room = kLongestName > tail.size() + 1 ? kLongestName - tail.size() - 1 : 0;
     std::ostringstream name;
-    name << '.' << target.filename().string() << ".tmp-" << std::hex << entropy() << '-' << counter++
-         << extension;
+    name << '.' << utf8_prefix(target.filename().string(), room) << tail;
     fs::path candidate = target.parent_path() / name.str();
     std::error_code error;
     if (!fs::exists(candidate, error) || attempt > 100) return candidate;
   }
+}
+
+/// Why a writer that reports only failure could not write `file` (it has
+/// been removed): the system's reason for refusing to create it, or, where
+/// it can be created, most likely a full disk.
+std::string why_unwritable(const fs::path& file) {
+  std::FILE* probe = std::fopen(file.c_str(), "wb");
+  if (!probe) return std::strerror(errno);
+  std::fclose(probe);
+  std::error_code ignored;
+  fs::remove(file, ignored);
+  return "it could be created, so most likely the disk is full";
 }
 
 }  // namespace
@@ -38,7 +70,8 @@ void require_writable_target(const std::string& path) {
   const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
   if (!fs::is_directory(folder, error))
-    throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' does not exist)"));
+    throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' " +
+                                          (fs::exists(folder, error) ? "is a file, not a folder)" : "does not exist)")));
   if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
 }
 
@@ -59,7 +92,8 @@ void write_file_atomically(const std::string& path, const std::string& extension
   }
   if (!written) {
     fs::remove(temporary, error);
-    throw OutputError(with_path(path, "cannot write file (writing '" + temporary.filename().string() + "' failed)"));
+    throw OutputError(with_path(path, "cannot write file (writing '" + temporary.filename().string() + "' failed: " +
+                                          why_unwritable(temporary) + ")"));
   }
   fs::rename(temporary, target, error);
   if (error) {

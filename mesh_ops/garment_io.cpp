@@ -1078,15 +1078,25 @@ bool has_deleted_elements(const QuadMesh& mesh) {
   return false;
 }
 
+/// Encodes in memory, then writes the bytes with our own checks: OpenMesh's
+/// OM writer asserts that every write succeeded, so a full disk aborted the
+/// host instead of failing the write.
 bool write_om(const QuadMesh& mesh, const std::string& file) {
   QuietOpenMesh quiet;
+  std::ostringstream encoded(std::ios::binary);
   // The OM writer stores deleted-but-not-collected elements as live ones.
   if (has_deleted_elements(mesh)) {
     QuadMesh compact = copy_mesh(mesh);
     compact.garbage_collection();
-    return OpenMesh::IO::write_mesh(compact, file, OpenMesh::IO::Options::Binary);
+    if (!OpenMesh::IO::write_mesh(compact, encoded, ".om", OpenMesh::IO::Options::Binary)) return false;
+  } else if (!OpenMesh::IO::write_mesh(mesh, encoded, ".om", OpenMesh::IO::Options::Binary)) {
+    return false;
   }
-  return OpenMesh::IO::write_mesh(mesh, file, OpenMesh::IO::Options::Binary);
+  std::ofstream out(file, std::ios::binary);
+  const std::string bytes = std::move(encoded).str();
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  return !out.fail();
 }
 
 Format output_format(const std::string& path, bool om_allowed) {

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -665,6 +666,53 @@ TEST(GarmentSave, FailedSavesLeaveNoFileBehind) {
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(dir.entries(), expected);
   EXPECT_TRUE(fs::is_empty(dir.file("taken.om")));
+}
+
+TEST(GarmentSave, TheLongestLegalNamesAreWritten) {
+  // The temporary file beside the target adds ~20 bytes to its name; a
+  // target name of 255 bytes (NAME_MAX), ASCII or multi-byte, still saves.
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const std::string ascii = std::string(252, 'a') + ".om";
+  std::string wide;
+  while (wide.size() + 3 + 4 <= 255) wide += "\xe6\x97\xa5";  // U+65E5, three bytes each
+  wide += ".obj";
+  for (const std::string& name : {ascii, wide}) {
+    ASSERT_LE(name.size(), 255u);
+    mrcloth::save_mesh(loaded.mesh, dir.file(name));
+    EXPECT_EQ(mrcloth::load_garment(dir.file(name)).mesh.n_faces(), static_cast<std::size_t>(kGridFaces)) << name.size();
+  }
+  std::vector<std::string> expected{"grid.obj", ascii, wide};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(dir.entries(), expected);
+}
+
+TEST(GarmentSave, AFileWhereTheFolderShouldBeIsNamedAsSuch) {
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const std::string path = dir.file("grid.obj/out.om");
+  try {
+    mrcloth::save_mesh(loaded.mesh, path);
+    ADD_FAILURE() << "saved below a file";
+  } catch (const mrcloth::OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("grid.obj' is a file, not a folder"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GarmentSave, OmBytesAreOpenMeshsOwn) {
+  // write_om encodes in memory (OpenMesh's writer asserts on a failed
+  // write: a full disk aborted the host); the bytes are the ones OpenMesh
+  // writes to a file itself.
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  mrcloth::save_mesh(loaded.mesh, dir.file("ours.om"));
+  ASSERT_TRUE(OpenMesh::IO::write_mesh(loaded.mesh, dir.file("openmesh.om"), OpenMesh::IO::Options::Binary));
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_GT(bytes(dir.file("ours.om")).size(), 100u);
+  EXPECT_EQ(bytes(dir.file("ours.om")), bytes(dir.file("openmesh.om")));
 }
 
 TEST(GarmentSave, SaveReplacesAnExistingFile) {
