@@ -115,4 +115,29 @@ void append_surface(BodySurface& surface, const BodySurface& more) {
   }
 }
 
+std::vector<int> used_vertices(const BodySurface& surface) {
+  std::vector<char> used(static_cast<std::size_t>(surface.vertices.rows()), 0);
+  for (const std::vector<int>& face : surface.faces)
+    for (const int v : face) used[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> kept;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) kept.push_back(static_cast<int>(v));
+  return kept;
+}
+
+BodySurface keep_vertices(const BodySurface& surface, const std::vector<int>& kept) {
+  BodySurface out;
+  out.vertices.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  std::vector<int> renumbered(static_cast<std::size_t>(surface.vertices.rows()), -1);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    out.vertices.row(static_cast<Eigen::Index>(k)) = surface.vertices.row(kept[k]);
+    renumbered[static_cast<std::size_t>(kept[k])] = static_cast<int>(k);
+  }
+  out.faces = surface.faces;
+  for (std::vector<int>& face : out.faces)
+    for (int& v : face) v = renumbered[static_cast<std::size_t>(v)];
+  out.uvs = surface.uvs;
+  return out;
+}
+
 }  // namespace mrcloth

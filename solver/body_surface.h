@@ -26,4 +26,13 @@ BodySurface capsule_surface(const std::vector<Collider>& colliders, int segments
 /// Appends `more` to `surface` (indices shifted).
 void append_surface(BodySurface& surface, const BodySurface& more);
 
+/// The vertices `surface`'s faces use, in increasing order. A body cache
+/// keeps only these: DCC importers (Blender's OBJ reader) drop vertices no
+/// face uses, and a point cache must match the count they import.
+std::vector<int> used_vertices(const BodySurface& surface);
+
+/// `surface` with only the rows `kept` (as used_vertices gives: every vertex
+/// a face uses, increasing), its faces renumbered to them.
+BodySurface keep_vertices(const BodySurface& surface, const std::vector<int>& kept);
+
 }  // namespace mrcloth

@@ -470,13 +470,18 @@ void write_body_cache(const Motion& motion, const PosedBody& body, const Charact
   check(options, motion);
   std::unique_ptr<Pc2Writer> writer;
   BodySurface first;
+  std::vector<int> kept;  // the vertices the faces use (the hands the mittens replace are not)
   for (int f = 0; f < options.frames; ++f) {
-    // The garment's output frame f is taken after (f + 1) frame intervals of the motion.
+    // The garment's output frame f is taken after (f + 1) frame intervals of
+    // the motion, and its cache starts at frame 1 (its rest mesh is frame 0).
     const double time = options.preroll_seconds + static_cast<double>(f + 1) / options.fps;
-    BodySurface surface = body.surface(character_pose(motion, time, options));
-    if (!writer) writer = std::make_unique<Pc2Writer>(cache_path, static_cast<int>(surface.vertices.rows()));
-    writer->add_frame(surface.vertices);
-    if (f == 0) first = std::move(surface);
+    const BodySurface surface = body.surface(character_pose(motion, time, options));
+    if (!writer) {
+      kept = used_vertices(surface);
+      writer = std::make_unique<Pc2Writer>(cache_path, static_cast<int>(kept.size()), 1.0, 1.0);
+    }
+    writer->add_frame(surface.vertices(kept, Eigen::all));
+    if (f == 0) first = keep_vertices(surface, kept);
   }
   if (!writer) return;
   writer->finish();

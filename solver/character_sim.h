@@ -232,8 +232,9 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
                                          std::vector<Positions>* frames_out = nullptr);
 
 /// The body at every output frame of a character run (the times the
-/// garment's cache holds) as a PC2 cache at `cache_path`, and its first
-/// frame as the OBJ rest mesh at `obj_path` (empty: none). Atomic.
+/// garment's cache holds, from frame 1 as the garment's) as a PC2 cache at
+/// `cache_path`, and its first frame as the OBJ rest mesh at `obj_path`
+/// (empty: none); only the vertices its faces use (used_vertices). Atomic.
 void write_body_cache(const Motion& motion, const PosedBody& body, const CharacterRunOptions& options,
                       const std::string& cache_path, const std::string& obj_path);
 

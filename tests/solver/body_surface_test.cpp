@@ -123,6 +123,10 @@ TEST(BodyCache, HoldsTheBodyAtTheGarmentsFrameTimes) {
   write_body_cache(motion, body, options, cache, obj);
   const PointCache read = read_pc2(cache);
   ASSERT_EQ(read.frames.size(), 5u);
+  // Frame 1 on, as the garment's cache (its rest mesh is frame 0): a DCC
+  // tool that reads the header's start plays the two together.
+  EXPECT_EQ(read.start_frame, 1.0);
+  EXPECT_EQ(read.sample_rate, 1.0);
   for (int f = 0; f < 5; ++f) {
     const BodySurface expected = body.surface(character_pose(motion, 0.5 + (f + 1) / 30.0, options));
     ASSERT_EQ(read.num_points, expected.vertices.rows());
@@ -130,6 +134,27 @@ TEST(BodyCache, HoldsTheBodyAtTheGarmentsFrameTimes) {
     EXPECT_LT((read.frames[static_cast<std::size_t>(f)] - expected.vertices).cwiseAbs().maxCoeff(), 1e-6) << f;
   }
   EXPECT_TRUE(std::filesystem::exists(obj));
+}
+
+TEST(BodyCache, KeepsOnlyTheVerticesFacesUse) {
+  // Two triangles over vertices 1, 2, 4, 5 of six: 0 and 3 are dropped,
+  // the rest keep their order and the faces follow them.
+  BodySurface surface;
+  surface.vertices.resize(6, 3);
+  for (int v = 0; v < 6; ++v) surface.vertices.row(v) << v, 10 * v, 100 * v;
+  surface.faces = {{1, 2, 4}, {4, 2, 5}};
+  surface.uvs = {{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)},
+                 {Eigen::Vector2d(0, 1), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)}};
+  const std::vector<int> kept = used_vertices(surface);
+  EXPECT_EQ(kept, (std::vector<int>{1, 2, 4, 5}));
+  const BodySurface compact = keep_vertices(surface, kept);
+  ASSERT_EQ(compact.vertices.rows(), 4);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(compact.vertices.row(k), surface.vertices.row(kept[static_cast<std::size_t>(k)]));
+  EXPECT_EQ(compact.faces, (std::vector<std::vector<int>>{{0, 1, 2}, {2, 1, 3}}));
+  EXPECT_EQ(compact.uvs, surface.uvs);
+  // A surface whose every vertex is used is kept whole.
+  const BodySurface capsules = capsule_surface({capsule({0, 0, 0}, {0, 1, 0}, 0.1, 0.1)}, 6, 2);
+  EXPECT_EQ(used_vertices(capsules).size(), static_cast<std::size_t>(capsules.vertices.rows()));
 }
 
 TEST(ClearGarmentOfBody, MovesPointsOutToTheThicknessAndKeepsTNodesAtMidpoints) {

@@ -89,4 +89,12 @@ expectEqual([bodyObj.texcoords.length, bodyObj.faces.every((face) => face.every(
             [bodyCorners, true], report.bodyMesh + ": one vt per face corner");
 if (!(bodyObj.faces.length >= 20000 && bodyObj.faces.length < 26756))
   throw new Error(report.bodyMesh + ": " + bodyObj.faces.length + " faces; expected the body less its hands");
+// Every vertex of the body's OBJ is one a face uses (Blender's importer
+// drops the others, the hands the mittens replace, and the cache would no
+// longer match what it imported), and its cache holds that many points.
+const bodyVertices = core.readTextFile(report.bodyMesh).split("\n").filter((line) => line.startsWith("v ")).length;
+const used = new Array(bodyVertices).fill(false);
+for (const face of bodyObj.faces) for (const [vertex] of face) used[vertex] = true;
+expectEqual([used.filter((u) => u).length, core.fileSize(report.bodyCache)], [bodyVertices, 32 + 12 * bodyVertices * 2],
+            report.bodyMesh + ": vertices used by faces; its cache's size (2 frames)");
 print("texture coordinates: ok");
