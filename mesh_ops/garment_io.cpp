@@ -21,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <new>
 #include <optional>
@@ -807,6 +808,22 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   }
 }
 
+/// The OM reader fills only layers that exist before it reads, so every
+/// analysis layer was made first; those the file does not store (a mesh
+/// saved before any analysis) are removed again, so that a save and load
+/// adds no layers of zeros. An OM file stores each property's name as
+/// plain text.
+void drop_analysis_layers_not_stored(const std::string& path, QuadMesh& mesh) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto stored = [&](const char* name) { return bytes.find(name) != std::string::npos; };
+  if (OpenMesh::VPropHandleT<int> handle; !stored(layer::computed_mode) && mesh.get_property_handle(handle, layer::computed_mode))
+    mesh.remove_property(handle);
+  for (const char* name : {layer::mean_curvature, layer::curvature_deviation})
+    if (OpenMesh::VPropHandleT<double> handle; !stored(name) && mesh.get_property_handle(handle, name))
+      mesh.remove_property(handle);
+}
+
 }  // namespace
 
 LoadResult load_garment(const std::string& path, const LoadOptions& options) {
@@ -856,6 +873,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
                                          " (OpenMesh rejected it); expected a valid " + extension + " mesh"));
   if (mesh.n_vertices() == 0) throw InputError(with_path(path, "the file has no vertices; expected a quad mesh"));
   if (mesh.n_faces() == 0) throw InputError(with_path(path, "the file has no faces; expected a quad mesh"));
+  if (*format == Format::om) drop_analysis_layers_not_stored(path, mesh);
 
   if (scan_matches(scan, mesh)) {
     for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);

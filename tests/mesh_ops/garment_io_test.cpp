@@ -2,6 +2,7 @@
 // Fixtures are tiny text meshes written by the tests into a scratch folder.
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
+#include "mesh_ops/mode_painting.h"
 #include "mesh_ops/quadtree_forest.h"
 #include "mesh_ops/units.h"
 
@@ -713,6 +714,38 @@ TEST(GarmentSave, OmBytesAreOpenMeshsOwn) {
   };
   EXPECT_GT(bytes(dir.file("ours.om")).size(), 100u);
   EXPECT_EQ(bytes(dir.file("ours.om")), bytes(dir.file("openmesh.om")));
+}
+
+TEST(GarmentSave, AnOmRoundTripAddsNoLayers) {
+  // A mesh never analysed has no curvature or computed-mode layers; saved
+  // as .om and loaded it still has none (the reader needs them made first),
+  // and saving it again gives the same bytes. One analysed keeps its own.
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  const auto has = [](const mrcloth::QuadMesh& mesh, const char* name) {
+    OpenMesh::VPropHandleT<double> real;
+    OpenMesh::VPropHandleT<int> whole;
+    return mesh.get_property_handle(real, name) || mesh.get_property_handle(whole, name);
+  };
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  mrcloth::save_mesh(loaded.mesh, dir.file("first.om"));
+  const mrcloth::LoadResult again = mrcloth::load_garment(dir.file("first.om"));
+  for (const char* name : {mrcloth::layer::mean_curvature, mrcloth::layer::curvature_deviation, mrcloth::layer::computed_mode})
+    EXPECT_FALSE(has(again.mesh, name)) << name;
+  mrcloth::save_mesh(again.mesh, dir.file("second.om"));
+  EXPECT_EQ(bytes(dir.file("second.om")), bytes(dir.file("first.om")));
+
+  mrcloth::QuadMesh analysed = mrcloth::copy_mesh(loaded.mesh);
+  mrcloth::set_vertex_layer(analysed, mrcloth::layer::mean_curvature, std::vector<double>(analysed.n_vertices(), 2.5));
+  mrcloth::save_mesh(analysed, dir.file("analysed.om"));
+  const mrcloth::LoadResult kept = mrcloth::load_garment(dir.file("analysed.om"));
+  EXPECT_TRUE(has(kept.mesh, mrcloth::layer::mean_curvature));
+  EXPECT_FALSE(has(kept.mesh, mrcloth::layer::curvature_deviation));
+  EXPECT_EQ(mrcloth::vertex_layer(kept.mesh, mrcloth::layer::mean_curvature),
+            std::vector<double>(analysed.n_vertices(), 2.5));
 }
 
 TEST(GarmentSave, SaveReplacesAnExistingFile) {
