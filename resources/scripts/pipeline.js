@@ -31,7 +31,7 @@ const USAGE = [
   "                         rigs/default_weights.mhw): fits the capsules, or is the body",
   "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
   "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
-  "  --waist-smoothing M    with --makehuman: metres along the waist over which its pins' skin weights",
+  "  --waist-smoothing M    with --makehuman: metres (0..1) along the waist over which its pins' skin weights",
   "                         are averaged, so the band keeps its length where skinning stretches the",
   "                         skin; 0: each pin as the skin under it (body.waistSmoothing; README) [0.02]",
   "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
@@ -44,8 +44,8 @@ const USAGE = [
   "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
   "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
   "Method:",
-  "  --levels N             uniform refinements of the high-resolution mesh, >= 1 [2]",
-  "  --modes N              deformation modes (k-means clusters), >= 1 [3]",
+  "  --levels N             uniform refinements of the high-resolution mesh, >= 1, at most 5e7 faces [2]",
+  "  --modes N              deformation modes (k-means clusters), 1..1000, at most the high mesh's vertices [3]",
   "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
   "  --map-modes M          index | highest | frequent: how the instance's modes reach the coarse garment",
   "                         (index: coarse vertex i takes high vertex i's, the paper's rule; highest /",
@@ -62,17 +62,18 @@ const USAGE = [
   "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
   "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
   "                         README, Collision cost) [simulate's default, auto]",
-  "  --fps F                output frames per second, > 0 [30]",
+  "  --fps F                output frames per second, >= 1 and at most --step-rate [30]",
   "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
   "                         (README, Characters) [120, the CMU mocap rate]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
   "  --test-frames N        frames per test motion, >= 1 [60]",
-  "  --preroll S            seconds from the rest pose to each motion's start, >= 0 [1]",
-  "  --threads N            threads resolving collisions, >= 0 (0: one per core); the same results,",
+  "  --preroll S            seconds from the rest pose to each motion's start, 0..60 [1]",
+  "  --threads N            threads resolving collisions, 0..1024 (0: one per core); the same results,",
   "                         but the reported times are then no longer one core's [1]",
   "Output:",
   "  --out DIR              output folder, created if missing [pipeline_out]",
-  "  --resume               skip stages whose outputs are complete (same options only)",
+  "  --resume               skip stages whose outputs are complete (same options and input files only;",
+  "                         --threads and --size may differ: --size renders the previews again)",
   "  --size WxH             preview image size in pixels [800x800]",
   "  --sequence             also render every frame of each test motion's first multi-resolution run",
   "                         (and an animated GIF of it when ImageMagick's convert is installed)",
@@ -114,24 +115,47 @@ const VALUED = {
   "--limiter-acceleration": "limiterAcceleration",
   "--size": "size",
 };
+const HOST_FLAGS = ["-q", "--quiet"];  // mrcloth's own, taken before the script sees its arguments
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
+// The bounds of the values the API takes (or can run in reasonable time).
+const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
+const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, leastFps: 1, stepsPerFrame: 1000,
+                uniformFaces: 5e7};
+const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
-function integerOption(name, text, least) {
+function integerOption(name, text, least, most = MOST_INTEGER) {
   const value = Number(text);
-  if (!/^[+]?\d+$/.test(text.trim()) || value < least)
-    throw pipelineError("option " + name + ": expected an integer >= " + least + ", got \"" + text + "\"");
+  if (!/^[+]?\d+$/.test(text.trim()) || value < least || value > most)
+    throw pipelineError("option " + name + ": expected an integer >= " + least +
+                        (most < MOST_INTEGER || value > most ? " and <= " + most : "") + ", got \"" + text + "\"");
   return value;
 }
-function numberOption(name, text, least, strictly) {
+function numberOption(name, text, least, strictly, most = Infinity) {
   const value = Number(text);
-  if (text.trim() === "" || !isFinite(value) || (strictly ? value <= least : value < least))
-    throw pipelineError("option " + name + ": expected a number " + (strictly ? "> " : ">= ") + least + ", got \"" +
-                        text + "\"");
+  if (text.trim() === "" || !isFinite(value) || (strictly ? value <= least : value < least) || value > most)
+    throw pipelineError("option " + name + ": expected a number " + (strictly ? "> " : ">= ") + least +
+                        (most < Infinity ? " and <= " + most : "") + ", got \"" + text + "\"");
   return value;
 }
 function choiceOption(name, text, choices) {
   if (choices.indexOf(text) < 0)
     throw pipelineError("option " + name + ": expected one of " + choices.join(", ") + ", got \"" + text + "\"");
+  return text;
+}
+/// A comma-separated list; an empty entry ("5,") is refused, naming it.
+function listOption(name, text, what) {
+  const parts = text.split(",");
+  const empty = parts.indexOf("");
+  if (empty >= 0)
+    throw pipelineError("option " + name + ": entry " + (empty + 1) + " of \"" + text + "\" is empty; expected " + what +
+                        " separated by commas");
+  return parts;
+}
+/// The argument after `--name`: one that is itself an option (`--out --resume`) means the value was left out.
+function optionValue(name, text) {
+  const given = text.split("=")[0];
+  if (FLAGS[given] !== undefined || VALUED[given] !== undefined || HOST_FLAGS.includes(given))
+    throw pipelineError("option " + name + " needs a value, got the option " + given);
   return text;
 }
 
@@ -149,22 +173,25 @@ function parseOptions(args) {
       options[FLAGS[name]] = true;
       continue;
     }
+    if (HOST_FLAGS.includes(name))
+      throw pipelineError("option " + name + (equals >= 0 ? " takes no value" : " is mrcloth's, not the pipeline's: " +
+                          "give it before -b (mrcloth -q -b pipeline.js -- ...)"));
     const key = VALUED[name];
     if (key === undefined)
       throw pipelineError((argument.startsWith("-") ? "unknown option " : "unexpected argument ") + "\"" + argument +
                           "\" (mrcloth pipeline --help lists the options)");
     let text;
     if (equals >= 0) text = argument.slice(equals + 1);
-    else if (i + 1 < args.length) text = args[++i];
+    else if (i + 1 < args.length) text = optionValue(name, args[++i]);
     else throw pipelineError("option " + name + " needs a value");
     switch (key) {
       case "levels": options.levels = integerOption(name, text, 1); break;
-      case "modes": options.modes = integerOption(name, text, 1); break;
+      case "modes": options.modes = integerOption(name, text, 1, LIMITS.modes); break;
       case "instanceFrames": options.instanceFrames = integerOption(name, text, 2); break;
       case "testFrames": options.testFrames = integerOption(name, text, 1); break;
-      case "threads": options.threads = integerOption(name, text, 0); break;
-      case "fps": options.fps = numberOption(name, text, 0, true); break;
-      case "preroll": options.preroll = numberOption(name, text, 0, false); break;
+      case "threads": options.threads = integerOption(name, text, 0, LIMITS.threads); break;
+      case "fps": options.fps = numberOption(name, text, LIMITS.leastFps, false); break;
+      case "preroll": options.preroll = numberOption(name, text, 0, false, LIMITS.preroll); break;
       case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
       case "newtonCg": options.newtonCg = integerOption(name, text, 0); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
@@ -177,20 +204,17 @@ function parseOptions(args) {
         break;
       }
       case "waistSmoothing":
-        options.waistSmoothing = numberOption(name, text, 0, false);
+        options.waistSmoothing = numberOption(name, text, 0, false, LIMITS.waistSmoothing);
         waistGiven = true;
         break;
       case "delta": {
-        const values = text.split(",").map((part) => numberOption(name, part, 0, true));
+        const values = listOption(name, text, "numbers > 0").map((part) => numberOption(name, part, 0, true));
         options.delta = values.filter((value, k) => values.indexOf(value) === k);
         break;
       }
       case "test":
         if (tests === null) tests = [];
-        for (const part of text.split(",")) {
-          if (part === "") throw pipelineError("option " + name + ": empty file name in \"" + text + "\"");
-          tests.push(part);
-        }
+        tests.push(...listOption(name, text, "file names"));
         break;
       case "units": options.units = choiceOption(name, text, UNITS); break;
       case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
@@ -220,9 +244,7 @@ function parseOptions(args) {
       throw pipelineError("option --test: " + options.test[first] + " and " + options.test[k] + " share the name \"" +
                           name + "\", which names their caches; rename one");
   });
-  if (options.stepRate !== null && options.stepRate < options.fps)
-    throw pipelineError("option --step-rate: expected at least --fps (" + options.fps + " frames per second), got " +
-                        options.stepRate);
+  checkRates(options);
   if (options.jointMap) options.joints = readJointMap(options.jointMap);
   if (options.units === null) options.units = options.makehuman ? "dm" : "m";
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
@@ -233,6 +255,21 @@ function parseOptions(args) {
   if (options.place === "makehuman" && !options.makehuman)
     throw pipelineError("option --place makehuman needs --makehuman DIR (the body the garment was modelled on)");
   return options;
+}
+
+/// Every output frame takes whole simulation steps: --fps at most the step
+/// rate (simulate's default when --step-rate is not given), and at most
+/// 1000 steps a frame, simulate's bound on its substeps.
+function checkRates(options) {
+  if (options.stepRate === null && options.fps > DEFAULT_STEP_RATE)
+    throw pipelineError("option --fps: expected at most the step rate, " + DEFAULT_STEP_RATE + " steps per second by " +
+                        "default, got " + options.fps + "; give --step-rate HZ (at least --fps) for more frames per second");
+  if (options.stepRate !== null && options.stepRate < options.fps)
+    throw pipelineError("option --step-rate: expected at least --fps (" + options.fps + " frames per second), got " +
+                        options.stepRate);
+  if (options.stepRate !== null && options.stepRate > LIMITS.stepsPerFrame * options.fps)
+    throw pipelineError("option --step-rate: expected at most " + LIMITS.stepsPerFrame + " steps per frame (" +
+                        LIMITS.stepsPerFrame * options.fps + " at --fps " + options.fps + "), got " + options.stepRate);
 }
 
 /// The clips' joint map read from its JSON file: an object of names to names.
@@ -287,16 +324,16 @@ function motionOption(options, path) {
   return motion;
 }
 
-/// Every input must exist and be readable before any work starts.
+/// Every input must exist and be readable before any work starts. Returns
+/// each input file's fingerprint (recorded for --resume).
 function checkInputs(options) {
-  const inputs = [["--garment", options.garment], ["--instance", options.instance]];
-  for (const test of options.test) inputs.push(["--test", test]);
-  if (options.makehuman)
-    for (const file of makehumanFiles(options.makehuman)) inputs.push(["--makehuman", file]);
+  checkOutputFolder(options.out);
+  const inputs = inputFiles(options);
   for (const [name, path] of inputs) {
     if (!core.fileExists(path)) throw pipelineError("option " + name + ": no such file: " + path);
     if (!core.fileReadable(path)) throw pipelineError("option " + name + ": cannot read " + path);
   }
+  if (options.makehuman) checkMakehumanRig(options.makehuman);
   // Every clip read and its figure sized now, not after the instance's hours:
   // a clip in the wrong units is refused with the units that would fit.
   const clips = inputs.filter(([name]) => name === "--instance" || name === "--test");
@@ -309,26 +346,104 @@ function checkInputs(options) {
                           unknown.map((from) => "\"" + from + "\"").join(", ") + ", a joint of none of the clips",
                           "InputError");
   }
-  for (const [name, path] of clips) {
-    let info;
-    try {
-      info = multirescloth.motionInfo(motionOption(options, path));
-    } catch (error) {
-      throw pipelineError("option " + name + ": " + error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, ""),
-                          error.name);
-    }
-    // The waist follows the pelvis: a clip without it fails only at its run.
-    if (!info.joints.includes("Hips")) {
-      const shown = info.joints.slice(0, 8).join(", ") + (info.joints.length > 8 ? ", ..." : "");
-      throw pipelineError("option " + name + ": " + path + " has no joint 'Hips' (after renaming), which the pinned " +
-                          "waist follows; its joints: " + shown + "; expected CMU, DAZ/Poser or Mixamo names, or " +
-                          "give --joint-map FILE.json {\"its pelvis\": \"Hips\", ...}", "InputError");
-    }
+  for (const [name, path] of clips) checkClip(options, name, path);
+  return inputs.map(([name, path]) => fingerprint(name, path));
+}
+
+/// Every input file with the option that names it, each once.
+function inputFiles(options) {
+  const inputs = [["--garment", options.garment], ["--instance", options.instance]];
+  for (const test of options.test) inputs.push(["--test", test]);
+  if (options.makehuman)
+    for (const file of makehumanFiles(options.makehuman)) inputs.push(["--makehuman", file]);
+  if (options.jointMap) inputs.push(["--joint-map", options.jointMap]);
+  return inputs.filter(([, path], k) => inputs.findIndex(([, other]) => other === path) === k);
+}
+
+/// A clip is read as its runs will read it, and must have the pelvis the waist follows.
+function checkClip(options, name, path) {
+  let info;
+  try {
+    info = multirescloth.motionInfo(motionOption(options, path));
+  } catch (error) {
+    throw pipelineError("option " + name + ": " + error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, ""),
+                        error.name);
+  }
+  // The waist follows the pelvis: a clip without it fails only at its run.
+  if (!info.joints.includes("Hips")) {
+    const shown = info.joints.slice(0, 8).join(", ") + (info.joints.length > 8 ? ", ..." : "");
+    throw pipelineError("option " + name + ": " + path + " has no joint 'Hips' (after renaming), which the pinned " +
+                        "waist follows; its joints: " + shown + "; expected CMU, DAZ/Poser or Mixamo names, or " +
+                        "give --joint-map FILE.json {\"its pelvis\": \"Hips\", ...}", "InputError");
+  }
+}
+
+/// The output folder, or the nearest of its parents that exists, must be a folder.
+function checkOutputFolder(out) {
+  const parts = out.split("/");
+  for (let k = parts.length; k > 0; --k) {
+    const path = parts.slice(0, k).join("/");
+    if (path === "" || !core.fileExists(path)) continue;
+    if (isFile(path))
+      throw pipelineError("option --out: " + path + " exists and is not a folder" +
+                          (k === parts.length ? "" : " (the folder " + out + " would be in it)") +
+                          "; expected a folder, or a path where one can be made");
+    return;
+  }
+}
+
+function isFile(path) {
+  try {
+    core.fileSize(path);  // InputError for a folder
+    return true;
+  } catch (error) {
+    return false;
   }
 }
 
 function makehumanFiles(folder) {
   return [folder + "/base.obj", folder + "/rigs/cmu_mb.mhskel", folder + "/rigs/default_weights.mhw"];
+}
+
+/// The rig files are JSON objects with the sections the skinned body reads:
+/// a broken one is refused now, not when the instance is first posed. (No
+/// API call reads the body without a run, so base.obj is checked there.)
+function checkMakehumanRig(folder) {
+  const [, skeleton, weights] = makehumanFiles(folder);
+  checkJsonSections(skeleton, ["bones", "joints"], "a MakeHuman skeleton (.mhskel)");
+  checkJsonSections(weights, ["weights"], "MakeHuman skin weights (.mhw)");
+}
+
+function checkJsonSections(path, sections, what) {
+  let json;
+  try {
+    json = JSON.parse(fileText(path));
+  } catch (error) {
+    throw pipelineError("option --makehuman: " + path + " is not JSON (" + error.message + "); expected " + what,
+                        "InputError");
+  }
+  for (const section of sections)
+    if (json === null || typeof json !== "object" || json[section] === null || typeof json[section] !== "object" ||
+        Array.isArray(json[section]))
+      throw pipelineError("option --makehuman: " + path + " has no \"" + section + "\" object; expected " + what,
+                          "InputError");
+}
+
+/// Input files' text, read once (for the checks and the fingerprints).
+const fileTexts = {};
+function fileText(path) {
+  if (!(path in fileTexts)) fileTexts[path] = core.readTextFile(path);
+  return fileTexts[path];
+}
+
+/// What --resume compares to tell an input changed in place: its size and a
+/// hash of its text (32-bit FNV-1a over the UTF-16 code units; a binary
+/// file's bytes that are not UTF-8 read alike, so for those mostly its size).
+function fingerprint(name, path) {
+  const text = fileText(path);
+  let hash = 0x811c9dc5 | 0;
+  for (let k = 0; k < text.length; ++k) hash = Math.imul(hash ^ text.charCodeAt(k), 16777619);
+  return {option: name, path: path, bytes: core.fileSize(path), hash: (hash >>> 0).toString(16).padStart(8, "0")};
 }
 
 // --- Files and stages ------------------------------------------------------------
@@ -365,49 +480,125 @@ function resultOptions(options) {
   return copy;
 }
 
+/// Options that may differ in a resumed run: they change no result (--threads:
+/// the same numbers, only the times), or only a stage that checks them itself
+/// (--size: the previews are rendered again).
+const RESUME_FREE = ["threads", "size"];
+
+/// The command-line option that sets an options key ("instanceFrames": "--instance-frames").
+function optionName(key) {
+  if (key === "joints") return "--joint-map";  // the map's contents
+  const names = Object.keys(VALUED).filter((name) => VALUED[name] === key)
+                    .concat(Object.keys(FLAGS).filter((name) => FLAGS[name] === key));
+  return names.length > 0 ? names[0] : key;
+}
+
+/// With --resume, before anything is written: the folder's record of its run
+/// (stages/options.json) must hold this run's options and input files.
+/// Returns that run's id, which its stage records carry.
+function resumedRun(options, inputs) {
+  const out = options.out, path = out + "/stages/options.json";
+  const again = "; run without --resume to start a new run, or use another --out";
+  if (!core.fileExists(out)) throw pipelineError("--resume: " + out + " does not exist" + again);
+  if (!core.fileExists(path))
+    throw pipelineError("--resume: " + out + " holds no stages/options.json, the record of a pipeline run's options" +
+                        again);
+  let before;
+  try {
+    before = JSON.parse(core.readTextFile(path));
+  } catch (error) {
+    throw pipelineError("--resume: " + path + " is unreadable (" + error.message + ")" + again);
+  }
+  if (before === null || typeof before !== "object" || Array.isArray(before))
+    throw pipelineError("--resume: " + path + " holds no object of options" + again);
+  if (before.solverRevision !== SOLVER_REVISION)
+    throw pipelineError("--resume: " + out + " holds a run made with other solver defaults (revision " +
+                        (before.solverRevision === undefined ? 1 : before.solverRevision) + "; this build's " +
+                        SOLVER_REVISION + "), whose results would mix with new ones" + again);
+  if (typeof before.run !== "string" || !Array.isArray(before.inputs))
+    throw pipelineError("--resume: " + out + " holds a run of an earlier pipeline, which recorded no fingerprints of " +
+                        "its input files" + again);
+  const now = resultOptions(options);
+  const keys = Object.keys(now).concat(Object.keys(before).filter((key) => !(key in now)))
+                   .filter((key) => !["run", "inputs"].includes(key) && !RESUME_FREE.includes(key));
+  const differing = keys.filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key])).map(optionName);
+  if (differing.length > 0)
+    throw pipelineError("--resume: " + out + " holds a run with other options (" +
+                        differing.filter((name, k) => differing.indexOf(name) === k).join(", ") + ")" + again);
+  for (const input of inputs) checkInputUnchanged(out, before.inputs, input, again);
+  return before.run;
+}
+
+/// An input file changed in place since the run began would mix its results with new ones.
+function checkInputUnchanged(out, recorded, input, again) {
+  const was = recorded.find((entry) => entry && entry.path === input.path);
+  if (was && was.bytes === input.bytes && was.hash === input.hash) return;
+  const how = !was ? "it is not among the run's inputs"
+              : was.bytes !== input.bytes ? "now " + input.bytes + " bytes, then " + was.bytes
+                                          : "the same size, other contents";
+  throw pipelineError("--resume: " + input.path + " (" + input.option + ") has changed since the run in " + out +
+                      " began (" + how + "), so its results would mix with new ones" + again, "InputError");
+}
+
+/// A new run's id: its stage records carry it, so those an earlier run left
+/// in the folder (with other options or inputs) are never taken for its own.
+function newRunId() {
+  return Date.now().toString(36) + "-" + Math.floor(Math.random() * 0x7fffffff).toString(36);
+}
+
 class Stages {
-  constructor(out, options, total) {
+  constructor(out, options, inputs, run, total) {
     this.out = out;
     this.total = total;  // stages this run has, for the "[k/total]" in progress lines
     this.folder = out + "/stages";
     this.resume = options.resume;
+    this.runId = run;
     this.skipped = [];
     this.ran = [];
     core.makePath(this.folder);
-    const configPath = this.folder + "/options.json";
-    const wanted = JSON.stringify(resultOptions(options));
-    if (this.resume && core.fileExists(configPath)) {
-      const previous = core.readTextFile(configPath);
-      if (previous !== wanted) {
-        const before = JSON.parse(previous), now = JSON.parse(wanted);
-        const differing = Object.keys(now).filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key]));
-        if (differing.includes("solverRevision"))
-          throw pipelineError("--resume: " + out + " holds a run made with other solver defaults (revision " +
-                              (before.solverRevision === undefined ? 1 : before.solverRevision) + "; this build's " +
-                              SOLVER_REVISION + "), whose results would mix with new ones; run without --resume or " +
-                              "use another --out");
-        throw pipelineError("--resume: " + out + " holds a run with other options (" + differing.join(", ") +
-                            "); run without --resume or use another --out");
-      }
+    const record = Object.assign(resultOptions(options), {inputs: inputs, run: run});
+    core.writeTextFile(this.folder + "/options.json", JSON.stringify(record));
+  }
+
+  /// The stage's record if this run wrote it and every file in `outputs`
+  /// exists, else null; a broken record is warned of and run again.
+  finished(name, outputs) {
+    const path = this.folder + "/" + name + ".json";
+    if (!core.fileExists(path)) return null;
+    let record;
+    try {
+      record = JSON.parse(core.readTextFile(path));
+    } catch (error) {
+      core.warn("pipeline: " + path + " is unreadable (" + error.message + "); running " + name + " again");
+      return null;
     }
-    core.writeTextFile(configPath, wanted);
+    if (record === null || typeof record !== "object" || typeof record.run !== "string") {
+      core.warn("pipeline: " + path + " is not a stage record (it has no run id); running " + name + " again");
+      return null;
+    }
+    // Another run's record (an earlier one, with other options) is not this run's result.
+    if (record.run !== this.runId || JSON.stringify(record.outputs) !== JSON.stringify(outputs)) return null;
+    return outputs.every((file) => core.fileExists(this.out + "/" + file)) ? record : null;
   }
 
   /// Runs `work` (which returns the stage's record) unless resuming finds
-  /// the record and every file in `outputs` (relative to the output folder).
-  run(name, outputs, work) {
+  /// its record and every file in `outputs` (relative to the output folder),
+  /// and `fits(record)` if given.
+  run(name, outputs, work, fits = () => true) {
     const recordPath = this.folder + "/" + name + ".json";
     const label = "pipeline [" + (this.ran.length + this.skipped.length + 1) + "/" + this.total + "] " + name;
-    if (this.resume && core.fileExists(recordPath) && outputs.every((file) => core.fileExists(this.out + "/" + file))) {
+    const earlier = this.resume ? this.finished(name, outputs) : null;
+    if (earlier && fits(earlier)) {
       core.log(label + ": complete from an earlier run, skipped");
       this.skipped.push(name);
-      return JSON.parse(core.readTextFile(recordPath));
+      return earlier;
     }
     core.log(label + " ...");
     const started = Date.now();
     const record = work();
     record.stageSeconds = (Date.now() - started) / 1000;
     record.outputs = outputs;
+    record.run = this.runId;
     core.writeTextFile(recordPath, JSON.stringify(record, null, 1) + "\n");
     this.ran.push(name);
     return record;
@@ -425,8 +616,7 @@ try {
   if (options.help) {
     print(USAGE);
   } else {
-    checkInputs(options);
-    runPipeline(options);
+    runPipeline(options, checkInputs(options));
   }
 } catch (error) {
   if (!(error instanceof Error) || !REPORTED_ERRORS.includes(error.name)) throw error;
@@ -453,9 +643,9 @@ function checkGarmentSize(options, info) {
                       " m for a garment worn by a person: check the units" + hint, "InputError");
 }
 
-function runPipeline(options) {
-  const out = options.out;
-  // The garment is read before anything is written: a broken file stops the run here.
+/// The coarse garment, read and checked (with what its size bounds: --levels
+/// and --modes) before anything is written: a broken file stops the run here.
+function loadGarment(options) {
   const coarse = core.loadObject(options.garment, {units: options.units});
   const coarseInfo = core.objectInfo(coarse);
   checkGarmentSize(options, coarseInfo);
@@ -467,12 +657,49 @@ function runPipeline(options) {
   if (coarseInfo.maxLevel > 1)
     throw pipelineError("option --garment: " + options.garment + " is already refined (its faces reach level " +
                         coarseInfo.maxLevel + "); expected the coarse garment the method starts from", "InputError");
+  checkLevels(options, coarseInfo);
+  const highVertices = highVertexCount(coarse, coarseInfo, options.levels);
+  if (options.modes > highVertices)
+    throw pipelineError("option --modes: expected at most the high-resolution mesh's " + highVertices + " vertices " +
+                        "(--levels " + options.levels + "), which k-means clusters, got " + options.modes);
+  return {coarse: coarse, coarseInfo: coarseInfo};
+}
+
+/// Uniform refinement makes four faces of each per level, at most
+/// LIMITS.uniformFaces (refineUniform's bound).
+function checkLevels(options, coarseInfo) {
+  const faces = coarseInfo.faces * Math.pow(4, options.levels);
+  if (faces <= LIMITS.uniformFaces) return;
+  let most = 0;
+  while (coarseInfo.faces * Math.pow(4, most + 1) <= LIMITS.uniformFaces) ++most;
+  throw pipelineError("option --levels: " + options.levels + " uniform refinements of the garment's " +
+                      coarseInfo.faces + " faces would make " + faces.toPrecision(3) + " faces, more than the " +
+                      LIMITS.uniformFaces.toExponential() + " refinement makes; expected at most " + most);
+}
+
+/// The high-resolution mesh's vertex count without making it: each uniform
+/// level adds a vertex per edge and per face, splits every edge in two and
+/// adds four per face; the coarse mesh's edges are counted by refining it once.
+function highVertexCount(coarse, coarseInfo, levels) {
+  const once = multirescloth.refineUniform(coarse, 1);
+  const onceVertices = core.objectInfo(once).vertices;
+  core.deleteObject(once);
+  let [vertices, edges, faces] = [coarseInfo.vertices, onceVertices - coarseInfo.vertices - coarseInfo.faces,
+                                  coarseInfo.faces];
+  for (let level = 0; level < levels; ++level) [vertices, edges, faces] = [vertices + edges + faces, 2 * edges + 4 * faces, 4 * faces];
+  return vertices;
+}
+
+function runPipeline(options, inputs) {
+  const out = options.out;
+  const {coarse, coarseInfo} = loadGarment(options);
+  const run = options.resume ? resumedRun(options, inputs) : newRunId();
   core.makePath(out);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and
   // per test motion one simulation per model (the equal-size uniform mesh
   // counted) and a comparison; corrected once the models are known.
-  const stages = new Stages(out, options, 6 + options.test.length * (4 + options.delta.length));
+  const stages = new Stages(out, options, inputs, run, 6 + options.test.length * (4 + options.delta.length));
   const started = Date.now();
 
   const makehuman = options.makehuman ? makehumanFiles(options.makehuman) : null;
@@ -503,6 +730,7 @@ function runPipeline(options) {
     penetrationPinned: report.deepest.pinned, maxFaceDepth: report.maxFaceDepth,
     meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
     nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame, stepRate: report.stepRate,
+    threads: options.threads,  // the times are this many threads' (a resumed run may have others)
   });
   const mustFinish = (what, report) => {
     if (report.cancelled) throw new Error("pipeline: " + what + " was cancelled");
@@ -539,7 +767,7 @@ function runPipeline(options) {
   const modesRecord = stages.run("modes", ["meshes/high_modes.om", "meshes/coarse_modes.om",
                                            "meshes/high_by_mode.ply", "meshes/high_by_curvature.ply",
                                            "meshes/coarse_by_mode.ply", "meshes/coarse_layers.csv"], () => {
-    const extraction = multirescloth.extractModes(high, out + "/caches/instance_high.pc2", {clusters: options.modes});
+    const extraction = extractModes(high, out + "/caches/instance_high.pc2", options.modes);
     const mapping = multirescloth.mapModes(high, coarse, {method: options.mapModes});
     core.saveObject(high, out + "/meshes/high_modes.om");
     core.saveObject(coarse, out + "/meshes/coarse_modes.om");
@@ -663,7 +891,8 @@ function runPipeline(options) {
 
   // Stage 8: previews and plots.
   const previewRecord = stages.run("previews", previewFiles(options, models, multiNames), () =>
-      renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord));
+      renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord),
+      (record) => JSON.stringify(record.size) === JSON.stringify(options.size));
 
   // Stage 9: the report (always rewritten: it is cheap and reflects this run).
   const report = {
@@ -692,7 +921,8 @@ function runPipeline(options) {
                                 meanRounds: run.numbers.meanRounds, cache: run.cache, modelFile: run.modelFile})),
     // What every test run was given besides its motion and output (for
     // re-running one, as bench/distance_floor.js does).
-    testSettings: characterSettings(options.testFrames),
+    testSettings: Object.assign(characterSettings(options.testFrames),
+                                {threads: timedThreads(options, [instanceRecord].concat(runs.map((r) => r.numbers)))}),
     detail: detail,
     previews: previewRecord.images,
     stages: {ran: stages.ran, skipped: stages.skipped},
@@ -703,6 +933,27 @@ function runPipeline(options) {
   print("pipeline: " + runs.length + " runs of " + models.length + " models; report " + out + "/report.md (" +
         stages.ran.length + " stages run, " + stages.skipped.length + " resumed) in " +
         report.seconds.toFixed(1) + " s");
+}
+
+/// The modes, k-means on the instance's curvature: too few distinct values
+/// for --modes clusters can only show now, and is said as the option's fault.
+function extractModes(high, cache, modes) {
+  try {
+    return multirescloth.extractModes(high, cache, {clusters: modes});
+  } catch (error) {
+    const few = /(\d+) clusters requested but only (\d+) distinct points/.exec(error.message);
+    if (!few) throw error;
+    throw pipelineError("option --modes: the instance's curvature takes only " + few[2] + " distinct values over the " +
+                        "high-resolution mesh's vertices; expected at most " + few[2] + " modes, got " + modes);
+  }
+}
+
+/// The threads the report's times were measured on: the run's, unless a
+/// resumed run's stages took them with others (then one that is not 1, so
+/// bench/paper_targets.js does not take them for one core's).
+function timedThreads(options, records) {
+  const used = records.map((record) => record.threads === undefined ? options.threads : record.threads);
+  return used.every((threads) => threads === used[0]) ? used[0] : used.find((threads) => threads !== 1);
 }
 
 // --- Previews --------------------------------------------------------------------
@@ -785,7 +1036,7 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
   images.push({file: "plots/time_per_frame.png", title: "time per frame on " + baseName(options.test[0])},
               {file: "plots/vertices_per_level.png", title: "vertices per level"},
               {file: "plots/mode_histogram.png", title: "mode histogram"});
-  return {images: images};
+  return {images: images, size: options.size};
 }
 
 // --- The report ------------------------------------------------------------------

@@ -29,8 +29,8 @@ refused "unexpected argument \"stray\"" stray
 refused "option --levels: expected an integer >= 1, got \"two\"" --levels two
 refused "option --levels: expected an integer >= 1, got \"0\"" --levels 0
 refused "option --delta: expected a number > 0, got \"-3\"" --delta 8,-3
-refused "option --fps: expected a number > 0, got \"fast\"" --fps fast
-refused "option --threads: expected an integer >= 0, got \"-2\"" --threads -2
+refused "option --fps: expected a number >= 1, got \"fast\"" --fps fast
+refused "option --threads: expected an integer >= 0 and <= 1024, got \"-2\"" --threads -2
 refused "option --step-rate: expected a number > 0, got \"0\"" --step-rate 0
 refused "option --step-rate: expected at least --fps \(30 frames per second\), got 20" --step-rate 20
 refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, got \"fast\"" --limiter-acceleration fast
@@ -38,7 +38,7 @@ refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, 
 refused "option --newton-cg: expected an integer >= 0, got \"-1\"" --newton-cg -1
 refused "option --bend-model: expected one of distance, secondDifference, got \"hinge\"" --bend-model hinge
 refused "option --bend-stiffness: expected a number >= 0, got \"-0.1\"" --bend-stiffness -0.1
-refused "option --waist-smoothing: expected a number >= 0, got \"-0.01\"" --waist-smoothing -0.01
+refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"-0.01\"" --waist-smoothing -0.01
 refused "option --waist-smoothing needs --makehuman DIR" --waist-smoothing 0.03
 refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot
 refused "option --map-modes: expected one of index, highest, frequent, got \"nearest\"" --map-modes nearest
@@ -54,6 +54,51 @@ refused "option --test: .*walk_new.bvh and .*other/walk_new.bvh share the name \
 refused "option --body mesh needs --makehuman DIR" --body mesh
 refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp"
 refused "option --resume takes no value" --resume=yes
+# Values the API would refuse (or take forever on) only once files are
+# written are refused here (the cheap options keep a regression short).
+cheap="--levels 1 --instance-frames 2 --test-frames 1 --preroll 0 --size 64x64"
+refused "option --levels: expected an integer >= 1 and <= 2147483647, got \"99999999999999999999\"" \
+  $cheap --levels 99999999999999999999
+refused "option --instance-frames: expected an integer >= 2 and <= 2147483647, got \"3000000000\"" \
+  $cheap --instance-frames 3000000000
+refused "option --test-frames: expected an integer >= 1 and <= 2147483647" $cheap --test-frames 2147483648
+refused "option --newton-cg: expected an integer >= 0 and <= 2147483647" $cheap --newton-cg 99999999999
+refused "option --threads: expected an integer >= 0 and <= 1024, got \"2000\"" $cheap --threads 2000
+refused "option --modes: expected an integer >= 1 and <= 1000, got \"1e20\"" $cheap --modes 1e20
+refused "option --preroll: expected a number >= 0 and <= 60, got \"61\"" $cheap --preroll 61
+refused "option --fps: expected at most the step rate, 120 steps per second by default, got 200; give --step-rate" \
+  $cheap --fps 200
+refused "option --fps: expected a number >= 1, got \"1e-320\"" $cheap --fps 1e-320
+refused "option --step-rate: expected at most 1000 steps per frame \(30000 at --fps 30\)" $cheap --step-rate 1e9
+refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"2\"" --waist-smoothing 2 --makehuman "$tmp"
+# The garment bounds --levels (refinement makes at most 5e7 faces) and --modes (clusters of its vertices).
+refused "option --levels: 9 uniform refinements of the garment's 760 faces would make 1.99e\+8 faces, .*expected at most 8" \
+  $cheap --levels 9
+printf 'v 0 0 0\nv 0.5 0 0\nv 0.5 -0.5 0\nv 0 -0.5 0\nf 1 4 3 2\n' > "$tmp/quad.obj"
+refused "option --modes: expected at most the high-resolution mesh's 9 vertices \(--levels 1\)" \
+  $cheap --garment "$tmp/quad.obj" --modes 10
+# An option where a value was expected, an existing file as --out, an empty list entry, a value to a flag.
+refused "option --garment needs a value, got the option --levels" $cheap --garment --levels 1
+touch "$tmp/afile"
+refused "option --out: .*afile exists and is not a folder" $cheap --out "$tmp/afile"
+refused "option --out: .*afile exists and is not a folder \(the folder .*afile/out would be in it\)" \
+  $cheap --out "$tmp/afile/out"
+refused "option --delta: entry 2 of \"5,\" is empty; expected numbers > 0 separated by commas" --delta 5,
+refused "option --quiet takes no value" --quiet=1
+# Broken MakeHuman rig files (JSON) are refused before any work, naming --makehuman.
+mkdir -p "$tmp/mh/rigs" "$tmp/mh2/rigs"
+: > "$tmp/mh/base.obj" && : > "$tmp/mh2/base.obj"
+printf '{"bones": {}, "joints": {}}' > "$tmp/mh/rigs/cmu_mb.mhskel"
+printf 'garbage' > "$tmp/mh/rigs/default_weights.mhw"
+refused "InputError: pipeline: option --makehuman: .*mh/rigs/default_weights.mhw is not JSON .*expected MakeHuman skin weights" \
+  $cheap --makehuman "$tmp/mh"
+printf '{"bones": {"Hips": {"head": "Hips_he' > "$tmp/mh2/rigs/cmu_mb.mhskel"
+printf '{"weights": {}}' > "$tmp/mh2/rigs/default_weights.mhw"
+refused "InputError: pipeline: option --makehuman: .*mh2/rigs/cmu_mb.mhskel is not JSON .*expected a MakeHuman skeleton" \
+  $cheap --makehuman "$tmp/mh2"
+printf '{"weights": []}' > "$tmp/mh2/rigs/default_weights.mhw"
+printf '{"bones": {}}' > "$tmp/mh2/rigs/cmu_mb.mhskel"
+refused "option --makehuman: .*mh2/rigs/cmu_mb.mhskel has no \"joints\" object" $cheap --makehuman "$tmp/mh2"
 # A clip in the wrong units (the embedded walks are in metres) is refused
 # before any work, with the units that would fit; "auto" is one of the choices.
 refused "InputError: pipeline: option --instance: .*walk_instance.bvh read in units 'cm' \(0.01 m per unit\): the figure's legs are 0.01 m long .* expected 0.4-2 times: check the units; in 'm' they are 0.79 m" \
