@@ -616,12 +616,25 @@ try {
   if (options.help) {
     print(USAGE);
   } else {
+    checkPlugins();
     runPipeline(options, checkInputs(options));
   }
 } catch (error) {
   if (!(error instanceof Error) || !REPORTED_ERRORS.includes(error.name)) throw error;
   console.error(error.name + ": " + error.message);
   core.exitApplication(1);
+}
+
+/// The plugins every stage calls: without them (mrcloth --plugins FOLDER
+/// naming another folder) the first call would fail as a ReferenceError.
+function checkPlugins() {
+  const missing = [];
+  if (typeof multirescloth === "undefined") missing.push([, "Multires Cloth"]);
+  if (typeof preview === "undefined") missing.push([, "Preview"]);
+  if (missing.length > 0)
+    throw pipelineError("the " + missing.map(([, plugin]) => "'" + plugin + "'").join(" and ") + " plugin" +
+                        (missing.length > 1 ? "s are" : " is") + " not loaded (mrcloth --plugins FOLDER must name " +
+                        "the folder holding them; by default the build's)", "Error");
 }
 
 /// A garment in the wrong units (centimetres read as metres: a 54 m skirt)

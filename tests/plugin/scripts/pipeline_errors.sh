@@ -154,6 +154,15 @@ code=$?
 grep -q "^\[error\] InputError: .*broken.obj: face 0 (line 3) refers to vertex 9" "$tmp/stderr$n" ||
   { echo "FAILED (broken garment): $(cat "$tmp/stderr$n")"; failed=1; }
 grep -q '^    at ' "$tmp/stderr$n" && { echo "FAILED (broken garment): a script stack on stderr"; failed=1; }
+# Without its plugins (--plugins naming another folder) the pipeline says so, not a ReferenceError.
+n=$((n + 1))
+mkdir -p "$tmp/no_plugins"
+"$host" --plugins "$tmp/no_plugins" pipeline --out "$tmp/out$n" > /dev/null 2> "$tmp/stderr$n"
+code=$?
+[ "$code" -eq 1 ] || { echo "FAILED (no plugins): exit code $code"; failed=1; }
+grep -q "^\[error\] Error: pipeline: the 'Multires Cloth' and 'Preview' plugins are not loaded" "$tmp/stderr$n" ||
+  { echo "FAILED (no plugins): $(cat "$tmp/stderr$n")"; failed=1; }
+[ -e "$tmp/out$n" ] && { echo "FAILED (no plugins): its output folder was created"; failed=1; }
 # --help prints the options and does nothing else.
 "$host" pipeline --help --out "$tmp/help" > "$tmp/help.out" 2>&1 || { echo "FAILED: --help exit code $?"; failed=1; }
 grep -q "^Usage: mrcloth pipeline" "$tmp/help.out" || { echo "FAILED: --help text"; failed=1; }
