@@ -8,13 +8,12 @@
 namespace mrcloth {
 namespace {
 
-// A rejection is handled once `then` (which `catch` and `finally` call) is
-// called on its promise: the derived promise carries it on. A promise
-// rejected before its constructor returns (a synchronous reject, a throwing
-// executor) is recorded right after. Not seen: a promise resolved with
-// another that later rejects (the engine passes its own resolving
-// functions on), which a script only meets by returning a rejected promise
-// from a callback, and then the derived promise it settles is recorded.
+// A rejection is handled once `then` (which `catch` calls) is called on its
+// promise: the derived promise carries it on. A promise rejected before its
+// constructor returns (a synchronous reject, a throwing executor) is
+// recorded right after. One resolved with another promise (a callback
+// returning Promise.reject(...)) takes that one's rejection without a call
+// to its reject function: it is watched, and recorded if it rejects.
 const char kTracker[] = R"JS(
 (function (global) {
   "use strict";
@@ -27,7 +26,12 @@ const char kTracker[] = R"JS(
     constructor(executor) {
       let self = null, early = null, settled = false;
       super((resolve, reject) => {
-        const fulfil = (value) => { settled = true; resolve(value); };
+        const fulfil = (value) => {
+          if (!settled && value instanceof Native)
+            Native.prototype.then.call(value, undefined, (reason) => note(self, reason));
+          settled = true;
+          resolve(value);
+        };
         const fail = (reason) => {
           if (!settled) {
             settled = true;

@@ -8,4 +8,6 @@ function refine() {
 refine();
 Promise.resolve().then(() => print("callbacks still run"));
 Promise.reject(7);
+Promise.resolve().then(() => Promise.reject(new Error("returned rejected")));  // line 11: the derived promise takes it
+Promise.resolve().then(() => Promise.reject(new Error("caught"))).catch(() => print("a caught one is no error"));
 print("script done");
