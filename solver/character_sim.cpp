@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -290,8 +291,22 @@ Pose character_pose(const Motion& motion, double time, const CharacterRunOptions
   return pose;
 }
 
+double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& options) {
+  const Pose rest = reference_pose(motion, options);
+  const Pose first = pose_at(motion, options.motion_start);
+  double way = 0.0;
+  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"}) {
+    const int joint = motion.skeleton.find(name);
+    if (joint >= 0) way = std::max(way, (first.position(joint) - rest.position(joint)).norm());
+  }
+  if (!(way > 0.0)) return 0.0;
+  // smoothstep's steepest slope is 1.5 times its mean.
+  return options.preroll_seconds > 0.0 ? 1.5 * way / options.preroll_seconds : std::numeric_limits<double>::infinity();
+}
+
 int preroll_frame_count(const CharacterRunOptions& options) {
-  return static_cast<int>(std::lround(options.preroll_seconds * options.fps));
+  if (!(options.preroll_seconds > 0.0)) return 0;
+  return std::max(1, static_cast<int>(std::lround(options.preroll_seconds * options.fps)));
 }
 
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
@@ -369,6 +384,13 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   if (preroll_frames > 0) {
     SimulationOptions warmup = sim;
     warmup.frames = preroll_frames;
+    // Its frames span the pre-roll exactly, so the motion starts at its
+    // first frame: a pre-roll that is no whole number of output frames (0.516
+    // s at 30 fps) takes them a little longer or shorter. (Rounded to whole
+    // frames, the cloth went on at clip times the pre-roll's remainder away
+    // from the ones the waist's check and the body's cache were taken at.)
+    if (std::abs(preroll_frames - options.preroll_seconds * options.fps) > 1e-9 * preroll_frames)
+      warmup.fps = preroll_frames / options.preroll_seconds;
     warmup.cache_path.clear();
     SimulationProgress preroll_progress;
     if (progress) preroll_progress = [&](int done, int) { return progress(done, total_frames); };

@@ -214,9 +214,20 @@ double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& pl
 Pose character_pose(const Motion& motion, double time, const CharacterRunOptions& options,
                     double* arm_angle = nullptr);
 
+/// The fastest a hip, knee or ankle moves in the pre-roll (m/s): each one's
+/// way from the rest pose to the motion's first frame over
+/// options.preroll_seconds, at the blend's steepest (1.5 times the mean);
+/// infinite with no pre-roll where one moves at all, 0 where none does.
+/// Cloth on the legs tears where this is far beyond a walk's (sweep of
+/// 2026-11-27: trousers whole from a 0.1 s pre-roll on CMU 07_06, torn
+/// below 0.05 s).
+double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& options);
+
 /// The output frames the pre-roll of options.preroll_seconds takes (at
-/// options.fps): simulated before the motion's frames, and counted first
-/// by simulate_on_character's progress.
+/// options.fps, rounded, at least one for any pre-roll): simulated before
+/// the motion's frames, spanning the pre-roll exactly (a little longer or
+/// shorter than options.fps's where it is no whole number of them), and
+/// counted first by simulate_on_character's progress.
 int preroll_frame_count(const CharacterRunOptions& options);
 
 /// Runs the pre-roll and the motion. The model's rest shape must sit on the

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -192,6 +193,47 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
   EXPECT_TRUE(cancelled.preroll.cancelled);
   EXPECT_TRUE(cancelled.motion.cancelled);
   EXPECT_EQ(cancelled.motion.frames, 0);
+}
+
+// A pre-roll of no whole number of output frames (0.216 s at 30 fps: 6.48)
+// spans its frames exactly, so the motion starts at its first frame: the
+// pins follow the waist's targets at the clip times the report checks
+// them at (to round-off), and the body's cache is taken at those times.
+// With the frames rounded (0.2 s) and the clip run on from there, the
+// waist was ~1.9 mm off per millisecond of the remainder.
+TEST(CharacterSetup, APrerollOfNoWholeFramesKeepsTheMotionOnItsClock) {
+  const QuadMesh skirt = default_skirt();
+  for (const double preroll : {0.216, 0.01}) {
+    CharacterSetup setup;
+    setup.place = GarmentPlacement::first_frame;
+    setup.preroll_seconds = preroll;
+    Character character = make_character(walk(), setup, skirt);
+    const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
+    const CharacterRunOptions run = run_options(character, setup, model, 3);
+    EXPECT_EQ(preroll_frame_count(run), preroll == 0.01 ? 1 : 6) << "at least one frame for any pre-roll";
+    ClothState state = rest_state(model);
+    const CharacterRunReport report = simulate_on_character(model, state, *character.motion, *character.body, run);
+    EXPECT_NEAR(state.time, preroll + 3.0 / 30.0, 1e-12) << preroll;
+    EXPECT_LT(report.max_waist_error, 1e-9) << preroll;
+  }
+}
+
+// The legs' speed in the pre-roll goes as its inverse, and is infinite
+// without one (the rest pose jumps to the first frame in a step).
+TEST(CharacterSetup, PrerollLegSpeedGoesAsItsInverse) {
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup setup;
+  setup.place = GarmentPlacement::first_frame;
+  Character character = make_character(walk(), setup, skirt);
+  CharacterRunOptions run = run_options(character, setup, waist_pinned(place_garment(character, setup, skirt).mesh), 3);
+  run.preroll_seconds = 0.5;
+  const double half_second = preroll_leg_speed(*character.motion, run);
+  EXPECT_GT(half_second, 0.5) << "walk_new's legs stand apart at its first frame";
+  EXPECT_LT(half_second, 2.0) << "a walk's pre-roll of 0.5 s is slower than its stride";
+  run.preroll_seconds = 0.25;
+  EXPECT_EQ(preroll_leg_speed(*character.motion, run), 2.0 * half_second);
+  run.preroll_seconds = 0.0;
+  EXPECT_EQ(preroll_leg_speed(*character.motion, run), std::numeric_limits<double>::infinity());
 }
 
 TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {
