@@ -652,6 +652,11 @@ std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest
   return lines;
 }
 
+/// Above this (m/s) a hip, knee or ankle moves too fast in the pre-roll
+/// (preroll_leg_speed): trousers on CMU 07_06 held from 0.1 s (5.6 m/s)
+/// and tore below 0.05 s (11 m/s and more).
+constexpr double kPrerollLegSpeedWarning = 8.0;
+
 /// What a script author can act on before waiting for the run (cloth-cloth
 /// contact on a fine mesh, a waist far from the pelvis, shrunk capsules, a
 /// tube garment too narrow for the motion, a motion shorter than the
@@ -674,6 +679,20 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                        "is probably not placed on the character (option 'place': \"makehuman\" for "
                                        "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
                             .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint))});
+  }
+  // A pre-roll too short for the way from the rest pose to the first frame
+  // moves the legs faster than any stride: cloth on them tears.
+  if (const double speed = preroll_leg_speed(motion, run); speed > kPrerollLegSpeedWarning) {
+    CharacterRunOptions one_second = run;
+    one_second.preroll_seconds = 1.0;
+    const double enough = preroll_leg_speed(motion, one_second) / kPrerollLegSpeedWarning;  // seconds (speed ~ 1 / pre-roll)
+    lines.push_back({LOGWARN, QStringLiteral("%1: the pre-roll of %2 s moves the legs from the rest pose to the motion's "
+                                     "first frame %3 (a walk's feet: about 4 m/s): cloth on them may tear; "
+                                     "option 'preroll' %4 s or more keeps them under %5 m/s")
+                          .arg(slot).arg(run.preroll_seconds)
+                          .arg(std::isfinite(speed) ? QStringLiteral("at up to %1 m/s").arg(speed, 0, 'f', 1)
+                                                    : QStringLiteral("in one step"))
+                          .arg(std::ceil(100.0 * enough) / 100.0, 0, 'f', 2).arg(kPrerollLegSpeedWarning, 0, 'f', 0)});
   }
   if (character.capsules_shrunk > 0)
     lines.push_back({LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
