@@ -291,6 +291,27 @@ Pose character_pose(const Motion& motion, double time, const CharacterRunOptions
   return pose;
 }
 
+LegSpeed fastest_leg_speed(const Motion& motion, int first_frame, int last_frame) {
+  LegSpeed fastest;
+  std::vector<int> joints;
+  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"})
+    if (const int joint = motion.skeleton.find(name); joint >= 0) joints.push_back(joint);
+  const int end = last_frame < 0 ? static_cast<int>(motion.frames.rows()) - 1
+                                 : std::min(last_frame, static_cast<int>(motion.frames.rows()) - 1);
+  const int begin = std::max(0, first_frame);
+  if (joints.empty() || end <= begin) return fastest;
+  Pose before = frame_pose(motion, begin);
+  for (int f = begin + 1; f <= end; ++f) {
+    Pose after = frame_pose(motion, f);
+    for (const int joint : joints) {
+      const double speed = (after.position(joint) - before.position(joint)).norm() / motion.frame_time;
+      if (speed > fastest.speed) fastest = {speed, f - 1, motion.skeleton.joints[static_cast<std::size_t>(joint)].name};
+    }
+    before = std::move(after);
+  }
+  return fastest;
+}
+
 double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = reference_pose(motion, options);
   const Pose first = pose_at(motion, options.motion_start);

@@ -607,6 +607,11 @@ QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
       if (!joint.end_site) joints.append(QString::fromStdString(joint.name));
     QVariantMap renamed;
     for (const auto& [from, to] : reading.changes.renamed) renamed.insert(QString::fromStdString(from), QString::fromStdString(to));
+    // From where a run starts (skipFirst drops the added T-pose, whose jump
+    // to the first real frame is no glitch).
+    const int first = (reading.request.setup.skip_first ? 1 : 0) +
+                      static_cast<int>(std::floor(reading.request.setup.motion_start / clip.frame_time));
+    const LegSpeed fastest = fastest_leg_speed(clip, first);
     return QVariantMap{{QStringLiteral("path"), reading.request.motionPath},
                        {QStringLiteral("units"), reading.request.motionUnits},
                        {QStringLiteral("metresPerUnit"), reading.request.motionScale},
@@ -618,7 +623,10 @@ QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
                        {QStringLiteral("legsFactor"), reading.figure.factor()},
                        {QStringLiteral("jointsRenamed"), renamed},
                        {QStringLiteral("axesTurned"), QString::fromStdString(reading.changes.turned.describe())},
-                       {QStringLiteral("axesUndecided"), QString::fromStdString(reading.changes.axes_undecided)}};
+                       {QStringLiteral("axesUndecided"), QString::fromStdString(reading.changes.axes_undecided)},
+                       {QStringLiteral("fastestLegSpeed"),
+                        QVariantMap{{QStringLiteral("speed"), fastest.speed}, {QStringLiteral("frame"), fastest.frame},
+                                    {QStringLiteral("joint"), QString::fromStdString(fastest.joint)}}}};
   });
 }
 
@@ -651,6 +659,10 @@ std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest
                                                              QString::fromStdString(renamed.begin()->second))});
   return lines;
 }
+
+/// Above this (m/s) a joint of the legs moves between two frames of a clip
+/// faster than any stride (fastest_leg_speed: the run 09_01's feet 8.2).
+constexpr double kClipLegSpeedWarning = 10.0;
 
 /// Above this (m/s) a hip, knee or ankle moves too fast in the pre-roll
 /// (preroll_leg_speed): trousers on CMU 07_06 held from 0.1 s (5.6 m/s)
@@ -693,6 +705,19 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                           .arg(std::isfinite(speed) ? QStringLiteral("at up to %1 m/s").arg(speed, 0, 'f', 1)
                                                     : QStringLiteral("in one step"))
                           .arg(std::ceil(100.0 * enough) / 100.0, 0, 'f', 2).arg(kPrerollLegSpeedWarning, 0, 'f', 0)});
+  }
+  // A glitch or jitter in the capture, within the frames the run plays.
+  {
+    const int first = static_cast<int>(std::floor(run.motion_start / motion.frame_time));
+    const int last = static_cast<int>(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time));
+    const int in_file = request.character->setup.skip_first ? 1 : 0;  // the run's frame 0 is the file's 1
+    if (const LegSpeed fastest = fastest_leg_speed(motion, first, last); fastest.speed > kClipLegSpeedWarning)
+      lines.push_back({LOGWARN, QStringLiteral("%1: %2 moves its %3 at %4 m/s between its frames %5 and %6 (from 0; a run's "
+                                       "feet: about 8): a glitch or jitter in the capture? Cloth on the legs may tear "
+                                       "there; smooth or cut the clip (motionInfo's fastestLegSpeed finds such frames)")
+                            .arg(slot, QFileInfo(request.character->motionPath).fileName(),
+                                 QString::fromStdString(fastest.joint))
+                            .arg(fastest.speed, 0, 'f', 1).arg(fastest.frame + in_file).arg(fastest.frame + in_file + 1)});
   }
   if (character.capsules_shrunk > 0)
     lines.push_back({LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
@@ -942,7 +967,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "left out), frames (frame 0 included), frameTime (s), duration (s), legs (m, hip joint to ankle "
                       "in the rest pose, 0: no legs by CMU names), legsFactor (legs / an adult's 0.79 m), "
                       "jointsRenamed, axesTurned, axesUndecided (why axes \"auto\" could not tell which way the "
-                      "clip stands, \"\" when it could). A figure whose legs are not 0.4-2 times an adult's is refused "
+                      "clip stands, \"\" when it could), fastestLegSpeed {speed m/s, frame, joint} (the fastest "
+                      "a joint of the legs moves between two frames from where a run starts: above 10 m/s, a glitch "
+                      "or jitter that tears cloth; simulate warns). A figure whose legs are not 0.4-2 times an adult's is refused "
                       "(InputError naming the units that would fit): its units look wrong. For checking clips "
                       "before a long batch."),
        {QStringLiteral("motion")},

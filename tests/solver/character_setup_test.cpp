@@ -236,6 +236,25 @@ TEST(CharacterSetup, PrerollLegSpeedGoesAsItsInverse) {
   EXPECT_EQ(preroll_leg_speed(*character.motion, run), std::numeric_limits<double>::infinity());
 }
 
+// A glitch in a capture: the root 1 m off for one frame moves every leg
+// joint 1 m in a frame, 120 m/s at 120 Hz, in and out again; the clean
+// walk stays under a run's feet.
+TEST(CharacterSetup, FastestLegSpeedFindsAGlitch) {
+  Motion clip = walk();
+  const LegSpeed clean = fastest_leg_speed(clip, 1);
+  EXPECT_GT(clean.speed, 1.0);
+  EXPECT_LT(clean.speed, 8.0);
+  const int root_x = clip.skeleton.joints[0].first_channel;  // the root's Xposition
+  ASSERT_EQ(clip.skeleton.joints[0].channels[0], Channel::x_position);
+  clip.frames(60, root_x) += 1.0;
+  const LegSpeed glitch = fastest_leg_speed(clip, 1);
+  EXPECT_TRUE(glitch.frame == 59 || glitch.frame == 60) << glitch.frame << ": frames 59 -> 60 or 60 -> 61";
+  // 1 m plus the joint's own step (a foot: under 3 cm at 120 Hz).
+  EXPECT_NEAR(glitch.speed, 1.0 / clip.frame_time, 0.03 / clip.frame_time) << glitch.joint;
+  EXPECT_EQ(fastest_leg_speed(clip, 61).speed, fastest_leg_speed(walk(), 61).speed) << "after the glitch";
+  EXPECT_EQ(fastest_leg_speed(clip, 1, 59).speed, fastest_leg_speed(walk(), 1, 59).speed) << "before it";
+}
+
 TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {
   const std::string skirt_path = shared("garments/makehuman/skirthelper.obj");
   if (!std::filesystem::exists(skirt_path)) GTEST_SKIP() << "shared data absent (" << skirt_path << ")";
