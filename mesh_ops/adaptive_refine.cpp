@@ -24,6 +24,13 @@ std::vector<int> faces_to_split(const QuadMesh& mesh, const Layers& l, const Ada
   return selected;
 }
 
+/// The faces active now (the mesh's own are stale until the refiner finishes).
+std::size_t active_faces(const QuadMesh& mesh) {
+  std::size_t count = 0;
+  for (const QuadRecord& record : quadtree(mesh)) count += record.active ? 1 : 0;
+  return count;
+}
+
 }  // namespace
 
 AdaptiveRefineReport adaptive_refine(QuadMesh& mesh, const AdaptiveRefineOptions& options) {
@@ -41,6 +48,14 @@ AdaptiveRefineReport adaptive_refine(QuadMesh& mesh, const AdaptiveRefineOptions
   for (;;) {
     const std::vector<int> selected = faces_to_split(mesh, l, options);
     if (selected.empty()) break;
+    // A split turns one active face into four: refuse the pass that would
+    // pass the bound, before its memory is taken (maxLevel 1e9 was accepted).
+    const double faces = static_cast<double>(active_faces(mesh)) + 3.0 * static_cast<double>(selected.size());
+    if (faces > options.most_faces)
+      throw ArgumentError("adaptive refinement to maxLevel " + std::to_string(options.max_level) + " would make more than " +
+                          std::to_string(static_cast<long long>(options.most_faces)) + " faces (pass " +
+                          std::to_string(report.faces_refined_per_pass.size() + 1) + " splits " +
+                          std::to_string(selected.size()) + " of them); expected a lower maxLevel or a higher delta");
     // Algorithm 3 in the order of the paper's pseudo-code: old vertices lose
     // one first, then the splits give new vertices the mean of their fathers'
     // (already decremented) R. The decisions above used the pre-pass values.

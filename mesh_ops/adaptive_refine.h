@@ -1,6 +1,7 @@
 #pragma once
 // Algorithms 2 and 3 of the paper: refine where the deformation modes say so.
 #include "quad_mesh.h"
+#include "quad_refiner.h"
 
 #include <vector>
 
@@ -10,6 +11,7 @@ struct AdaptiveRefineOptions {
   double delta = 8.0;    ///< refine a face when the sum of R over its 4 corners >= delta
   int max_level = 3;     ///< never create faces above this level (coarse = 1); >= 1
   bool balance = true;   ///< enforce 2:1 balance between neighbouring active faces
+  double most_faces = kMostFaces;  ///< refuse a pass that would make more active faces (quad_refiner.h)
 };
 
 struct AdaptiveRefineReport {
@@ -28,7 +30,9 @@ struct AdaptiveRefineReport {
 /// is below max_level, then updates R (Algorithm 3: old vertices R -= 1, a new
 /// centre gets the mean of its face's 4 corners, a new midpoint the mean of its
 /// edge's 2 ends, both from the already-decremented values). Passes stop when
-/// one splits nothing. Throws ArgumentError for max_level < 1 or a non-finite delta.
+/// one splits nothing. Throws ArgumentError for max_level < 1, a non-finite
+/// delta, or a pass that would make more than options.most_faces active
+/// faces (the mesh is then partly refined: refine a copy).
 AdaptiveRefineReport adaptive_refine(QuadMesh& mesh, const AdaptiveRefineOptions& options);
 
 }  // namespace mrcloth

@@ -7,6 +7,12 @@
 
 namespace mrcloth {
 
+/// The most active faces a refinement may make: each takes 350-500 bytes,
+/// so this is 7-10 GB (a garment of 800 coarse faces refined 7 times has
+/// 13 million). Uniform and adaptive refinement refuse more, before the
+/// memory runs out (an adaptive maxLevel of 14 took a 24 GB machine's).
+constexpr double kMostFaces = 2e7;
+
 /// What one split created: the centre and the four edge midpoints
 /// (midpoint k sits on the edge from corner k to corner k+1).
 struct QuadSplit {

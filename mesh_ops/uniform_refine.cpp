@@ -11,10 +11,10 @@ void uniform_refine(QuadMesh& mesh, int levels) {
   // Each level makes four faces of one: refuse what memory cannot hold
   // before spending minutes on it.
   double faces = static_cast<double>(mesh.n_faces());
-  for (int level = 0; level < levels && faces <= kMostUniformFaces; ++level) faces *= 4.0;
-  if (faces > kMostUniformFaces)
+  for (int level = 0; level < levels && faces <= kMostFaces; ++level) faces *= 4.0;
+  if (faces > kMostFaces)
     throw ArgumentError("uniform refinement by " + std::to_string(levels) + " levels would make more than " +
-                        std::to_string(static_cast<long long>(kMostUniformFaces)) + " faces from " +
+                        std::to_string(static_cast<long long>(kMostFaces)) + " faces from " +
                         std::to_string(mesh.n_faces()) + "; expected fewer levels (each makes four faces of one)");
   QuadRefiner refiner(mesh);
   for (int pass = 0; pass < levels; ++pass) {

@@ -44,7 +44,7 @@ const USAGE = [
   "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
   "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
   "Method:",
-  "  --levels N             uniform refinements of the high-resolution mesh, >= 1, at most 5e7 faces [2]",
+  "  --levels N             uniform refinements of the high-resolution mesh, >= 1, at most 2e7 faces [2]",
   "  --modes N              deformation modes (k-means clusters), 1..1000, at most the high mesh's vertices [3]",
   "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
   "  --map-modes M          index | highest | frequent: how the instance's modes reach the coarse garment",
@@ -120,7 +120,7 @@ const UNITS = ["m", "dm", "cm", "mm", "inch"];
 // The bounds of the values the API takes (or can run in reasonable time).
 const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
 const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, leastFps: 1, stepsPerFrame: 1000,
-                uniformFaces: 5e7};
+                uniformFaces: 2e7};  // kMostFaces (mesh_ops/quad_refiner.h)
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
 function integerOption(name, text, least, most = MOST_INTEGER) {

@@ -74,6 +74,24 @@ TEST(AdaptiveRefine, MaxLevelCapsRefinement) {
   EXPECT_EQ(report.faces_refined_per_pass, (std::vector<std::size_t>{4}));
 }
 
+TEST(AdaptiveRefine, APassBeyondTheMostFacesIsRefusedBeforeItSplits) {
+  // Every face splits in every pass: 9 -> 36 active faces pass a bound of
+  // 100, the second pass's 144 do not (maxLevel 1e9 once ran a 24 GB
+  // machine out of memory: kMostFaces bounds it by default).
+  QuadMesh mesh = test::make_grid(3, 3);
+  set_modes(mesh, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}, 1000);
+  AdaptiveRefineOptions options{4.0, 1000000000, false};
+  options.most_faces = 100.0;
+  try {
+    adaptive_refine(mesh, options);
+    ADD_FAILURE() << "refined past 100 faces";
+  } catch (const ArgumentError& error) {
+    EXPECT_NE(std::string(error.what()).find("would make more than 100 faces (pass 2 splits 36 of them)"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(AdaptiveRefineOptions{}.most_faces, kMostFaces);
+}
+
 TEST(AdaptiveRefine, NothingReachesDeltaNothingChanges) {
   QuadMesh mesh = test::make_grid(3, 3);
   const AdaptiveRefineReport report = adaptive_refine(mesh, {5.0, 3, true});  // default modes sum to 4

@@ -28,13 +28,13 @@ TEST(UniformRefine, GridCountsAreExact) {
 }
 
 TEST(UniformRefine, MoreFacesThanMemoryHoldsAreRefusedBeforeAnyWork) {
-  // 9 faces: 9 * 4^11 = 37.7 million faces pass the bound, 9 * 4^12 = 151 million do not.
+  // 9 faces: 9 * 4^10 = 9.4 million faces pass the bound, 9 * 4^11 = 37.7 million do not.
   QuadMesh mesh = test::make_grid(3, 3);
   try {
-    uniform_refine(mesh, 12);
-    ADD_FAILURE() << "refined into 151 million faces";
+    uniform_refine(mesh, 11);
+    ADD_FAILURE() << "refined into 37.7 million faces";
   } catch (const ArgumentError& error) {
-    EXPECT_NE(std::string(error.what()).find("uniform refinement by 12 levels would make more than 50000000 faces from 9"),
+    EXPECT_NE(std::string(error.what()).find("uniform refinement by 11 levels would make more than 20000000 faces from 9"),
               std::string::npos)
         << error.what();
   }

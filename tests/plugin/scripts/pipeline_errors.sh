@@ -71,9 +71,9 @@ refused "option --fps: expected at most the step rate, 120 steps per second by d
 refused "option --fps: expected a number >= 1, got \"1e-320\"" $cheap --fps 1e-320
 refused "option --step-rate: expected at most 1000 steps per frame \(30000 at --fps 30\)" $cheap --step-rate 1e9
 refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"2\"" --waist-smoothing 2 --makehuman "$tmp"
-# The garment bounds --levels (refinement makes at most 5e7 faces) and --modes (clusters of its vertices).
-refused "option --levels: 9 uniform refinements of the garment's 760 faces would make 1.99e\+8 faces, .*expected at most 8" \
-  $cheap --levels 9
+# The garment bounds --levels (refinement makes at most 2e7 faces) and --modes (clusters of its vertices).
+refused "option --levels: 8 uniform refinements of the garment's 760 faces would make 4.98e\+7 faces, .*expected at most 7" \
+  $cheap --levels 8
 printf 'v 0 0 0\nv 0.5 0 0\nv 0.5 -0.5 0\nv 0 -0.5 0\nf 1 4 3 2\n' > "$tmp/quad.obj"
 refused "option --modes: expected at most the high-resolution mesh's 9 vertices \(--levels 1\)" \
   $cheap --garment "$tmp/quad.obj" --modes 10
