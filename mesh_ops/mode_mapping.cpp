@@ -2,6 +2,7 @@
 
 #include "errors.h"
 #include "mode_layer.h"
+#include "mode_painting.h"
 
 #include <algorithm>
 #include <map>
@@ -133,6 +134,9 @@ ModeMapReport map_modes(const QuadMesh& refined, QuadMesh& coarse, ModeMapping m
     report.changed += before[static_cast<std::size_t>(v.idx())] != mode;
     coarse.property(layers.mode, v) = mode;
   }
+  // The mapped modes are the coarse mesh's computed ones: a brush stroke
+  // painted on it afterwards is erased back to them (not to the default).
+  set_computed_layer(coarse, report.modes);
   return report;
 }
 

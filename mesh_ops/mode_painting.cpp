@@ -6,6 +6,7 @@
 
 #include <OpenMesh/Core/Utils/Property.hh>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -105,6 +106,14 @@ void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes) {
     mesh.property(computed, v) = modes[static_cast<std::size_t>(v.idx())];
     mesh.property(current, v) = modes[static_cast<std::size_t>(v.idx())];
   }
+}
+
+void set_computed_layer(QuadMesh& mesh, const std::vector<int>& modes) {
+  if (modes.size() != mesh.n_vertices())
+    throw ArgumentError("set_computed_layer: " + std::to_string(modes.size()) + " modes for " +
+                        std::to_string(mesh.n_vertices()) + " vertices; expected one per vertex");
+  const auto computed = computed_handle(mesh);
+  for (const auto v : mesh.vertices()) mesh.property(computed, v) = std::max(0, modes[static_cast<std::size_t>(v.idx())]);
 }
 
 std::vector<int> computed_modes(const QuadMesh& mesh) {

@@ -29,6 +29,10 @@ void ensure_analysis_layers(QuadMesh& mesh);
 /// and as the current modes (painting starts from them).
 void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes);
 
+/// Sets only the computed modes (one per vertex, 0 = none; the current
+/// modes untouched): what eraseModes goes back to.
+void set_computed_layer(QuadMesh& mesh, const std::vector<int>& modes);
+
 /// The computed mode of every vertex (0 where none was computed; all 0 when
 /// the mesh has never been analysed).
 std::vector<int> computed_modes(const QuadMesh& mesh);

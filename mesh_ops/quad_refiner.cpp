@@ -1,12 +1,14 @@
 #include "quad_refiner.h"
 
 #include "errors.h"
+#include "mode_painting.h"
 #include "quadtree_forest.h"
 #include "texture_coords.h"
 
 namespace mrcloth {
 
 QuadRefiner::QuadRefiner(QuadMesh& mesh) : mesh_(mesh), layers_(get_layers(mesh)) {
+  mesh.get_property_handle(computed_, layer::computed_mode);
   midpoints_.reserve(mesh.n_vertices() * 2);
   for (auto v : mesh.vertices()) {
     const OpenMesh::Vec2i p = mesh.property(layers_.parents, v);
@@ -102,6 +104,16 @@ void QuadRefiner::inherit_from_fathers(int vertex, std::initializer_list<int> fa
   // Round half up so a midpoint between modes 2 and 3 counts as 3: wrinkle
   // regions should not shrink when a painted mesh is refined.
   mesh_.property(layers_.mode, vh) = (2 * mode_sum + n) / (2 * n);
+  // The computed modes alike, where every father has one (0: none).
+  if (!computed_.is_valid()) return;
+  int computed_sum = 0;
+  bool all = true;
+  for (int f : fathers) {
+    const int c = mesh_.property(computed_, mesh_.vertex_handle(f));
+    all = all && c > 0;
+    computed_sum += c;
+  }
+  mesh_.property(computed_, vh) = all ? (2 * computed_sum + n) / (2 * n) : 0;
 }
 
 void QuadRefiner::finish() { rebuild_active_faces(mesh_); }

@@ -54,6 +54,10 @@ class QuadRefiner {
 
   QuadMesh& mesh_;
   Layers layers_;
+  /// The computed modes (mode_painting.h), where the mesh has them: new
+  /// vertices inherit them as they inherit the modes, so eraseModes on a
+  /// refined mesh goes back to them, not to the default mode.
+  OpenMesh::VPropHandleT<int> computed_;
   std::unordered_map<std::uint64_t, int> midpoints_;
 };
 

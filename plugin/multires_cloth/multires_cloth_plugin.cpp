@@ -916,8 +916,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                                 "sphere: center [x, y, z] m, radius m (inclusive); geodesic: seeds int[], radius m; "
                                 "threshold: layer (e.g. \"mean_curvature\"), threshold, below: bool = false}")}},
       {QStringLiteral("eraseModes(int id, int[] vertexIds = all) -> int"),
-       QStringLiteral("Puts painted vertices back to the modes extractModes computed (the default mode where none "
-                      "was); returns how many changed."),
+       QStringLiteral("Puts painted vertices back to the modes extractModes computed or mapModes mapped, which "
+                      "refinement carries to new vertices (the default mode where none was); returns how many "
+                      "changed."),
        {QStringLiteral("id"), QStringLiteral("vertexIds")},
        {id_text, QStringLiteral("vertex indices; omitted: every vertex")}},
       {QStringLiteral("getLayer(int id, string name) -> number[]"),
@@ -1117,7 +1118,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
         QStringLiteral("{regionMode: int >= 1 = the reference's highest mode, maxFrames: int >= 1 = all}")}},
       {QStringLiteral("mapModes(int refinedId, int coarseId, object options = {}) -> object"),
        QStringLiteral("Writes the modes of a refined mesh (e.g. after extractModes) onto the coarse mesh it was "
-                      "refined from. index: coarse vertex i takes refined vertex i's mode (the paper's rule); "
+                      "refined from, as its modes and its computed modes (what eraseModes goes back to). index: "
+                      "coarse vertex i takes refined vertex i's mode (the paper's rule); "
                       "highest / frequent: the highest / most frequent mode (ties: the higher) in its cell, the "
                       "refined vertices in the quarters of its coarse faces nearest to it. Returns operation, "
                       "source, result, method, vertices, changed, agreeHighest and agreeFrequent (coarse vertices "

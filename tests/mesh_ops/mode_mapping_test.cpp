@@ -6,6 +6,7 @@
 #include "mesh_ops/adaptive_refine.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/mode_layer.h"
+#include "mesh_ops/mode_painting.h"
 #include "mesh_ops/uniform_refine.h"
 #include "test_meshes.h"
 
@@ -97,6 +98,22 @@ TEST(ModeMapping, IndexHighestAndFrequent) {
   EXPECT_EQ(highest.agree_highest, agree_highest) << "the counts do not depend on the mapping chosen";
   EXPECT_LT(index.agree_highest, 16);
   for (int v = 0; v < 16; ++v) EXPECT_EQ(index.cell_sizes[static_cast<std::size_t>(v)], static_cast<int>(cells[static_cast<std::size_t>(v)].size()));
+}
+
+// The mapped modes are the coarse mesh's computed ones: a brush stroke on
+// the coarse mesh afterwards is erased back to them, not to the default.
+TEST(ModeMapping, ErasingAfterMappingGoesBackToTheMappedModes) {
+  QuadMesh coarse = test::make_grid(3, 3, 1.0);
+  QuadMesh refined = copy_mesh(coarse);
+  uniform_refine(refined, 1);
+  set_modes(refined, {5, 6}, 3);
+  const ModeMapReport mapped = map_modes(refined, coarse, ModeMapping::stable_index);
+  EXPECT_EQ(computed_modes(coarse), mapped.modes);
+  set_modes(coarse, {5}, 2);
+  EXPECT_EQ(erase_modes(coarse, {5}), 1u);
+  EXPECT_EQ(get_modes(coarse)[5], 3);
+  EXPECT_EQ(erase_modes(coarse), 0u);
+  EXPECT_EQ(get_modes(coarse), mapped.modes);
 }
 
 TEST(ModeMapping, TiesGoToTheHigherMode) {

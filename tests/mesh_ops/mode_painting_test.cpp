@@ -6,6 +6,7 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
+#include "mesh_ops/uniform_refine.h"
 #include "test_meshes.h"
 
 #include <gtest/gtest.h>
@@ -111,6 +112,39 @@ TEST(ModePainting, EraseGoesBackToTheComputedModes) {
   EXPECT_THROW(erase_modes(mesh, {-1}), ArgumentError);
   EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(49, 0)), ArgumentError);
   EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(3, 1)), ArgumentError);
+}
+
+// New vertices inherit the computed modes as they inherit the modes (the
+// rounded mean of their fathers'), so erasing nothing painted on a refined
+// mesh changes nothing; a father without a computed mode leaves none.
+TEST(ModePainting, RefinementCarriesTheComputedModes) {
+  QuadMesh mesh = test::make_grid(2, 1, 1.0);  // vertices 0 1 2 / 3 4 5
+  set_computed_modes(mesh, {1, 2, 3, 2, 3, 3});
+  QuadMesh refined = copy_mesh(mesh);
+  uniform_refine(refined, 2);
+  EXPECT_EQ(computed_modes(refined), get_modes(refined));
+  EXPECT_EQ(erase_modes(refined), 0u) << "nothing painted";
+  // The midpoint of edge 0-1 (modes 1, 2) rounds half up to 2.
+  bool found = false;
+  for (const auto v : refined.vertices()) {
+    const auto& p = refined.point(v);
+    if (std::abs(p[0] - 0.5) < 1e-12 && std::abs(p[1]) < 1e-12) {
+      EXPECT_EQ(computed_modes(refined)[static_cast<std::size_t>(v.idx())], 2);
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+  // Painted, refined, erased: back to the computed modes.
+  QuadMesh painted = copy_mesh(mesh);
+  set_modes(painted, {4}, 9);
+  uniform_refine(painted, 1);
+  EXPECT_GT(erase_modes(painted), 1u) << "vertex 4 and the new ones around it";
+  EXPECT_EQ(get_modes(painted), computed_modes(painted));
+  // A mesh with no computed modes gets none by refining.
+  QuadMesh plain = test::make_grid(2, 1, 1.0);
+  uniform_refine(plain, 1);
+  OpenMesh::VPropHandleT<int> handle;
+  EXPECT_FALSE(plain.get_property_handle(handle, layer::computed_mode));
 }
 
 TEST(ModePainting, LayersRoundTripThroughOmAndCsv) {
