@@ -7,6 +7,7 @@
 #include <OpenMesh/Core/Utils/Property.hh>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -276,18 +277,29 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
   int line = 0;
   if (!std::getline(in, text)) fail(1, "the file is empty", "a header line naming the vertex and mode columns");
   ++line;
+  // A spreadsheet's export: a byte-order mark, "Vertex", " mode\r".
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
   const std::vector<std::string> header = split_csv(text);
+  const auto named = [](std::string field) {
+    field.erase(0, field.find_first_not_of(" \t"));
+    field.erase(field.find_last_not_of(" \t\r") + 1);
+    for (char& c : field) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return field;
+  };
   int vertex_column = -1, mode_column = -1;
   for (std::size_t c = 0; c < header.size(); ++c) {
-    if (header[c] == "vertex") vertex_column = static_cast<int>(c);
-    if (header[c] == "mode") mode_column = static_cast<int>(c);
+    if (named(header[c]) == "vertex") vertex_column = static_cast<int>(c);
+    if (named(header[c]) == "mode") mode_column = static_cast<int>(c);
   }
   if (vertex_column < 0 || mode_column < 0) fail(1, "the header has no 'vertex' or no 'mode' column", "vertex,mode,...");
   const int n = static_cast<int>(mesh.n_vertices());
   std::vector<std::pair<int, int>> assignments;
+  std::vector<int> first_line(static_cast<std::size_t>(n), 0);  // per vertex, the line that set it (0: none)
   const auto integer = [&](const std::string& field, const char* what) {
     int value = 0;
     const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (error == std::errc::result_out_of_range)
+      fail(line, std::string(what) + " " + field + " is out of range", std::string("a ") + what + " the mesh has");
     if (error != std::errc() || end != field.data() + field.size() || field.empty())
       fail(line, std::string(what) + " \"" + field + "\" is not an integer", std::string("an integer ") + what);
     return value;
@@ -304,6 +316,11 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
       fail(line, "vertex " + std::to_string(vertex) + " is out of range", "a vertex below " + std::to_string(n));
     if (mode < 0 || mode > kLargestMode)
       fail(line, "mode " + std::to_string(mode) + " is out of range", "a mode from 0 to " + std::to_string(kLargestMode));
+    int& earlier = first_line[static_cast<std::size_t>(vertex)];
+    if (earlier > 0)
+      fail(line, "vertex " + std::to_string(vertex) + " is given again (first at line " + std::to_string(earlier) + ")",
+           "one row per vertex");
+    earlier = line;
     assignments.emplace_back(vertex, mode);
   }
   const auto layer_handle = ensure_layers(mesh).mode;

@@ -67,9 +67,11 @@ std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids = {})
 void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path);
 
 /// Reads modes from a CSV with a header naming a "vertex" and a "mode"
-/// column (any others ignored, e.g. write_vertex_layers_csv's) and sets them;
-/// vertices not listed keep theirs. InputError naming the file and line for
-/// anything malformed; nothing changes then. Returns how many were set.
+/// column (case and spaces ignored, a byte-order mark skipped; any other
+/// columns ignored, e.g. write_vertex_layers_csv's) and sets them; vertices
+/// not listed keep theirs. InputError naming the file and line for anything
+/// malformed, a vertex given twice included; nothing changes then. Returns
+/// how many were set.
 std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path);
 
 }  // namespace mrcloth

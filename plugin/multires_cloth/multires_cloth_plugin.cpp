@@ -233,7 +233,14 @@ void MultiresClothPlugin::saveLayers(QVariant id, QVariant path) {
 int MultiresClothPlugin::loadModes(QVariant id, QVariant path) {
   return guarded("loadModes", [&] {
     QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
-    return static_cast<int>(read_modes_csv(mesh, script::toString(path, QStringLiteral("path")).toStdString()));
+    const QString file = script::toString(path, QStringLiteral("path"));
+    const std::size_t set = read_modes_csv(mesh, file.toStdString());
+    // A subset is legitimate (a tool's selection), but a CSV of another mesh
+    // (the coarse garment's loaded into its refinement) looks just like one.
+    if (set != mesh.n_vertices())
+      emit log(LOGWARN, QStringLiteral("loadModes: %1 sets the modes of %2 of the mesh's %3 vertices; the others keep "
+                                       "theirs (a CSV of another mesh?)").arg(file).arg(set).arg(mesh.n_vertices()));
+    return static_cast<int>(set);
   });
 }
 

@@ -212,11 +212,17 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   expect_error("vertex,mode\n0,1\n1,2147483647\n", ":3: mode 2147483647 is out of range");
   expect_error("vertex,mode\n0\n", ":2: 1 fields");
   expect_error("vertex,mode\n1.5,2\n", ":2: vertex \"1.5\" is not an integer");
+  expect_error("vertex,mode\n0,99999999999\n", ":2: mode 99999999999 is out of range");
+  expect_error("vertex,mode\n4,2\n0,1\n4,3\n", ":4: vertex 4 is given again (first at line 2); expected one row per vertex");
   EXPECT_THROW(read_modes_csv(mesh, (dir / "missing.csv").string()), InputError);
   // Extra columns and a header in any order are fine; unlisted vertices keep their modes.
   std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";
   EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()), 2u);
   EXPECT_EQ(get_modes(mesh), (std::vector<int>{2, 1, 1, 1, 3, 1, 1, 1, 1}));
+  // A spreadsheet's export: a byte-order mark, capitals, spaces, CRLF.
+  std::ofstream(dir / "excel.csv") << "\xEF\xBB\xBFVertex , Mode\r\n1,5\r\n";
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "excel.csv").string()), 1u);
+  EXPECT_EQ(get_modes(mesh)[1], 5);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // A garment with triangles loads as an all-quad mesh (each triangle split
 // into 3 quads), with a [warn] line saying so (checked by run_and_check.cmake).
 // The triangulated file is made by exporting the 3 x 3 grid with triangulate.
+// And loadModes warns when a CSV sets only some of a mesh's vertices.
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 core.makePath(tmpDir);
@@ -12,4 +13,10 @@ const info = core.objectInfo(core.loadObject(tmpDir + "/triangulated.obj"));
 if (info.faces !== 54 || info.vertices !== 67)
   throw new Error("triangulated grid: expected 67 vertices and 54 faces, got " + info.vertices + " and " + info.faces);
 if (Math.abs(info.area - 9) > 1e-12 * 9) throw new Error("area " + info.area);
+// The coarse grid's modes loaded into its refinement set 16 of its 49
+// vertices: legitimate for a tool's selection, but warned of.
+multirescloth.saveLayers(grid, tmpDir + "/coarse_layers.csv");
+const refined = multirescloth.refineUniform(grid, 1);
+if (multirescloth.loadModes(refined, tmpDir + "/coarse_layers.csv") !== 16) throw new Error("rows read");
+if (multirescloth.loadModes(grid, tmpDir + "/coarse_layers.csv") !== 16) throw new Error("rows read, whole");
 print("load warning: ok");
