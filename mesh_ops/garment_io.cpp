@@ -737,6 +737,39 @@ void check_garment_surface(const std::string& path, const QuadMesh& mesh) {
   }
 }
 
+/// A warning when a face is concave (a dart: one corner turned inwards):
+/// its bilinear split folds a child face over another, the surface
+/// overlapping itself. Empty when every face is convex.
+std::string concave_faces_warning(const std::string& path, const QuadMesh& mesh) {
+  std::size_t concave = 0;
+  int first_face = -1, first_corner = -1;
+  for (const auto f : mesh.faces()) {
+    std::vector<OpenMesh::Vec3d> p;
+    for (const auto v : mesh.fv_range(f)) p.push_back(mesh.point(v));
+    OpenMesh::Vec3d normal(0, 0, 0);  // Newell's
+    for (std::size_t k = 0; k < p.size(); ++k) normal += OpenMesh::cross(p[k], p[(k + 1) % p.size()]);
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const OpenMesh::Vec3d& before = p[(k + p.size() - 1) % p.size()];
+      const OpenMesh::Vec3d& after = p[(k + 1) % p.size()];
+      // Turned against the face, beyond round-off (a T-node's corner, on a
+      // straight edge, turns by nothing).
+      const OpenMesh::Vec3d in = p[k] - before, out = after - p[k];
+      if (OpenMesh::dot(OpenMesh::cross(in, out), normal) < -1e-9 * in.norm() * out.norm() * normal.norm()) {
+        if (concave++ == 0) {
+          first_face = f.idx();
+          first_corner = static_cast<int>(k);
+        }
+        break;
+      }
+    }
+  }
+  if (concave == 0) return {};
+  return with_path(path, face_label(first_face) + " is concave at its corner " + std::to_string(first_corner) +
+                             (concave > 1 ? " (and " + std::to_string(concave - 1) + " more faces are concave)" : "") +
+                             ": refining it folds a child face over another; expected convex faces (split or "
+                             "reshape darts)");
+}
+
 /// A warning when boundary vertices lie on one another (within a
 /// millionth of the median edge): panels exported with their seams not
 /// welded, which the simulation would let fall apart, only the pinned
@@ -756,7 +789,10 @@ std::string unwelded_seams_warning(const std::string& path, const QuadMesh& mesh
   int first_a = -1, first_b = -1;
   for (std::size_t i = 0; i < rim.size(); ++i)
     for (std::size_t j = i + 1; j < rim.size() && rim[j].first[0] - rim[i].first[0] <= tolerance; ++j)
-      if ((rim[j].first - rim[i].first).norm() <= tolerance) {
+      if ((rim[j].first - rim[i].first).norm() <= tolerance &&
+          // Ends of one (very short) edge are no seam to weld: merging them would collapse faces.
+          !mesh.find_halfedge(mesh.vertex_handle(static_cast<unsigned>(rim[i].second)),
+                              mesh.vertex_handle(static_cast<unsigned>(rim[j].second))).is_valid()) {
         if (pairs++ == 0) std::tie(first_a, first_b) = std::minmax(rim[i].second, rim[j].second);
       }
   if (pairs == 0) return {};
@@ -897,6 +933,8 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   check_garment_surface(path, mesh);
   if (std::string unwelded = unwelded_seams_warning(path, mesh); !unwelded.empty())
     result.warnings.push_back(std::move(unwelded));
+  if (std::string concave = concave_faces_warning(path, mesh); !concave.empty())
+    result.warnings.push_back(std::move(concave));
 
   const std::size_t faces_read = mesh.n_faces();
   std::vector<SplitQuad> split;
