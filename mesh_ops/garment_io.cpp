@@ -139,18 +139,32 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
       return OpenMesh::FaceHandle();
     }
     const OpenMesh::FaceHandle added = target_.add_face(corners);
-    if (!added.is_valid()) {
-      problem_ = {face, face_label(face) +
-                            " is non-manifold (it would make an edge shared by more than two faces, an edge "
-                            "used twice in the same direction, or a non-manifold vertex); expected an "
-                            "oriented 2-manifold quad mesh"};
-    }
+    if (!added.is_valid()) problem_ = {face, face_label(face) + why_not_added(corners)};
     return added;
   }
 
   const FaceProblem& problem() const { return problem_; }
 
  private:
+  /// Why the mesh refused a face whose corners are valid: the first of its
+  /// edges that cannot join the faces read before it, named by its vertices.
+  std::string why_not_added(const VHandles& corners) const {
+    const std::string expected = "; expected an oriented 2-manifold quad mesh";
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const VertexHandle a = corners[k], b = corners[(k + 1) % corners.size()];
+      const std::string edge = "edge " + std::to_string(a.idx()) + "-" + std::to_string(b.idx());
+      const auto along = target_.find_halfedge(a, b), against = target_.find_halfedge(b, a);
+      if (along.is_valid() && !target_.is_boundary(along)) {
+        if (against.is_valid() && !target_.is_boundary(against))
+          return " would be a third face on its " + edge + expected;
+        return " runs its " + edge + " the way face " + std::to_string(target_.face_handle(along).idx()) +
+               " does: one of them is wound the other way round (or the surface is one-sided, a Moebius strip)" +
+               expected + " (faces wound alike, as seen from one side)";
+      }
+    }
+    return " would join the faces before it only at a vertex (a bow-tie)" + expected;
+  }
+
   std::string corner_issue(const VHandles& corners) const {
     if (corners.size() < 3)
       return " has only " + std::to_string(corners.size()) + " corners; expected at least 3";

@@ -368,16 +368,24 @@ TEST(GarmentLoadErrors, NonFiniteCoordinateOffAndPly) {
 TEST(GarmentLoadErrors, NonManifoldEdge) {
   ScratchDir dir;
   EXPECT_LOAD_ERROR(write_file(dir.file("fan.obj"), kThreeQuadsOnOneEdgeObj),
-                    "face 2 is non-manifold (it would make an edge shared by more than two faces");
+                    "face 2 would be a third face on its edge 0-1; expected an oriented 2-manifold quad mesh");
   // With texture coordinates the OBJ reader takes another path after add_face.
   EXPECT_LOAD_ERROR(write_file(dir.file("fan_uv.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\nv 1 -1 0\nv 0 0 1\nv 1 0 1\nvt 0 0\n"
                                "f 1/1 2/1 3/1 4/1\nf 2/1 1/1 5/1 6/1\nf 1/1 2/1 8/1 7/1\nf 5/1 6/1 8/1\n"),
-                    "face 2 is non-manifold");
+                    "face 2 would be a third face on its edge 0-1");
   EXPECT_LOAD_ERROR(write_file(dir.file("fan.off"),
                                "OFF\n8 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 -1 0\n1 -1 0\n0 0 1\n1 0 1\n"
                                "4 0 1 2 3\n4 1 0 4 5\n4 1 0 6 7\n"),
-                    "face 2 is non-manifold");
+                    "face 2 would be a third face on its edge 1-0");
+}
+
+TEST(GarmentLoadErrors, AFaceWoundTheOtherWayIsNamedWithItsEdge) {
+  // Two squares sharing the edge 1-2, the second wound clockwise.
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("flipped.obj"),
+                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 3 6 5\n"),
+                    "face 1 runs its edge 1-2 the way face 0 does: one of them is wound the other way round");
 }
 
 TEST(GarmentLoadErrors, NonManifoldVertex) {
@@ -388,7 +396,7 @@ TEST(GarmentLoadErrors, NonManifoldVertex) {
                                "OFF\n12 5 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n0 2 0\n1 2 0\n2 2 0\n"
                                "1 1 1\n2 1 1\n2 2 1\n"
                                "4 0 1 4 3\n4 1 2 5 4\n4 3 4 7 6\n4 4 5 8 7\n4 4 9 10 11\n"),
-                    "face 4 is non-manifold");
+                    "face 4 would join the faces before it only at a vertex (a bow-tie)");
 }
 
 TEST(GarmentLoadErrors, RepeatedVertexInFace) {
@@ -422,11 +430,11 @@ TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
   EXPECT_LOAD_ERROR(write_file(dir.file("two.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 1 2 3\nf 1 2 3 7\n"),
                     "face 1 (line 6) uses vertex 1 more than once");
-  // Face 1 is non-manifold (found by the importer) before face 2 repeats a vertex.
+  // Face 1 cannot join face 0 (found by the importer) before face 2 repeats a vertex.
   EXPECT_LOAD_ERROR(write_file(dir.file("order.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\n"
                                "f 1 2 3 4\nf 1 2 3 5\nf 1 4 4 5\n"),
-                    "face 1 is non-manifold");
+                    "face 1 runs its edge 0-1 the way face 0 does");
 }
 
 TEST(GarmentLoadErrors, OpenMeshDiagnosticsStayQuiet) {
