@@ -300,6 +300,11 @@ int MultiresClothPlugin::refineAdaptive(QVariant id, QVariant options) {
 
 QVariantMap MultiresClothPlugin::lastReport() { return last_report_; }
 
+void MultiresClothPlugin::warn(const QString& text) {
+  emit log(LOGWARN, text);
+  run_warnings_ << text;
+}
+
 void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant options) {
   guarded("exportSurface", [&] {
     const StoredObject& object = store().get(script::toInt(id, QStringLiteral("id")));
@@ -343,12 +348,13 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
 
 QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
   return guarded("simulate", [&] {
+    run_warnings_.clear();
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const SimulationRequest request = parseSimulationOptions(options, *input.mesh);
     if (request.character) return simulateOnCharacter(QStringLiteral("simulate"), input, request);
     const QString contact_warning =
         selfContactWarning(QStringLiteral("simulate"), *input.mesh, request.simulation.self_contact);
-    if (!contact_warning.isEmpty()) emit log(LOGWARN, contact_warning);
+    if (!contact_warning.isEmpty()) warn(contact_warning);
     const DynamicsModel model = build_dynamics(*input.mesh, request.dynamics);
     ClothState state = rest_state(model);
 
@@ -395,17 +401,17 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
 
     if (report.initial_penetration > 0.0)
-      emit log(LOGWARN, QStringLiteral("simulate: the cloth starts %1 mm inside a collider (or its thickness); "
+      warn(QStringLiteral("simulate: the cloth starts %1 mm inside a collider (or its thickness); "
                                        "it is pushed out on the first step, which stretches it: move the "
                                        "colliders or the garment so they start apart")
                             .arg(1000.0 * report.initial_penetration, 0, 'f', 1));
     const QString pinned_warning = pinnedDepthWarning(QStringLiteral("simulate"), report);
-    if (!pinned_warning.isEmpty()) emit log(LOGWARN, pinned_warning);
+    if (!pinned_warning.isEmpty()) warn(pinned_warning);
     if (report.cancelled)
-      emit log(LOGWARN, QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
+      warn(QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
                             .arg(report.frames).arg(settings.frames));
     else if (report.non_finite)
-      emit log(LOGWARN, QStringLiteral("simulate: the simulation became non-finite (NaN or infinity) in frame %1 "
+      warn(QStringLiteral("simulate: the simulation became non-finite (NaN or infinity) in frame %1 "
                                        "of %2; nothing was written (try more substeps or a softer material)")
                             .arg(report.frames + 1).arg(settings.frames));
     else
@@ -418,6 +424,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                             .arg(report.cache_path.empty() ? QString()
                                                            : QStringLiteral(" -> ") +
                                                                  QString::fromStdString(report.cache_path)));
+    last_report_.insert(QStringLiteral("warnings"), run_warnings_);
     return last_report_;
   });
 }
@@ -599,6 +606,7 @@ QVariantMap MultiresClothPlugin::compareResults(QVariant id, QVariant cachePath,
 
 QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   return guarded("recordInstance", [&] {
+    run_warnings_.clear();
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const SimulationRequest request = parseSimulationOptions(options, *input.mesh, SimulationCall::recordInstance);
     return simulateOnCharacter(QStringLiteral("recordInstance"), input, request);
@@ -770,7 +778,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   Character character = loadCharacter(wanted, *input.mesh, &changes);
   const JointRenaming& renamed = changes.renamed;
   const Motion& motion = *character.motion;
-  for (const LogLine& line : clipChangeLines(slot, wanted, changes)) emit log(line.type, line.text);
+  for (const LogLine& line : clipChangeLines(slot, wanted, changes)) {
+    if (line.type == LOGWARN) warn(line.text);
+    else emit log(line.type, line.text);
+  }
 
   // The garment in the skeleton's rest space (on the skinned body, moved
   // clear of it); the object itself is untouched.
@@ -786,7 +797,10 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
 
   std::vector<LogLine> checks;
   const QVariantMap fit = checkBeforeCharacterRun(slot, request, character, run, model, *garment, checks);
-  for (const LogLine& line : checks) emit log(line.type, line.text);
+  for (const LogLine& line : checks) {
+    if (line.type == LOGWARN) warn(line.text);
+    else emit log(line.type, line.text);
+  }
 
   const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
   std::vector<Positions> frames;  // kept only for an OBJ sequence
@@ -855,7 +869,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // Like the fit, where the pins go is the garment's and the motion's, the
   // same for every refinement of one garment (the pipeline says it once).
   const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
-  if (!pinned_warning.isEmpty() && request.character->fitWarning) emit log(LOGWARN, pinned_warning);
+  if (!pinned_warning.isEmpty() && request.character->fitWarning) warn(pinned_warning);
   // Where the garment starts is its own and the body's, the same for every
   // refinement of it, so it is said with the fit (the pipeline: once per
   // motion; the report has initialPenetration either way). Capsules are
@@ -865,18 +879,18 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   // both depths rather than as a misplacement.
   const double initial = report.preroll.initial_penetration, thickness = wanted.setup.thickness;
   if (initial > 1e-6 && request.character->fitWarning)  // clearing leaves round-off
-    emit log(LOGWARN, QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body's surface and its %3 mm "
+    warn(QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body's surface and its %3 mm "
                                      "thickness (%4 mm past the surface); it is pushed out on the first step")
                           .arg(slot).arg(1000.0 * initial, 0, 'f', 1).arg(1000.0 * thickness, 0, 'f', 1)
                           .arg(1000.0 * std::max(0.0, initial - thickness), 0, 'f', 1));
   if (report.preroll.cancelled)
-    emit log(LOGWARN, QStringLiteral("%1: cancelled during the pre-roll, after %2 of its %3 frames; nothing was written")
+    warn(QStringLiteral("%1: cancelled during the pre-roll, after %2 of its %3 frames; nothing was written")
                           .arg(slot).arg(report.preroll.frames).arg(preroll_frame_count(run)));
   else if (motion_report.cancelled)
-    emit log(LOGWARN, QStringLiteral("%1: cancelled after %2 of %3 frames; nothing was written")
+    warn(QStringLiteral("%1: cancelled after %2 of %3 frames; nothing was written")
                           .arg(slot).arg(motion_report.frames).arg(run.frames));
   else if (motion_report.non_finite)
-    emit log(LOGWARN, QStringLiteral("%1: the simulation became non-finite (NaN or infinity) %2; nothing was written "
+    warn(QStringLiteral("%1: the simulation became non-finite (NaN or infinity) %2; nothing was written "
                                      "(try a higher stepRate, a longer preroll or a softer material)")
                           .arg(slot)
                           .arg(report.preroll.non_finite ? QStringLiteral("during the pre-roll")
@@ -898,6 +912,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                    ? QString()
                                    : QStringLiteral(" -> ") + QString::fromStdString(motion_report.cache_path))
                           .arg(rest_mesh.isEmpty() ? QString() : QStringLiteral(" + ") + rest_mesh));
+  last_report_.insert(QStringLiteral("warnings"), run_warnings_);
   return last_report_;
 }
 
@@ -998,7 +1013,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "body's surface, see pinsYield), maxFaceDepth (m: deepest face centre below it; only vertices collide, so "
                       "large faces on a curved body sink in between their corners), deepest {vertex, frame, pinned} (where "
                       "maxPenetration was met; -1: never; pinned: a pinned vertex), "
-                      "mostStretched {vertices: [i, j], frame} (the spring with maxStretch), initialPenetration (m: the cloth's at the start, pins not counted), nonFinite, cancelled, "
+                      "mostStretched {vertices: [i, j], frame} (the spring with maxStretch), initialPenetration (m: the cloth's at the start, pins not counted), nonFinite, cancelled, warnings (every warning the call logged), "
                       "output, vertices, freeVertices, pinnedVertices, hangingVertices, springs {stretch, shear, "
                       "bend}, perFrameMs [{dynamics, collision}], objFiles, resultId (with updateObject). The "
                       "object is untouched. Files appear only when the run completes (not on Ctrl-C or NaN). "

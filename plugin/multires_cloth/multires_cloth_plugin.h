@@ -80,9 +80,13 @@ class MultiresClothPlugin : public QObject,
   auto guarded(const char* slot, Body&& body) -> decltype(body());
   /// simulate or recordInstance with `motion`: the garment on a character.
   QVariantMap simulateOnCharacter(const QString& slot, const StoredObject& input, const SimulationRequest& request);
+  /// Logs a warning of the running simulate / recordInstance and keeps it
+  /// for its report's `warnings` (a batch script can act on them).
+  void warn(const QString& text);
 
   ObjectStore* store_ = nullptr;
   QVariantMap last_report_;
+  QStringList run_warnings_;  ///< the running simulate / recordInstance's warnings
 };
 
 }  // namespace mrcloth

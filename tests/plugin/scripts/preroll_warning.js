@@ -13,7 +13,11 @@ const skirt = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj
 const walk = core.resourcePath() + "/characters/walk_new.bvh";
 const run = (clip, preroll, frames) => multirescloth.simulate(skirt, {
   motion: {path: clip}, body: "capsules", place: "firstFrame", preroll: preroll, frames: frames, fitWarning: false});
-for (const preroll of [0.5, 0.02, 0]) run(walk, preroll, 1);
+// Each warning is in the run's report too, for a batch script to act on.
+const warnings = [0.5, 0.02, 0].map((preroll) => run(walk, preroll, 1).warnings);
+expectEqual(warnings.map((w) => w.length), [0, 1, 1], "the reports' warnings");
+expectEqual([warnings[1][0].includes("the pre-roll of 0.02 s moves the legs"), warnings[2][0].includes("in one step")],
+            [true, true], "the reports' warnings, word for word as logged: " + JSON.stringify(warnings));
 
 // The same walk with its root 1 m along x at frame 60 (from 0, the T-pose).
 const lines = core.readTextFile(walk).split("\n");
@@ -28,6 +32,6 @@ const fastest = multirescloth.motionInfo({path: glitch}).fastestLegSpeed;
 expectEqual([fastest.frame === 59 || fastest.frame === 60, fastest.speed > 110, fastest.speed < 130], [true, true, true],
             "the glitch found: " + JSON.stringify(fastest));
 expectAtMost(multirescloth.motionInfo({path: walk}).fastestLegSpeed.speed, 8, "the clean walk's fastest leg joint, m/s");
-run(glitch, 0.5, 1);   // frames 1-5 of the run: the glitch is later, no warning
-run(glitch, 0.5, 30);  // a second: it is run through
+expectEqual(run(glitch, 0.5, 1).warnings, [], "frames 1-5 of the run: the glitch is later, no warning");
+expectEqual(run(glitch, 0.5, 30).warnings.length, 1, "a second: it is run through");
 print("motion warnings: ok");
