@@ -744,6 +744,7 @@ function runPipeline(options, inputs) {
     meanRounds: report.meanRounds, garmentCleared: report.garmentCleared, maxWaistError: report.maxWaistError,
     nonFinite: report.nonFinite, preroll: report.preroll.msPerFrame, stepRate: report.stepRate,
     threads: options.threads,  // the times are this many threads' (a resumed run may have others)
+    warnings: report.warnings,
   });
   const mustFinish = (what, report) => {
     if (report.cancelled) throw new Error("pipeline: " + what + " was cancelled");
@@ -932,6 +933,10 @@ function runPipeline(options, inputs) {
                                 maxClothPenetration: run.numbers.maxClothPenetration,
                                 penetrationPinned: run.numbers.penetrationPinned, maxFaceDepth: run.numbers.maxFaceDepth,
                                 meanRounds: run.numbers.meanRounds, cache: run.cache, modelFile: run.modelFile})),
+    // Every run's warnings, as the runs logged them (none: an empty list).
+    warnings: [{run: "instance on " + baseName(options.instance), warnings: instanceRecord.warnings || []}].concat(
+        runs.map((run) => ({run: run.model + " on " + run.motion, warnings: run.numbers.warnings || []})))
+        .filter((entry) => entry.warnings.length > 0),
     // What every test run was given besides its motion and output (for
     // re-running one, as bench/distance_floor.js does).
     testSettings: Object.assign(characterSettings(options.testFrames),
@@ -945,7 +950,9 @@ function runPipeline(options, inputs) {
   core.writeTextFile(out + "/report.md", reportMarkdown(report));
   print("pipeline: " + runs.length + " runs of " + models.length + " models; report " + out + "/report.md (" +
         stages.ran.length + " stages run, " + stages.skipped.length + " resumed) in " +
-        report.seconds.toFixed(1) + " s");
+        report.seconds.toFixed(1) + " s" +
+        (report.warnings.length > 0 ? "; " + report.warnings.length + " of its " + (runs.length + 1) +
+                                      " simulations warned (its Warnings section)" : ""));
 }
 
 /// The modes, k-means on the instance's curvature: too few distinct values
@@ -1118,6 +1125,12 @@ function reportMarkdown(report) {
                  fixed(row.collisionMs, 2) + " | " + fixed(row.totalMs, 2) + " | " + stretchCell(row) +
                  " | " + fixed(1000 * row.maxTearOpening, 1) + " mm | " + penetrationCell(row) + " | " +
                  (row.maxFaceDepth === undefined ? "-" : fixed(1000 * row.maxFaceDepth, 1) + " mm") + " |");
+    lines.push("");
+  }
+  if (report.warnings.length > 0) {
+    lines.push("## Warnings", "", "What the runs warned of (the same lines as on stderr):", "");
+    for (const entry of report.warnings)
+      for (const warning of entry.warnings) lines.push("- " + entry.run + ": " + warning.replace(/\|/g, "\\|"));
     lines.push("");
   }
   lines.push("## Detail against the high-resolution result", "");

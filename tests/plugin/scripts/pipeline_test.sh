@@ -23,6 +23,18 @@ code=$?
 [ -s "$tmp/command.err" ] && fail "--quiet printed on stderr: $(cat "$tmp/command.err")"
 # Coarse, two multi-resolution meshes, high; the uniform level nearest 1395 vertices is the coarse mesh.
 grep -q "^pipeline: 4 runs of 4 models" "$tmp/command.out" || fail "no summary line: $(cat "$tmp/command.out")"
+grep -q '"warnings": \[\]' "$tmp/command/report.json" || fail "report.json: no empty warnings list"
+grep -q "## Warnings" "$tmp/command/report.md" && fail "report.md: a Warnings section with nothing to warn of"
+
+# 1b. Runs that warn (a pre-roll too short for the legs): each simulation's
+# warnings in report.json and report.md, and counted in the summary line.
+"$host" -q pipeline --levels 1 --instance-frames 2 --test-frames 1 --preroll 0.02 --size 64x64 \
+  --test "$resources/characters/walk_new.bvh" --out "$tmp/warned" > "$tmp/warned.out" 2> "$tmp/warned.err" ||
+  fail "warned run exit code $?"
+grep -q "; 5 of its 5 simulations warned (its Warnings section)" "$tmp/warned.out" ||
+  fail "warned run's summary: $(cat "$tmp/warned.out")"
+grep -q "^- multires_d5 on walk_new: simulate: the pre-roll of 0.02 s moves the legs" "$tmp/warned/report.md" ||
+  fail "warned run's report.md has no such warning"
 
 # 2. The script through the public API, same options (the default mode
 # mapping spelled out) on two threads: same numbers.
