@@ -11,6 +11,46 @@
 #include <string>
 
 namespace mrcloth {
+namespace {
+
+/// Both meshes refined from one coarse garment: the same coarse faces, in
+/// the same order, from the same corner, at the same place (a coarse mesh
+/// re-exported with its faces reordered has the same count, and gave
+/// meaningless distances).
+void require_one_coarse_garment(const QuadMesh& model, const QuadMesh& reference) {
+  std::vector<const QuadRecord*> model_roots, reference_roots;
+  for (const QuadRecord& record : quadtree(model))
+    if (record.parent < 0) model_roots.push_back(&record);
+  for (const QuadRecord& record : quadtree(reference))
+    if (record.parent < 0) reference_roots.push_back(&record);
+  const auto corners = [](const QuadRecord& record) {
+    return "(" + std::to_string(record.corners[0]) + ", " + std::to_string(record.corners[1]) + ", " +
+           std::to_string(record.corners[2]) + ", " + std::to_string(record.corners[3]) + ")";
+  };
+  OpenMesh::Vec3d lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const auto v : reference.vertices()) {
+    lo.minimize(reference.point(v));
+    hi.maximize(reference.point(v));
+  }
+  const double tolerance = 1e-9 * (hi - lo).norm();
+  for (std::size_t r = 0; r < reference_roots.size() && r < model_roots.size(); ++r) {
+    if (model_roots[r]->corners != reference_roots[r]->corners)
+      throw ArgumentError("coarse face " + std::to_string(r) + " has corners " + corners(*model_roots[r]) +
+                          " in the model and " + corners(*reference_roots[r]) +
+                          " in the reference: compared meshes must be refined from the same coarse mesh (one "
+                          "re-exported with its faces reordered, or started at another corner, is another)");
+    for (const int c : reference_roots[r]->corners) {
+      const auto a = model.point(model.vertex_handle(static_cast<unsigned>(c)));
+      const auto b = reference.point(reference.vertex_handle(static_cast<unsigned>(c)));
+      if ((a - b).norm() > tolerance)
+        throw ArgumentError("coarse vertex " + std::to_string(c) + " lies " + std::to_string((a - b).norm()) +
+                            " m from where the reference has it: compared meshes must be refined from the same coarse "
+                            "mesh, at rest (not a simulated or moved one)");
+    }
+  }
+}
+
+}  // namespace
 
 ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
                                  const std::string& reference_cache, const ComparisonOptions& options,
@@ -19,6 +59,7 @@ ComparisonReport compare_results(const QuadMesh& model, const std::string& model
     throw ArgumentError("the model has " + std::to_string(count_roots(model)) + " coarse faces and the reference " +
                         std::to_string(count_roots(reference)) +
                         ": compared meshes must be refined from the same coarse mesh");
+  require_one_coarse_garment(model, reference);
   Pc2Reader model_frames(model_cache);
   Pc2Reader reference_frames(reference_cache);
   if (model_frames.num_points() != static_cast<int>(model.n_vertices()))

@@ -70,4 +70,19 @@ expectThrows(() => multirescloth.compareResults(middle, middleCache, high, highC
              "regionMode");
 expectThrows(() => multirescloth.compareResults(middle, middleCache, high, highCache, {frames: 2}), "ArgumentError",
              "frames");
+// The coarse grid re-exported with its faces in reverse order, or each
+// started at its second corner, has the same count: refused, named.
+const gridLines = core.readTextFile(dataDir + "/grid3x3.obj").split("\n");
+const faceLines = gridLines.filter((line) => line.startsWith("f "));
+const otherLines = gridLines.filter((line) => !line.startsWith("f "));
+core.writeTextFile(tmpDir + "/reversed.obj", otherLines.concat(faceLines.slice().reverse()).join("\n") + "\n");
+core.writeTextFile(tmpDir + "/rotated.obj", otherLines.concat(faceLines.map((line) => {
+  const corners = line.trim().split(/\s+/).slice(1);
+  return "f " + corners.slice(1).concat(corners.slice(0, 1)).join(" ");
+})).join("\n") + "\n");
+for (const name of ["reversed", "rotated"]) {
+  const other = multirescloth.refineUniform(core.loadObject(tmpDir + "/" + name + ".obj"), 1);
+  expectThrows(() => multirescloth.compareResults(other, middleCache, high, highCache), "ArgumentError",
+               "coarse face 0 has corners", "must be refined from the same coarse mesh");
+}
 print("compareResults: ok (" + checked + " errors checked)");
