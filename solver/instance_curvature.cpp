@@ -192,12 +192,7 @@ CurvatureFeatures analyse_curvature(const std::string& pc2_path, const Curvature
   features.first_frame = options.skip_frames;
   for (int k = 0; k < total; ++k) {
     const int index = options.skip_frames + k;
-    const FramePositions frame = cache.frame(index);
-    for (Eigen::Index v = 0; v < frame.rows(); ++v) {
-      if (!frame.row(v).allFinite())
-        throw InputError(pc2_path + ": frame " + std::to_string(index) + ", point " + std::to_string(v) +
-                         " is not finite; expected finite positions");
-    }
+    const FramePositions frame = cache.finite_frame(index);
     accumulator.add(vertex_curvature(pairs, frame));
     if (progress && !progress(k + 1, total)) {
       features.cancelled = true;

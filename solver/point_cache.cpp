@@ -389,6 +389,15 @@ FramePositions Pc2Reader::frame(int frame) {
   return positions;
 }
 
+FramePositions Pc2Reader::finite_frame(int frame) {
+  FramePositions positions = this->frame(frame);
+  for (Eigen::Index v = 0; v < positions.rows(); ++v)
+    if (!positions.row(v).allFinite())
+      throw InputError(with_path(impl_->path, "frame " + std::to_string(frame) + ", point " + std::to_string(v) +
+                                                  " is not finite; expected finite positions"));
+  return positions;
+}
+
 // ---------------------------------------------------------------------------
 // OBJ sequences
 

@@ -75,6 +75,10 @@ class Pc2Reader {
   /// reads do not seek. Throws ArgumentError out of range, InputError when
   /// the file cannot be read.
   FramePositions frame(int frame);
+  /// frame(frame), and InputError naming the file, the frame and the first
+  /// point that is not finite (NaN or infinite), for readers that would
+  /// otherwise write, draw or measure it.
+  FramePositions finite_frame(int frame);
 
  private:
   struct Impl;

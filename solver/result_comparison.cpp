@@ -91,8 +91,8 @@ ComparisonReport compare_results(const QuadMesh& model, const std::string& model
   double error_energy = 0.0, error_region = 0.0;
   double rms_sum = 0.0, p95_sum = 0.0;
   for (int f = 0; f < frames; ++f) {
-    const Eigen::MatrixX3d at_points = evaluator.evaluate(binding, model_frames.frame(f));
-    const Eigen::MatrixX3d truth = reference_frames.frame(f);
+    const Eigen::MatrixX3d at_points = evaluator.evaluate(binding, model_frames.finite_frame(f));
+    const Eigen::MatrixX3d truth = reference_frames.finite_frame(f);
     const DistanceStats d = point_distances(at_points, truth);
     report.per_frame.push_back(d);
     rms_sum += d.rms;

@@ -339,7 +339,7 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
                                    "another mesh?)")
                         .arg(cache).arg(reader.num_points()).arg(describeObject(object))
                         .arg(object.mesh->n_vertices()));
-    const FramePositions positions = reader.frame(frame);
+    const FramePositions positions = reader.finite_frame(frame);
     export_surface(mesh_at_positions(*object.mesh, positions), file.toStdString(), settings);
     emit log(LOGINFO, QStringLiteral("exportSurface: wrote %1 (%2 at frame %3 of %4)")
                           .arg(file, describeObject(object)).arg(frame).arg(QFileInfo(cache).fileName()));

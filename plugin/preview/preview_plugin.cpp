@@ -279,6 +279,18 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     } else {
       for (int f = 0; f < count; ++f) frames.push_back(f);
     }
+    if (frames.empty())
+      options::fail(count == 0 ? QStringLiteral("option 'cache': %1 holds no frames; nothing to draw").arg(request.cache)
+                               : QStringLiteral("option 'frames' is empty; expected the frames to draw"));
+    // The body's frames too, before any image is written.
+    if (!request.body_cache.isEmpty()) {
+      const int body_frames = preview::cache_frames(request.body_cache.toStdString());
+      const int last = *std::max_element(frames.begin(), frames.end());
+      if (last >= body_frames)
+        options::fail(QStringLiteral("option 'body': the body cache %1 has %2 frames, but frame %3 of the garment's is "
+                                     "to be drawn; expected a body cache of the same run")
+                          .arg(request.body_cache).arg(body_frames).arg(last));
+    }
     if (!QFileInfo(stem).absoluteDir().exists())
       throw OutputError(QStringLiteral("%1: folder '%2' does not exist").arg(stem, QFileInfo(stem).absolutePath()).toStdString());
 

@@ -100,7 +100,7 @@ Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expec
     throw ArgumentError(cache_path + ": frame " + std::to_string(frame) + " out of range (the cache has " +
                         std::to_string(reader.num_frames()) + " frames, 0 .. " + std::to_string(reader.num_frames() - 1) +
                         ")");
-  return reader.frame(frame);
+  return reader.finite_frame(frame);
 }
 
 int cache_frames(const std::string& cache_path) { return Pc2Reader(cache_path).num_frames(); }

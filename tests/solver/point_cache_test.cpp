@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <locale>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -249,6 +250,26 @@ TEST_F(Pc2Corrupt, SampleCountDisagreesWithLength) {
   bytes_[28] = 4;
   write_bytes(path_, bytes_);
   expect_refused({"4 frames", "272 bytes"});
+}
+
+TEST(Pc2, FiniteFrameNamesTheFirstPointThatIsNot) {
+  const fs::path dir = empty_folder("finite_frame");
+  std::vector<FramePositions> frames = random_frames(3, 5, 11);
+  frames[1](2, 1) = std::numeric_limits<double>::quiet_NaN();
+  frames[2](4, 0) = std::numeric_limits<double>::infinity();
+  write_pc2(dir / "bad.pc2", frames);
+  Pc2Reader reader((dir / "bad.pc2").string());
+  EXPECT_TRUE(reader.finite_frame(0).allFinite());
+  EXPECT_FALSE(reader.frame(1).allFinite()) << "frame() hands it over as it is";
+  for (const auto& [frame, text] : {std::pair<int, std::string>{1, "bad.pc2: frame 1, point 2 is not finite"},
+                                    std::pair<int, std::string>{2, "bad.pc2: frame 2, point 4 is not finite"}}) {
+    try {
+      reader.finite_frame(frame);
+      ADD_FAILURE() << "frame " << frame << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Pc2, MissingFileIsAnInputError) {

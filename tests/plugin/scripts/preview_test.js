@@ -185,6 +185,15 @@ expectThrows(() => preview.renderSequence(refined, tmpDir + "/seq_bad", opts({ca
              "16 points");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/no_such_folder/seq", opts({cache: pc2})), "OutputError",
              "no_such_folder");
+// A body cache shorter than the frames drawn, or nothing to draw: refused
+// before any image is written.
+const shortBody = tmpDir + "/body_short.pc2";
+multirescloth.simulate(grid, {frames: 3, pins: [12, 13, 14, 15], gravity: [0, -9.81, 20], output: shortBody});
+expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache: pc2, body: {cache: shortBody,
+                                                                                               mesh: tmpDir + "/body.obj"}})),
+             "ArgumentError", "option 'body': the body cache", "body_short.pc2 has 3 frames, but frame 5");
+expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache: pc2, frames: []})), "ArgumentError",
+             "option 'frames' is empty");
 expectNoFile(tmpDir + "/seq_bad_0000.png");
 expectNoFile(tmpDir + "/no_such_folder");
 
