@@ -148,6 +148,27 @@ Eigen::VectorXd vertex_curvature(const CurvaturePairs& pairs, const FramePositio
   return sum;
 }
 
+double median_pair_stretch(const CurvaturePairs& pairs, const FramePositions& frame) {
+  if (pairs.i.empty()) return 1.0;
+  std::vector<double> ratios(pairs.i.size());
+  for (std::size_t k = 0; k < pairs.i.size(); ++k)
+    ratios[k] = (frame.row(pairs.i[k]) - frame.row(pairs.j[k])).norm() / (2.0 * pairs.half_rest[k]);
+  const auto middle = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+  std::nth_element(ratios.begin(), middle, ratios.end());
+  return *middle;
+}
+
+double rounding_curvature(const CurvaturePairs& pairs, const FramePositions& frame) {
+  if (pairs.half_rest.empty() || frame.rows() == 0) return 0.0;
+  std::vector<double> lengths(pairs.half_rest.begin(), pairs.half_rest.end());
+  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  const double length = 2.0 * *middle;
+  const double largest = frame.cwiseAbs().maxCoeff();
+  constexpr double kHalfUlp = 6e-8;  // float32
+  return 2.0 * std::sqrt(6.0 * kHalfUlp * largest / length) / length;
+}
+
 CurvatureAccumulator::CurvatureAccumulator(int num_vertices)
     : mean_(Eigen::VectorXd::Zero(num_vertices)), squares_(Eigen::VectorXd::Zero(num_vertices)) {}
 
@@ -193,6 +214,10 @@ CurvatureFeatures analyse_curvature(const std::string& pc2_path, const Curvature
   for (int k = 0; k < total; ++k) {
     const int index = options.skip_frames + k;
     const FramePositions frame = cache.finite_frame(index);
+    if (k == 0) {
+      features.first_frame_stretch = median_pair_stretch(pairs, frame);
+      features.rounding_curvature = rounding_curvature(pairs, frame);
+    }
     accumulator.add(vertex_curvature(pairs, frame));
     if (progress && !progress(k + 1, total)) {
       features.cancelled = true;

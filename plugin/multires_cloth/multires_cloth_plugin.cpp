@@ -39,6 +39,12 @@
 namespace mrcloth {
 namespace {
 
+/// Below this many times the curvature float rounding alone gives
+/// (CurvatureFeatures::rounding_curvature) a cache shows no bending (a still
+/// 2 cm grid 100 m off: 0.02-0.06 1/m of noise modes against 4 of rounding;
+/// a walking skirt's modes: 30-120 against about 1).
+constexpr double kLeastBending = 2.0;
+
 double millisecondsSince(const QElapsedTimer& timer) { return static_cast<double>(timer.nsecsElapsed()) / 1e6; }
 
 QString describeObject(const StoredObject& object) {
@@ -469,7 +475,30 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
     }
     if (features.cancelled)
       throw Error("extractModes: cancelled after " + std::to_string(features.frames) + " frames; the modes are unchanged");
-    const ModeReport report = deformation_modes(features.mean, features.deviation, modes);
+    // What the modes would be made of, said before they are: a cache that
+    // does not fit the mesh's rest lengths, or one with no bending in it.
+    if (!(features.first_frame_stretch > 0.8 && features.first_frame_stretch < 1.25))
+      emit log(LOGWARN, QStringLiteral("extractModes: in frame %1 of %2 the mesh's neighbouring vertices lie %3 times their "
+                                       "rest distance apart (median): a cache in other units, with its vertices in "
+                                       "another order, or of another mesh of as many vertices? The curvature reads "
+                                       "stretched pairs as flat")
+                            .arg(features.first_frame).arg(path).arg(features.first_frame_stretch, 0, 'g', 3));
+    const double most_bent = features.mean.size() ? features.mean.maxCoeff() : 0.0;
+    if (most_bent < kLeastBending * features.rounding_curvature)
+      emit log(LOGWARN, QStringLiteral("extractModes: %1 shows no bending: the largest mean curvature is %2 1/m, what "
+                                       "single-precision rounding of its positions alone gives (%3 1/m here); the "
+                                       "modes would split noise (clusters: 1 says so)")
+                            .arg(path).arg(most_bent, 0, 'g', 3).arg(features.rounding_curvature, 0, 'g', 3));
+    ModeReport report;
+    try {
+      report = deformation_modes(features.mean, features.deviation, modes);
+    } catch (const ArgumentError& error) {
+      // k-means' own wording names neither the cache nor the cause.
+      if (std::string(error.what()).find("requested but only") == std::string::npos) throw;
+      throw ArgumentError(path.toStdString() + ": the curvature takes fewer distinct values over the mesh's vertices "
+                          "than the " + std::to_string(modes.modes) + " clusters asked for (a cache with no bending, "
+                          "or of a still garment?); expected clusters at most that many (" + error.what() + ")");
+    }
     // The computed modes become the mesh's mode layer (what refineAdaptive
     // reads) and its computed layer (what eraseModes goes back to); the
     // features stay as layers for threshold brushes and exports.
