@@ -30,6 +30,15 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
     throw ArgumentError("the motion's skeleton has no joint '" + o.pelvis_joint + "' to pin the waist to");
 }
 
+/// The joints of the legs a garment hangs on (the hips, hip joints, knees,
+/// ankles) that `skeleton` has, by CMU name.
+std::vector<int> leg_joints(const Skeleton& skeleton) {
+  std::vector<int> joints;
+  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"})
+    if (const int joint = skeleton.find(name); joint >= 0) joints.push_back(joint);
+  return joints;
+}
+
 }  // namespace
 
 /// The body mesh, then the bridges; a point a bridge moved is projected
@@ -293,9 +302,7 @@ Pose character_pose(const Motion& motion, double time, const CharacterRunOptions
 
 LegSpeed fastest_leg_speed(const Motion& motion, int first_frame, int last_frame) {
   LegSpeed fastest;
-  std::vector<int> joints;
-  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"})
-    if (const int joint = motion.skeleton.find(name); joint >= 0) joints.push_back(joint);
+  const std::vector<int> joints = leg_joints(motion.skeleton);
   const int end = last_frame < 0 ? static_cast<int>(motion.frames.rows()) - 1
                                  : std::min(last_frame, static_cast<int>(motion.frames.rows()) - 1);
   const int begin = std::max(0, first_frame);
@@ -316,10 +323,8 @@ double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& option
   const Pose rest = reference_pose(motion, options);
   const Pose first = pose_at(motion, options.motion_start);
   double way = 0.0;
-  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"}) {
-    const int joint = motion.skeleton.find(name);
-    if (joint >= 0) way = std::max(way, (first.position(joint) - rest.position(joint)).norm());
-  }
+  for (const int joint : leg_joints(motion.skeleton))
+    way = std::max(way, (first.position(joint) - rest.position(joint)).norm());
   if (!(way > 0.0)) return 0.0;
   // smoothstep's steepest slope is 1.5 times its mean.
   return options.preroll_seconds > 0.0 ? 1.5 * way / options.preroll_seconds : std::numeric_limits<double>::infinity();
