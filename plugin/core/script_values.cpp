@@ -94,9 +94,14 @@ QString describeValue(const QVariant& value) {
 int toInt(const QVariant& value, const QString& what) {
   if (!isNumber(value)) failType(what, QStringLiteral("an integer"), value);
   const double number = value.toDouble();
-  if (!std::isfinite(number) || number != std::floor(number) ||
-      number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
-    failType(what, QStringLiteral("an integer"), value);
+  if (!std::isfinite(number) || number != std::floor(number)) failType(what, QStringLiteral("an integer"), value);
+  // A whole number beyond 32 bits is an integer, just too large to be one here.
+  if (number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
+    fail(QStringLiteral("%1 must be an integer from %2 to %3, got %4")
+             .arg(what)
+             .arg(std::numeric_limits<int>::min())
+             .arg(std::numeric_limits<int>::max())
+             .arg(describeValue(value)));
   return static_cast<int>(number);
 }
 

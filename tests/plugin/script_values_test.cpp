@@ -30,7 +30,11 @@ TEST(ScriptValues, IntegersAcceptIntegralNumbersOnly) {
   EXPECT_EQ(errorOf([] { toInt(QVariant(), "id"); }), "id must be an integer, got undefined");
   EXPECT_EQ(errorOf([] { toInt(QVariant::fromValue(nullptr), "id"); }), "id must be an integer, got null");
   EXPECT_EQ(errorOf([] { toInt(QVariant(true), "id"); }), "id must be an integer, got true");
-  EXPECT_NE(errorOf([] { toInt(QVariant(1e10), "id"); }), "") << "out of int range";
+  EXPECT_EQ(errorOf([] { toInt(QVariant(12345678901.0), "seed"); }),
+            "seed must be an integer from -2147483648 to 2147483647, got the number 12345678901")
+      << "a whole number out of range is named as such, not as 'not an integer'";
+  EXPECT_EQ(errorOf([] { toInt(QVariant(-1e10), "frame"); }),
+            "frame must be an integer from -2147483648 to 2147483647, got the number -1e+10");
   EXPECT_EQ(errorOf([] { toIntAtLeast(QVariant(-1), "levels", 0); }), "levels must be an integer >= 0, got -1");
   EXPECT_EQ(toIntAtLeast(QVariant(0), "levels", 0), 0);
 }
