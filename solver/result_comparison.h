@@ -46,10 +46,12 @@ struct ComparisonReport {
 /// Compares `model` (a mesh refined from the same coarse mesh as `reference`)
 /// recorded in the PC2 `model_cache` with `reference` recorded in
 /// `reference_cache`, frame k against frame k. Throws ArgumentError when the
-/// meshes do not share their coarse mesh (different coarse face counts), a
-/// cache's point count is not its mesh's vertex count, or the caches hold
-/// different frame counts; InputError for an unreadable cache. `progress`
-/// (frames done, frames) may stop it early (cancelled).
+/// meshes do not share their coarse mesh (its faces' corners in order, its
+/// vertices at rest), a cache's point count is not its mesh's vertex count,
+/// or the caches hold different frame counts and options.max_frames does not
+/// stay within both; InputError for an unreadable cache or a frame with a
+/// non-finite point. `progress` (frames done, frames) may stop it early
+/// (cancelled).
 ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
                                  const std::string& reference_cache, const ComparisonOptions& options = {},
                                  const SimulationProgress& progress = {});

@@ -65,7 +65,10 @@ expectThrows(() => multirescloth.compareResults(middle, middleCache, high, tmpDi
              "referenceCachePath", "missing.pc2");
 const short = tmpDir + "/short.pc2";
 multirescloth.simulate(middle, {frames: 2, pins: topRow, output: short});
-expectThrows(() => multirescloth.compareResults(middle, short, high, highCache), "ArgumentError", "frames");
+expectThrows(() => multirescloth.compareResults(middle, short, high, highCache), "ArgumentError", "frames",
+             "expected the same, or maxFrames at most 2");
+expectEqual(multirescloth.compareResults(middle, short, high, highCache, {maxFrames: 2}).frames, 2,
+            "caches of other lengths over the frames both hold");
 expectThrows(() => multirescloth.compareResults(middle, middleCache, high, highCache, {regionMode: 0}), "ArgumentError",
              "regionMode");
 expectThrows(() => multirescloth.compareResults(middle, middleCache, high, highCache, {frames: 2}), "ArgumentError",
