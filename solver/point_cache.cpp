@@ -469,6 +469,10 @@ ObjMesh read_obj(const std::string& path) {
       mesh.faces.push_back(std::move(face));
     }
   }
+  // A binary file (a PC2 given for its OBJ) has no 'v' line to fail on.
+  if (points.empty() || mesh.faces.empty())
+    throw InputError(path + ": no " + std::string(points.empty() ? "'v' (vertex)" : "'f' (face)") +
+                     " lines; expected an OBJ mesh");
   mesh.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
   for (std::size_t k = 0; k < points.size(); ++k) mesh.positions.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
   return mesh;

@@ -118,7 +118,7 @@ struct ObjMesh {
 /// Reads the `v` and `f` lines of an OBJ file (face corners may be written
 /// v, v/t, v//n or v/t/n; negative indices count from the end); other lines
 /// are ignored. Throws InputError naming the file and line for a malformed
-/// or out-of-range entry.
+/// or out-of-range entry, and the file when it has no vertex or no face.
 ObjMesh read_obj(const std::string& path);
 
 }  // namespace mrcloth

@@ -416,6 +416,11 @@ TEST(Obj, MalformedLinesAreNamed) {
   expect_error<InputError>([&] { read_obj(write("v 0 0 0\nv 1 0 0\nf 1 2\n")); }, {"bad.obj:3:", "at least 3"});
   expect_error<InputError>([&] { read_obj(write("v 0 0 0\nf a b c\n")); }, {"bad.obj:2:", "'a'"});
   expect_error<InputError>([&] { read_obj((dir / "missing.obj").string()); }, {"missing.obj", "cannot open"});
+  // A binary file (a PC2 given for its OBJ), or vertices without faces.
+  expect_error<InputError>([&] { read_obj(write(std::string("POINTCACHE2\0\1\0\0\0", 16))); },
+                           {"bad.obj: no 'v' (vertex) lines; expected an OBJ mesh"});
+  expect_error<InputError>([&] { read_obj(write("v 0 0 0\nv 1 0 0\nv 0 1 0\n")); },
+                           {"bad.obj: no 'f' (face) lines; expected an OBJ mesh"});
 }
 
 }  // namespace
