@@ -136,7 +136,7 @@ void print_summary(const std::string& label, const std::vector<Result>& results,
 int run_table(int argc, char** argv) {
   WalkOptions w;
   w.run.simulation.frames = 60;
-  const std::string usage = std::string("usage: bench_walks [--kinds LIST] [--garments LIST] [--walks LIST] ") +
+  const std::string usage = std::string("usage: bench_walks [--kinds LIST] [--garments LIST] [--walks LIST] [--prerolls S,S,...] ") +
                             bench::kRunOptionsUsage + "\n";
   const int exit_code = bench::read_command_line(argc, argv, usage, w.run, [&](const std::string& key, const std::string& value) {
     if (key == "--kinds") w.kinds = split_list(value);

@@ -12,7 +12,10 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${MRCLOTH_BUILD_DIR:-$root/build}"
 [ -x "$build/bin/mrcloth" ] || bash "$root/scripts/build.sh" --target mrcloth
 if [ $# -eq 0 ]; then
-  "$build/bin/mrcloth" pipeline --resume --out bench_out/pipeline
+  # --resume only where a run began (it refuses a folder without one).
+  resume=()
+  [ -f bench_out/pipeline/stages/options.json ] && resume=(--resume)
+  "$build/bin/mrcloth" pipeline "${resume[@]}" --out bench_out/pipeline
   set -- bench_out/pipeline
 fi
 exec "$build/bin/mrcloth" -q -b "$root/bench/paper_targets.js" -- "$@"

@@ -1033,6 +1033,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
                       "{dynamics, collision, total, and their parts limiter (of dynamics), posing and firstRound (of "
                       "collision: posing moving bodies, each step's first collision round)}, maxStretch (strain), "
+                      "maxClothStretch / maxPinnedStretch (the same over springs with a free end / between pinned "
+                      "vertices), maxSelfCrossings (edge-triangle crossings of the cloth with itself, worst frame), "
                       "maxTearOpening (m: the largest excess over its rest length of an edge at least doubled, at "
                       "an output frame; 0: none doubled), meanRounds (strain-limiting and "
                       "collision rounds per step, 1 .. 8: the dynamics cost grows with them), maxPenetration (m: deepest "
@@ -1051,13 +1053,17 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "MakeHuman's A-pose with place \"makehuman\") into the clip's pose at `start`, "
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, maxDepth, initialPenetration, nonFinite}, "
-                      "maxWaistError (m), body, capsules or bodyVertices, motion (path), motionUnits, motionStart, "
+                      "maxWaistError (m), fit (a tube garment's girth against the moving body's, level by level: "
+                      "largestDemand, levels, stretchLimit), garmentCleared {moved, largestMove} (skinned mesh: "
+                      "vertices moved out of the body before the run), body, capsules or bodyVertices, motion (path), "
+                      "motionUnits, motionStart, "
                       "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows, waistSmoothing (m, 0 when the waist follows the pelvis), "
                       "handMittens (mesh body: capsules standing in for its hands, 0: its own hands), "
                       "armsOpened {maxDegrees, steps, clearance}, jointsRenamed {name in the file: CMU name} "
                       "(motion.joints), axesTurned (motion.axes: \"\" or e.g. \"x = x, y = z, z = -y\"). The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
-                      "not the character; the cache is in the clip's coordinates once its axes are turned "
+                      "not the character (a clip not facing +Z at `start` is turned to its heading during the "
+                      "pre-roll); the cache is in the clip's coordinates once its axes are turned "
                       "(axesTurned: Y up), in metres."),
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
