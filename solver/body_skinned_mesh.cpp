@@ -199,8 +199,11 @@ void add_weight(std::vector<std::pair<int, double>>& list, int joint, double wei
 /// Reads the .mhw weights and maps them to skeleton joints. `joint_of_bone`
 /// gives, per default bone, the joints whose rig bones reference it;
 /// `body_index` maps base-mesh vertices to body vertices (-1: not in the body).
+/// Body vertices without any weight follow `fallback_joint`; `unweighted`
+/// receives them (body vertex indices).
 VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std::vector<int>>& joint_of_bone,
-                          const std::vector<int>& body_index, int body_count, int fallback_joint) {
+                          const std::vector<int>& body_index, int body_count, int fallback_joint,
+                          std::vector<int>& unweighted) {
   struct Entry {
     int vertex;
     double weight;
@@ -258,6 +261,7 @@ VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std:
     double total = 0.0;
     for (const auto& entry : list) total += entry.second;
     if (!(total > 0.0)) {
+      unweighted.push_back(static_cast<int>(&list - weights.data()));
       list.assign(1, {fallback_joint, 1.0});
       continue;
     }
@@ -462,7 +466,19 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
     for (const std::string& weight_bone : bone.weight_bones) joint_of_bone[weight_bone].push_back(j);
   }
   const int hips = skeleton.find("Hips");
-  body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root);
+  std::vector<int> unweighted;
+  body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root, unweighted);
+  // MakeHuman weighs every body vertex (the shared body: all 13,380); one
+  // without weight would stand still in its A-pose while the clip walks.
+  if (!unweighted.empty()) {
+    int first = -1;
+    for (std::size_t v = 0; v < body_index.size() && first < 0; ++v)
+      if (body_index[v] == unweighted.front()) first = static_cast<int>(v);
+    throw InputError(files.weights_file + ": " + std::to_string(unweighted.size()) + " of the body's " +
+                     std::to_string(body_count) + " vertices have no weight (the first: vertex " +
+                     std::to_string(first + 1) + " of " + files.base_obj +
+                     "); expected weights for every vertex of the body group (a .mhw of another body or rig?)");
+  }
 
   body.rest_vertices.resize(body_count, 3);
   for (std::size_t v = 0; v < all_vertices.size(); ++v) {

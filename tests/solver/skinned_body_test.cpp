@@ -2046,3 +2046,29 @@ TEST(SkinnedBodyOtherSkeleton, TheDazClipBindsOnceItsJointsAreRenamed) {
 
 }  // namespace
 }  // namespace mrcloth
+
+namespace mrcloth {
+namespace {
+
+// A .mhw that leaves body vertices without weight (a weights file of another
+// body or rig) is refused, naming it and the first such vertex: they would
+// stand still in the A-pose while the clip walks (a sweep: half the body
+// frozen, exit 0).
+TEST(SkinnedBodyFiles, AWeightsFileLeavingVerticesUnweightedIsRefused) {
+  if (!have_body()) GTEST_SKIP() << "shared data absent under " << test::shared_data("");
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  MakeHumanOptions files = makehuman_files(test::shared_data("bodies/makehuman"));
+  const fs::path folder = test::fresh_folder("skinned_body_test", "unweighted");
+  files.weights_file = (folder / "empty.mhw").string();
+  std::ofstream(files.weights_file) << "{\"weights\": {}}\n";
+  try {
+    load_makehuman_body(files, walk.skeleton);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("empty.mhw: 13380 of the body's 13380 vertices have no weight"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mrcloth
