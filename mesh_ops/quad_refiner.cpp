@@ -99,11 +99,12 @@ void QuadRefiner::inherit_from_fathers(int vertex, std::initializer_list<int> fa
     mode_sum += mesh_.property(layers_.mode, fh);
   }
   const int n = static_cast<int>(fathers.size());
-  const auto vh = mesh_.vertex_handle(vertex);
-  mesh_.property(layers_.r_value, vh) = r_sum / n;
   // Round half up so a midpoint between modes 2 and 3 counts as 3: wrinkle
   // regions should not shrink when a painted mesh is refined.
-  mesh_.property(layers_.mode, vh) = (2 * mode_sum + n) / (2 * n);
+  const auto rounded_mean = [n](int sum) { return (2 * sum + n) / (2 * n); };
+  const auto vh = mesh_.vertex_handle(vertex);
+  mesh_.property(layers_.r_value, vh) = r_sum / n;
+  mesh_.property(layers_.mode, vh) = rounded_mean(mode_sum);
   // The computed modes alike, where every father has one (0: none).
   if (!computed_.is_valid()) return;
   int computed_sum = 0;
@@ -113,7 +114,7 @@ void QuadRefiner::inherit_from_fathers(int vertex, std::initializer_list<int> fa
     all = all && c > 0;
     computed_sum += c;
   }
-  mesh_.property(computed_, vh) = all ? (2 * computed_sum + n) / (2 * n) : 0;
+  mesh_.property(computed_, vh) = all ? rounded_mean(computed_sum) : 0;
 }
 
 void QuadRefiner::finish() { rebuild_active_faces(mesh_); }

@@ -278,7 +278,7 @@ function readJointMap(path) {
   if (!core.fileReadable(path)) throw pipelineError("option --joint-map: cannot read " + path);
   let map;
   try {
-    map = JSON.parse(core.readTextFile(path));
+    map = JSON.parse(fileText(path));  // read once: the fingerprint reads it too
   } catch (error) {
     throw pipelineError("option --joint-map: " + path + " is not JSON (" + error.message +
                         "); expected {\"name in the clip\": \"CMU name\", ...}");
@@ -562,8 +562,12 @@ class Stages {
 
   /// The stage's record if this run wrote it and every file in `outputs`
   /// exists, else null; a broken record is warned of and run again.
+  recordPath(name) {
+    return this.folder + "/" + name + ".json";
+  }
+
   finished(name, outputs) {
-    const path = this.folder + "/" + name + ".json";
+    const path = this.recordPath(name);
     if (!core.fileExists(path)) return null;
     let record;
     try {
@@ -585,7 +589,6 @@ class Stages {
   /// its record and every file in `outputs` (relative to the output folder),
   /// and `fits(record)` if given.
   run(name, outputs, work, fits = () => true) {
-    const recordPath = this.folder + "/" + name + ".json";
     const label = "pipeline [" + (this.ran.length + this.skipped.length + 1) + "/" + this.total + "] " + name;
     const earlier = this.resume ? this.finished(name, outputs) : null;
     if (earlier && fits(earlier)) {
@@ -599,7 +602,7 @@ class Stages {
     record.stageSeconds = (Date.now() - started) / 1000;
     record.outputs = outputs;
     record.run = this.runId;
-    core.writeTextFile(recordPath, JSON.stringify(record, null, 1) + "\n");
+    core.writeTextFile(this.recordPath(name), JSON.stringify(record, null, 1) + "\n");
     this.ran.push(name);
     return record;
   }
