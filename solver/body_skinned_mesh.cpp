@@ -180,6 +180,14 @@ std::map<std::string, RigBone> rig_bones(const JsonValue& rig, const std::map<st
     if (!weights->is_null()) bone.weight_bones = unique_strings(*weights, what + " reference");
     bones[name] = std::move(bone);
   }
+  // A parent the rig does not list leaves the bones below it without a
+  // chain to the root (a bone deleted from the file): their skin would
+  // turn about the wrong joints.
+  for (const auto& [name, bone] : bones)
+    if (!bone.parent.empty() && !bones.count(bone.parent))
+      rig.at("bones", "the skeleton file").at(name, "\"bones\"")
+          .fail("bone \"" + name + "\" names parent \"" + bone.parent +
+                "\", which \"bones\" does not list; expected a listed bone (or null for the root)");
   return bones;
 }
 
@@ -318,11 +326,15 @@ Binding bind_skeleton(const Skeleton& skeleton, const Pose& rest, const std::vec
     const Matrix3d& inherited = binding.correction[p];
     binding.correction[j] = inherited;
     if (!has_bone[j]) {
-      // End Sites (and joints the rig has no bone for) follow the skeleton's offset.
+      // End Sites (and joints the rig has no bone for) follow the skeleton's
+      // offset; their mesh head is where that offset puts them, so a bone
+      // below one (a rig without a bone for a joint mid-chain) keeps its
+      // place on the mesh instead of measuring from the origin.
       binding.pivot[j] = binding.pivot[p] + (rest_j - rest.position(parent));
+      binding.head[j] = binding.head[p] + inherited.transpose() * (rest_j - rest.position(parent));
       continue;
     }
-    binding.pivot[j] = binding.pivot[p] + inherited * (heads[j] - heads[p]);
+    binding.pivot[j] = binding.pivot[p] + inherited * (heads[j] - binding.head[p]);
 
     const bool branch = children[p].size() > 1;
     const Vector3d mesh_direction = inherited * (tails[j] - heads[j]);

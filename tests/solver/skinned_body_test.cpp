@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <random>
@@ -2067,6 +2068,72 @@ TEST(SkinnedBodyFiles, AWeightsFileLeavingVerticesUnweightedIsRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("empty.mhw: 13380 of the body's 13380 vertices have no weight"), std::string::npos)
         << e.what();
+  }
+}
+
+
+/// The shared rig's text without bone `name`'s entry (the file's own
+/// layout: one member per block), the bones it parented re-parented onto
+/// `new_parent` unless that is empty.
+std::string rig_without_bone(const std::string& name, const std::string& new_parent) {
+  std::ifstream in(test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t start = text.find("\n        \"" + name + "\": {");
+  const std::size_t end = text.find("\n        }", start + 1);
+  EXPECT_NE(start, std::string::npos);
+  EXPECT_NE(end, std::string::npos);
+  text.erase(start, end + 10 - start + 1);  // the block and its comma
+  if (!new_parent.empty()) {
+    const std::string old_link = "\"parent\": \"" + name + "\"";
+    for (std::size_t at = text.find(old_link); at != std::string::npos; at = text.find(old_link, at))
+      text.replace(at, old_link.size(), "\"parent\": \"" + new_parent + "\"");
+  }
+  return text;
+}
+
+// A rig with no bone for a joint in the middle of a chain (no Spine between
+// LowerBack and Spine1) binds the bones below it where they are on the mesh:
+// before, Spine1 and everything above it were placed from the origin and
+// the body stretched metres tall (a sweep, exit 0). A bone whose parent the
+// rig does not list is refused, naming both.
+TEST(SkinnedBodyFiles, ARigWithoutABoneMidChainKeepsTheBodyInShape) {
+  if (!have_body()) GTEST_SKIP() << "shared data absent under " << test::shared_data("");
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  const MakeHumanOptions whole = makehuman_files(test::shared_data("bodies/makehuman"));
+  const SkinnedBody reference = load_makehuman_body(whole, walk.skeleton);
+  const fs::path folder = test::fresh_folder("skinned_body_test", "rig_without_bone");
+
+  MakeHumanOptions files = whole;
+  files.skeleton_file = (folder / "relinked.mhskel").string();
+  std::ofstream(files.skeleton_file) << rig_without_bone("Spine", "LowerBack");
+  const SkinnedBody body = load_makehuman_body(files, walk.skeleton);
+  ASSERT_EQ(body.rest_vertices.rows(), reference.rest_vertices.rows());
+  const double height = reference.rest_vertices.col(1).maxCoeff() - reference.rest_vertices.col(1).minCoeff();
+  EXPECT_NEAR(body.rest_vertices.col(1).maxCoeff() - body.rest_vertices.col(1).minCoeff(), height, 0.01);
+  const double largest = (body.rest_vertices - reference.rest_vertices).rowwise().norm().maxCoeff();
+  EXPECT_LT(largest, 0.06) << "the spine takes its parent's turn: the chest and arms above it lean a little";
+  // Below the spine nothing changes at all.
+  const int left_foot = walk.skeleton.find("LeftFoot");
+  std::size_t feet = 0;
+  for (std::size_t v = 0; v < body.weights.size(); ++v)
+    if (body.weights[v].size() == 1 && body.weights[v][0].first == left_foot) {
+      ++feet;
+      EXPECT_LT((body.rest_vertices.row(static_cast<Eigen::Index>(v)) -
+                 reference.rest_vertices.row(static_cast<Eigen::Index>(v))).norm(), 1e-12);
+    }
+  EXPECT_GT(feet, 100u);
+  const Eigen::MatrixX3d posed = skin(body, walk.skeleton, pose_at(walk, 1.0));
+  EXPECT_TRUE(posed.allFinite());
+
+  files.skeleton_file = (folder / "dangling.mhskel").string();
+  std::ofstream(files.skeleton_file) << rig_without_bone("Spine", "");
+  try {
+    load_makehuman_body(files, walk.skeleton);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("dangling.mhskel:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bone \"Spine1\" names parent \"Spine\", which \"bones\" does not list"),
+              std::string::npos) << e.what();
   }
 }
 
