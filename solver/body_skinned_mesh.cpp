@@ -10,7 +10,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -279,6 +281,73 @@ VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std:
   return weights;
 }
 
+/// Refuses weights that do not belong to the mesh's vertex order (a .mhw or
+/// .mhskel of another export, or a base.obj re-saved by a tool that
+/// renumbers vertices): MakeHuman's skin keeps every vertex near a bone that
+/// carries it (the shared body: all within 0.18 m of its 1.6 m), while
+/// weights read against another order put most vertices far from theirs
+/// (three quarters beyond 0.2 m) and the body would be torn apart by the
+/// first pose. `heads`, `tails`: per joint, its rig bone in the same space
+/// as `vertices` + `offset`.
+void check_weights_fit_mesh(const MakeHumanOptions& files, const std::vector<Vector3d>& vertices,
+                            const std::vector<int>& body_index, const VertexWeights& weights,
+                            const std::vector<Vector3d>& heads, const std::vector<Vector3d>& tails,
+                            const std::vector<bool>& has_bone, const Vector3d& offset, const Skeleton& skeleton) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    if (body_index[v] >= 0) {
+      low = std::min(low, vertices[v].y());
+      high = std::max(high, vertices[v].y());
+    }
+  const double far = 0.2 * (high - low);  // a fifth of the body's height
+  std::size_t count = 0, beyond = 0;
+  int first = -1, first_joint = -1;
+  double first_distance = 0.0;
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const int b = body_index[v];
+    if (b < 0) continue;
+    const Vector3d x = vertices[v] + offset;
+    double nearest = std::numeric_limits<double>::infinity();
+    int heaviest = -1;
+    double heaviest_weight = 0.0;
+    for (const auto& [joint, w] : weights[static_cast<std::size_t>(b)]) {
+      const auto j = static_cast<std::size_t>(joint);
+      if (!has_bone[j]) continue;
+      const Vector3d d = tails[j] - heads[j];
+      const double t = d.squaredNorm() > 0.0 ? std::clamp((x - heads[j]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (x - heads[j] - t * d).norm());
+      if (w > heaviest_weight) {
+        heaviest_weight = w;
+        heaviest = joint;
+      }
+    }
+    if (heaviest < 0) continue;  // carried by joints without a bone: nothing to measure against
+    ++count;
+    if (!(nearest > far)) continue;
+    if (++beyond == 1) {
+      first = static_cast<int>(v);
+      first_joint = heaviest;
+      first_distance = nearest;
+    }
+  }
+  // A few far vertices can be a real body's (a large belly); a tenth cannot.
+  if (count == 0 || beyond * 10 <= count) return;
+  const auto fixed = [](double value, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
+    return std::string(text);
+  };
+  throw InputError(files.weights_file + ": the weights do not fit the body's vertices: " +
+                   fixed(100.0 * static_cast<double>(beyond) / static_cast<double>(count), 0) +
+                   " % of the body's vertices lie farther than " + fixed(far, 2) +
+                   " m (a fifth of its height) from every bone that carries them (the first: vertex " +
+                   std::to_string(first + 1) + " of " + files.base_obj + " is " + fixed(first_distance, 2) +
+                   " m from the bones carrying it, mostly \"" +
+                   skeleton.joints[static_cast<std::size_t>(first_joint)].name + "\", as " + files.skeleton_file +
+                   " places them); expected the weights and rig of this base.obj, in its vertex order (files of one MakeHuman "
+                   "export; a tool that re-saves the OBJ may renumber its vertices)");
+}
+
 // ---------------------------------------------------------------------------
 // Binding: rest corrections and the T-pose mesh.
 
@@ -491,6 +560,8 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
                      std::to_string(first + 1) + " of " + files.base_obj +
                      "); expected weights for every vertex of the body group (a .mhw of another body or rig?)");
   }
+
+  check_weights_fit_mesh(files, all_vertices, body_index, body.weights, heads, tails, has_bone, offset, skeleton);
 
   body.rest_vertices.resize(body_count, 3);
   for (std::size_t v = 0; v < all_vertices.size(); ++v) {
