@@ -3,6 +3,7 @@
 #include "json_lite.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/obj_tokens.h"
+#include "mesh_ops/units.h"
 
 #include <Eigen/Geometry>
 
@@ -119,6 +120,41 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
         obj_error(path, face_lines[f], "face vertex " + std::to_string(v + 1) + " does not exist",
                   "an index <= " + std::to_string(obj.vertices.size()));
   return obj;
+}
+
+/// Refuses a body group not the height of a person (0.5-3 m) as read in
+/// `files.metres_per_unit`: a body exported in centimetres and read as
+/// MakeHuman's decimetres stands 16 m tall, and the clip's size check would
+/// blame the clip. Suggests the units that give a height nearest 1.7 m.
+void check_body_height(const MakeHumanOptions& files, const ObjData& obj, const std::vector<Vector3d>& metres) {
+  constexpr double kLowest = 0.5, kTallest = 3.0, kTypical = 1.7;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const auto& face : obj.group_faces)
+    for (int v : face) {
+      low = std::min(low, metres[static_cast<std::size_t>(v)].y());
+      high = std::max(high, metres[static_cast<std::size_t>(v)].y());
+    }
+  const double height = high - low;
+  if (height >= kLowest && height <= kTallest) return;
+  const auto fixed = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return std::string(text);
+  };
+  std::string suggestion;
+  double best = std::numeric_limits<double>::infinity();
+  for (const char* unit : {"m", "dm", "cm", "mm", "inch"}) {
+    const double there = height / files.metres_per_unit * metres_per_unit(unit);
+    const double error = std::abs(std::log(there / kTypical));
+    if (height > 0.0 && error < best && there >= kLowest && there <= kTallest) {
+      best = error;
+      suggestion = std::string("; in \"") + unit + "\" it is " + fixed(there) + " m";
+    }
+  }
+  throw InputError(files.base_obj + ": the body group is " + fixed(height) + " m tall read at " +
+                   fixed(files.metres_per_unit) + " m per unit" +
+                   (files.metres_per_unit == 0.1 ? std::string(" (decimetres, MakeHuman's units)") : std::string()) +
+                   "; expected a person 0.5-3 m tall: give the file's units" + suggestion);
 }
 
 // ---------------------------------------------------------------------------
@@ -441,10 +477,13 @@ MakeHumanOptions makehuman_files(const std::string& folder) {
 // load_makehuman_body
 
 SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton) {
-  constexpr double kMetresPerUnit = 0.1;  // base.obj is in decimetres
+  if (!(files.metres_per_unit > 0.0 && std::isfinite(files.metres_per_unit)))
+    throw ArgumentError("load_makehuman_body: metres_per_unit must be a finite number > 0 (got " +
+                        std::to_string(files.metres_per_unit) + ")");
   const ObjData obj = read_obj_group(files.base_obj, "body");
   std::vector<Vector3d> all_vertices = obj.vertices;
-  for (Vector3d& v : all_vertices) v *= kMetresPerUnit;
+  for (Vector3d& v : all_vertices) v *= files.metres_per_unit;
+  check_body_height(files, obj, all_vertices);
 
   const JsonValue rig = read_json(files.skeleton_file);
   const JsonValue mhw = read_json(files.weights_file);

@@ -36,16 +36,17 @@ struct SkinnedBody {
   Eigen::MatrixX3d input_vertices;
   std::vector<Eigen::Vector3d> input_joints;
   std::vector<Eigen::Matrix3d> rest_correction;
-  /// base.obj coordinates x 0.1 + obj_offset = input_vertices (the A-pose
+  /// base.obj coordinates x metres_per_unit + obj_offset = input_vertices (the A-pose
   /// mesh in the skeleton's space); garments modelled on base.obj map the
   /// same way. Metres.
   Eigen::Vector3d obj_offset{0, 0, 0};
 };
 
 struct MakeHumanOptions {
-  std::string base_obj;        ///< bodies/makehuman/base.obj (decimetres; group "body" is the body)
+  std::string base_obj;        ///< bodies/makehuman/base.obj (group "body" is the body)
   std::string skeleton_file;   ///< rigs/cmu_mb.mhskel (JSON)
   std::string weights_file;    ///< rigs/default_weights.mhw (JSON)
+  double metres_per_unit = 0.1;  ///< base.obj's units (MakeHuman exports decimetres)
 };
 
 /// The three files of a MakeHuman folder laid out as the shared data's
@@ -62,7 +63,8 @@ MakeHumanOptions makehuman_files(const std::string& folder);
 /// correction rotation taking its mesh (A-pose) direction to the skeleton's
 /// rest direction, applied once, so the bound rest mesh is in T-pose with
 /// the mesh's own bone lengths. Names the file and the problem on failure
-/// (InputError).
+/// (InputError); a body not 0.5-3 m tall is refused as one read in other
+/// units, with the units it would have in.
 SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton);
 
 /// Linear-blend skinning: vertices of the body in `pose` (#V x 3). Each

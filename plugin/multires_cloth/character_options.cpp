@@ -46,6 +46,13 @@ QStringList unitNames() {
           QStringLiteral("mm"), QStringLiteral("inch")};
 }
 
+/// The units a body file may be read in (a clip's "cmu" is for clips).
+QStringList bodyUnits() {
+  QStringList units = unitNames();
+  units.removeAll(QStringLiteral("cmu"));
+  return units;
+}
+
 double metresPerUnit(const QString& units) {
   if (units == QLatin1String("cmu")) return kCmuMetresPerUnit;
   return metres_per_unit(units.toStdString());
@@ -153,12 +160,12 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     return;
   }
   if (!options::isObjectLike(value))
-    fail(QStringLiteral("%1 must be \"capsules\", \"mesh\" or an object {type, obj, skeleton, weights, thickness, "
-                        "friction}, got %2")
+    fail(QStringLiteral("%1 must be \"capsules\", \"mesh\" or an object {type, obj, skeleton, weights, units, "
+                        "thickness, friction}, got %2")
              .arg(optionLabel(key), script::describeValue(value)));
   const QStringList files = {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
-                                      QStringList{QStringLiteral("thickness"), QStringLiteral("friction"),
+                                      QStringList{QStringLiteral("units"), QStringLiteral("thickness"), QStringLiteral("friction"),
                                                   QStringLiteral("radii"), QStringLiteral("legBridges"),
                                                   QStringLiteral("waistFollows"), QStringLiteral("waistSmoothing"),
                                                   QStringLiteral("armClearance"), QStringLiteral("handMittens")});
@@ -184,7 +191,11 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     makehuman.base_obj = file(QStringLiteral("obj"));
     makehuman.skeleton_file = file(QStringLiteral("skeleton"));
     makehuman.weights_file = file(QStringLiteral("weights"));
+    makehuman.metres_per_unit = metresPerUnit(fields.choice(QStringLiteral("units"), QStringLiteral("dm"), bodyUnits()));
     request.setup.makehuman = makehuman;
+  } else if (fields.has(QStringLiteral("units"))) {
+    fail(QStringLiteral("%1 are the units of the MakeHuman body file (obj): give obj, skeleton and weights with it")
+             .arg(fields.label(QStringLiteral("units"))));
   }
   if (fields.has(QStringLiteral("legBridges"))) {
     const QString label = fields.label(QStringLiteral("legBridges"));

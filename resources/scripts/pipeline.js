@@ -29,6 +29,7 @@ const USAGE = [
   "  --units U              the garment's units: m, dm, cm, mm, inch [m; dm with --makehuman]",
   "  --makehuman DIR        a MakeHuman body folder (base.obj, rigs/cmu_mb.mhskel,",
   "                         rigs/default_weights.mhw): fits the capsules, or is the body",
+  "  --makehuman-units U    base.obj's units: m, dm, cm, mm, inch [dm, as MakeHuman exports]",
   "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
   "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
   "  --waist-smoothing M    with --makehuman: metres (0..1) along the waist over which its pins' skin weights",
@@ -91,7 +92,8 @@ function pipelineError(message, name = "ArgumentError") {
 }
 
 const DEFAULTS = {
-  garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", body: "capsules", place: null,
+  garment: resources + "/garments/default_skirt.obj", units: null, makehuman: "", makehumanUnits: "dm",
+  body: "capsules", place: null,
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
   motionPositions: "absolute", jointMap: "",
@@ -105,7 +107,8 @@ const DEFAULTS = {
 const FLAGS = {"--resume": "resume", "--sequence": "sequence", "--obj-sequence": "objSequence", "--help": "help",
                "-h": "help", "--t-node-sag": "tNodeSag"};
 const VALUED = {
-  "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--body": "body", "--place": "place",
+  "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--makehuman-units": "makehumanUnits",
+  "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
   "--motion-positions": "motionPositions", "--joint-map": "jointMap",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
@@ -163,7 +166,7 @@ function optionValue(name, text) {
 /// option wins except --test, which accumulates.
 function parseOptions(args) {
   const options = Object.assign({}, DEFAULTS);
-  let tests = null, waistGiven = false;
+  let tests = null, waistGiven = false, makehumanUnitsGiven = false;
   for (let i = 0; i < args.length; ++i) {
     const argument = args[i];
     const equals = argument.startsWith("--") ? argument.indexOf("=") : -1;
@@ -217,6 +220,10 @@ function parseOptions(args) {
         tests.push(...listOption(name, text, "file names"));
         break;
       case "units": options.units = choiceOption(name, text, UNITS); break;
+      case "makehumanUnits":
+        options.makehumanUnits = choiceOption(name, text, UNITS);
+        makehumanUnitsGiven = true;
+        break;
       case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
       case "motionPositions": options.motionPositions = choiceOption(name, text, ["absolute", "relative"]); break;
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
@@ -250,6 +257,8 @@ function parseOptions(args) {
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)
     throw pipelineError("option --body mesh needs --makehuman DIR (the skinned MakeHuman body)");
+  if (makehumanUnitsGiven && !options.makehuman)
+    throw pipelineError("option --makehuman-units needs --makehuman DIR (the body whose file it reads)");
   if (waistGiven && !options.makehuman)
     throw pipelineError("option --waist-smoothing needs --makehuman DIR (the body whose skin the waist follows)");
   if (options.place === "makehuman" && !options.makehuman)
@@ -477,6 +486,7 @@ function resultOptions(options) {
     delete copy.joints;
   }
   if (!copy.makehuman) delete copy.waistSmoothing;  // no skin to follow: it decides nothing
+  if (copy.makehumanUnits === "dm") delete copy.makehumanUnits;  // as runs from before the option read the body
   return copy;
 }
 
@@ -720,7 +730,7 @@ function runPipeline(options, inputs) {
 
   const makehuman = options.makehuman ? makehumanFiles(options.makehuman) : null;
   const body = makehuman ? {type: options.body, obj: makehuman[0], skeleton: makehuman[1], weights: makehuman[2],
-                            waistSmoothing: options.waistSmoothing}
+                            units: options.makehumanUnits, waistSmoothing: options.waistSmoothing}
                          : options.body;
   const motion = (path) => motionOption(options, path);
   // What a run on the character is given besides its motion and files.

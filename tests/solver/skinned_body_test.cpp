@@ -2192,5 +2192,49 @@ TEST(SkinnedBodyFiles, WeightsOfAnotherVertexOrderAreRefused) {
   }
 }
 
+
+// A body file in other units than MakeHuman's decimetres is refused naming
+// the file and the units that fit (before, a centimetre body stood 16 m tall
+// and the clip's size check blamed the clip's units); read in those units it
+// is the same body.
+TEST(SkinnedBodyFiles, ABodyInOtherUnitsIsRefusedAndReadsInItsOwn) {
+  if (!have_body()) GTEST_SKIP() << "shared data absent under " << test::shared_data("");
+  const Motion walk = read_bvh(test::shared_data("motions/cmu_mb/07_06.bvh"), {kCmuScale, true});
+  MakeHumanOptions files = makehuman_files(test::shared_data("bodies/makehuman"));
+  const SkinnedBody reference = load_makehuman_body(files, walk.skeleton);
+  const fs::path folder = test::fresh_folder("skinned_body_test", "body_units");
+  std::ifstream in(files.base_obj);
+  std::ofstream out((folder / "centimetres.obj").string());
+  out.precision(17);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream words(line.substr(2));
+      words.imbue(std::locale::classic());
+      double x, y, z;
+      words >> x >> y >> z;
+      out << "v " << 10.0 * x << " " << 10.0 * y << " " << 10.0 * z << "\n";
+    } else {
+      out << line << "\n";
+    }
+  }
+  out.close();
+  files.base_obj = (folder / "centimetres.obj").string();
+  try {
+    load_makehuman_body(files, walk.skeleton);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("centimetres.obj: the body group is 16.7 m tall read at 0.1 m per unit (decimetres, MakeHuman's "
+                           "units); expected a person 0.5-3 m tall: give the file's units; in \"cm\" it is 1.67 m"),
+              std::string::npos) << message;
+  }
+  files.metres_per_unit = 0.01;
+  const SkinnedBody body = load_makehuman_body(files, walk.skeleton);
+  ASSERT_EQ(body.rest_vertices.rows(), reference.rest_vertices.rows());
+  EXPECT_LT((body.rest_vertices - reference.rest_vertices).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((body.obj_offset - reference.obj_offset).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 }  // namespace
 }  // namespace mrcloth

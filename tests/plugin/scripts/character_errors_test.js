@@ -31,7 +31,11 @@ expectThrows(sim({motion: walk, body: {type: "capsules", obj: walk}}), "Argument
 expectThrows(sim({motion: walk, body: {type: "mesh", obj: missing, skeleton: walk, weights: walk}}), "InputError",
              "option 'body.obj': ", "no_such_motion.bvh: no such file");
 expectThrows(sim({motion: walk, body: {radius: 1}}), "ArgumentError", "unknown option 'radius' in option 'body'",
-             "accepted: type, obj, skeleton, weights, thickness, friction");
+             "accepted: type, obj, skeleton, weights, units, thickness, friction");
+expectThrows(sim({motion: walk, body: {units: "cm"}}), "ArgumentError",
+             "option 'body.units' are the units of the MakeHuman body file (obj): give obj, skeleton and weights with it");
+expectThrows(sim({motion: walk, body: {obj: walk, skeleton: walk, weights: walk, units: "cmu"}}), "ArgumentError",
+             "option 'body.units' must be one of \"m\", \"dm\", \"cm\", \"mm\", \"inch\", got the string \"cmu\"");
 expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError", "option 'body.thickness' must be a number >= 0");
 expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must be \"capsules\", \"mesh\" or an object");
 expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
