@@ -38,6 +38,7 @@ struct ObjData {
   /// Per group face, its corners' 0-based texcoord indices; empty when some
   /// corner has none or a 'vt' could not be read (the body is drawn untextured).
   std::vector<std::vector<int>> group_face_uvs;
+  std::vector<int> group_face_lines;  ///< per group face, its line in the file
   bool uvs_complete = true;
 };
 
@@ -61,7 +62,6 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the file for reading; expected a readable OBJ file");
   ObjData obj;
-  std::vector<int> face_lines;
   bool in_group = false;
   std::string text;
   int line = 0;
@@ -108,7 +108,7 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
       }
       obj.group_faces.push_back(std::move(face));
       obj.group_face_uvs.push_back(std::move(face_uvs));
-      face_lines.push_back(line);
+      obj.group_face_lines.push_back(line);
     }
   }
   if (in.bad()) throw InputError(path + ": read error; expected a readable OBJ file");
@@ -117,7 +117,7 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
   for (std::size_t f = 0; f < obj.group_faces.size(); ++f)
     for (int v : obj.group_faces[f])
       if (v >= static_cast<int>(obj.vertices.size()))
-        obj_error(path, face_lines[f], "face vertex " + std::to_string(v + 1) + " does not exist",
+        obj_error(path, obj.group_face_lines[f], "face vertex " + std::to_string(v + 1) + " does not exist",
                   "an index <= " + std::to_string(obj.vertices.size()));
   return obj;
 }
@@ -155,6 +155,41 @@ void check_body_height(const MakeHumanOptions& files, const ObjData& obj, const 
                    fixed(files.metres_per_unit) + " m per unit" +
                    (files.metres_per_unit == 0.1 ? std::string(" (decimetres, MakeHuman's units)") : std::string()) +
                    "; expected a person 0.5-3 m tall: give the file's units" + suggestion);
+}
+
+/// Refuses a body group that is not closed: every edge of its faces must be
+/// shared by exactly two of them. Collision asks which side of the skin a
+/// point is on, and a hole (faces deleted from the group) or a flap has no
+/// inside; the later checks would say so only in their own terms.
+void check_body_closed(const std::string& path, const ObjData& obj) {
+  std::map<std::pair<int, int>, std::pair<int, std::size_t>> edges;  // (low, high) file vertex -> (faces, first face)
+  for (std::size_t f = 0; f < obj.group_faces.size(); ++f) {
+    const auto& face = obj.group_faces[f];
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const int a = face[k], b = face[(k + 1) % face.size()];
+      auto& entry = edges[{std::min(a, b), std::max(a, b)}];
+      if (entry.first++ == 0) entry.second = f;
+    }
+  }
+  std::size_t open = 0, crowded = 0;
+  const std::pair<const std::pair<int, int>, std::pair<int, std::size_t>>* first = nullptr;
+  for (const auto& edge : edges) {
+    if (edge.second.first == 2) continue;
+    (edge.second.first == 1 ? open : crowded) += 1;
+    if (!first) first = &edge;
+  }
+  if (!first) return;
+  const auto& [ends, use] = *first;
+  std::string counts;
+  if (open > 0) counts = std::to_string(open) + (open == 1 ? " edge has" : " edges have") + " a face on one side only";
+  if (crowded > 0)
+    counts += (counts.empty() ? "" : ", ") + std::to_string(crowded) + (crowded == 1 ? " edge has" : " edges have") +
+              " more than two faces";
+  throw InputError(path + ":" + std::to_string(obj.group_face_lines[use.second]) + ": the body group is not closed: " +
+                   counts + " (the first: the edge from vertex " + std::to_string(ends.first + 1) + " to " +
+                   std::to_string(ends.second + 1) + " of the face on this line)" +
+                   "; expected MakeHuman's closed body, every edge between two faces (faces deleted from group "
+                   "\"body\" leave holes the cloth cannot be kept out of)");
 }
 
 // ---------------------------------------------------------------------------
@@ -484,6 +519,7 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   std::vector<Vector3d> all_vertices = obj.vertices;
   for (Vector3d& v : all_vertices) v *= files.metres_per_unit;
   check_body_height(files, obj, all_vertices);
+  check_body_closed(files.base_obj, obj);
 
   const JsonValue rig = read_json(files.skeleton_file);
   const JsonValue mhw = read_json(files.weights_file);
