@@ -730,11 +730,21 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
     for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
     waist /= static_cast<double>(model.pinned_vertices.size());
     const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
+    // Placed as on the MakeHuman body, the garment is where its file puts it
+    // relative to the body file's: then the files disagree, not the option.
+    const bool as_on_body = request.character && request.character->setup.place == GarmentPlacement::makehuman;
+    const QString advice =
+        as_on_body ? QStringLiteral("placed as on the MakeHuman body (option 'place': \"makehuman\"), the garment's file "
+                                    "and the body's do not share their coordinates: a garment modelled on another "
+                                    "body, one of the two files moved, or the garment loaded in other units than the "
+                                    "body (core.loadObject's units and option 'body.units'; the pipeline's --units and "
+                                    "--makehuman-units)")
+                   : QStringLiteral("the garment is probably not placed on the character (option 'place': "
+                                    "\"makehuman\" for MakeHuman garments, \"firstFrame\" for garments modelled on the "
+                                    "clip's frame 0)");
     if (distance > 0.3)
-      lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: the garment "
-                                       "is probably not placed on the character (option 'place': \"makehuman\" for "
-                                       "MakeHuman garments, \"firstFrame\" for garments modelled on the clip's frame 0)")
-                            .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint))});
+      lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: %4")
+                                    .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint), advice)});
   }
   // A pre-roll too short for the way from the rest pose to the first frame
   // moves the legs faster than any stride: cloth on them tears.
