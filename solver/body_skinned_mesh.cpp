@@ -549,6 +549,17 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
                      "\" has no bone in the rig; expected the rig's root \"" + root_bone +
                      "\" (the CMU MotionBuilder names; rename the motion's joints onto them)");
   }
+  // The legs move the garment: a leg joint of the skeleton the rig has no
+  // bone for (a bone renamed in the .mhskel) would leave its skin to the
+  // joint above, a thigh following the hip, and the hips unaligned.
+  for (const char* leg : {"LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"}) {
+    const int j = skeleton.find(leg);
+    if (j >= 0 && !bone_of[static_cast<std::size_t>(j)])
+      throw InputError(files.skeleton_file + ": the rig has no bone \"" + leg +
+                       "\" for the skeleton's joint of that name; expected a bone for each joint of the legs, named "
+                       "as the skeleton's (the CMU MotionBuilder names): without it the skin of that part of the leg "
+                       "would follow the joint above it");
+  }
   // Each rig bone's skin goes to its own joint or its nearest ancestor's.
   const auto joint_taking = [&](const std::string& bone_name) {
     std::string at = bone_name;

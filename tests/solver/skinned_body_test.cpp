@@ -2073,11 +2073,12 @@ TEST(SkinnedBodyFiles, AWeightsFileLeavingVerticesUnweightedIsRefused) {
 
 
 /// The shared rig's text without bone `name`'s entry (the file's own
-/// layout: one member per block), the bones it parented re-parented onto
-/// `new_parent` unless that is empty.
+/// layout: one member per block; none when empty), the bones it parented
+/// re-parented onto `new_parent` unless that is empty.
 std::string rig_without_bone(const std::string& name, const std::string& new_parent) {
   std::ifstream in(test::shared_data("bodies/makehuman/rigs/cmu_mb.mhskel"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (name.empty()) return text;
   const std::size_t start = text.find("\n        \"" + name + "\": {");
   const std::size_t end = text.find("\n        }", start + 1);
   EXPECT_NE(start, std::string::npos);
@@ -2133,6 +2134,24 @@ TEST(SkinnedBodyFiles, ARigWithoutABoneMidChainKeepsTheBodyInShape) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dangling.mhskel:"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("bone \"Spine1\" names parent \"Spine\", which \"bones\" does not list"),
+              std::string::npos) << e.what();
+  }
+
+  // A leg bone renamed (its children relinked): the thigh's skin would
+  // follow the hip joint and the hips go unaligned (8 cm high), at exit 0.
+  std::string renamed = rig_without_bone("", "");
+  for (const std::string& from : {std::string("\"LeftUpLeg\": {"), std::string("\"parent\": \"LeftUpLeg\"")}) {
+    const std::size_t at = renamed.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    renamed.replace(at, from.size(), from[1] == 'L' ? "\"LeftThigh\": {" : "\"parent\": \"LeftThigh\"");
+  }
+  files.skeleton_file = (folder / "renamed.mhskel").string();
+  std::ofstream(files.skeleton_file) << renamed;
+  try {
+    load_makehuman_body(files, walk.skeleton);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("renamed.mhskel: the rig has no bone \"LeftUpLeg\" for the skeleton's joint"),
               std::string::npos) << e.what();
   }
 }
