@@ -122,6 +122,13 @@ ObjData read_obj_group(const std::string& path, std::string_view group) {
   return obj;
 }
 
+/// `value` printed by a printf `format` for one double ("%.2f").
+std::string printed(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
 /// Refuses a body group not the height of a person (0.5-3 m) as read in
 /// `files.metres_per_unit`: a body exported in centimetres and read as
 /// MakeHuman's decimetres stands 16 m tall, and the clip's size check would
@@ -136,11 +143,6 @@ void check_body_height(const MakeHumanOptions& files, const ObjData& obj, const 
     }
   const double height = high - low;
   if (height >= kLowest && height <= kTallest) return;
-  const auto fixed = [](double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return std::string(text);
-  };
   std::string suggestion;
   double best = std::numeric_limits<double>::infinity();
   for (const char* unit : {"m", "dm", "cm", "mm", "inch"}) {
@@ -148,11 +150,11 @@ void check_body_height(const MakeHumanOptions& files, const ObjData& obj, const 
     const double error = std::abs(std::log(there / kTypical));
     if (height > 0.0 && error < best && there >= kLowest && there <= kTallest) {
       best = error;
-      suggestion = std::string("; in \"") + unit + "\" it is " + fixed(there) + " m";
+      suggestion = std::string("; in \"") + unit + "\" it is " + printed("%.3g", there) + " m";
     }
   }
-  throw InputError(files.base_obj + ": the body group is " + fixed(height) + " m tall read at " +
-                   fixed(files.metres_per_unit) + " m per unit" +
+  throw InputError(files.base_obj + ": the body group is " + printed("%.3g", height) + " m tall read at " +
+                   printed("%.3g", files.metres_per_unit) + " m per unit" +
                    (files.metres_per_unit == 0.1 ? std::string(" (decimetres, MakeHuman's units)") : std::string()) +
                    "; expected a person 0.5-3 m tall: give the file's units" + suggestion);
 }
@@ -403,20 +405,15 @@ void check_weights_fit_mesh(const MakeHumanOptions& files, const std::vector<Vec
   }
   // A few far vertices can be a real body's (a large belly); a tenth cannot.
   if (count == 0 || beyond * 10 <= count) return;
-  const auto fixed = [](double value, int digits) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, value);
-    return std::string(text);
-  };
   throw InputError(files.weights_file + ": the weights do not fit the body's vertices: " +
-                   fixed(100.0 * static_cast<double>(beyond) / static_cast<double>(count), 0) +
-                   " % of the body's vertices lie farther than " + fixed(far, 2) +
+                   printed("%.0f", 100.0 * static_cast<double>(beyond) / static_cast<double>(count)) +
+                   " % of the body's vertices lie farther than " + printed("%.2f", far) +
                    " m (a fifth of its height) from every bone that carries them (the first: vertex " +
-                   std::to_string(first + 1) + " of " + files.base_obj + " is " + fixed(first_distance, 2) +
+                   std::to_string(first + 1) + " of " + files.base_obj + " is " + printed("%.2f", first_distance) +
                    " m from the bones carrying it, mostly \"" +
                    skeleton.joints[static_cast<std::size_t>(first_joint)].name + "\", as " + files.skeleton_file +
-                   " places them); expected the weights and rig of this base.obj, in its vertex order (files of one MakeHuman "
-                   "export; a tool that re-saves the OBJ may renumber its vertices)");
+                   " places them); expected the weights and rig of this base.obj, in its vertex order (files of one "
+                   "MakeHuman export; a tool that re-saves the OBJ may renumber its vertices)");
 }
 
 // ---------------------------------------------------------------------------

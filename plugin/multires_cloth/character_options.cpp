@@ -165,8 +165,9 @@ void parseBody(const Fields& top, CharacterRequest& request) {
              .arg(optionLabel(key), script::describeValue(value)));
   const QStringList files = {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
   const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
-                                      QStringList{QStringLiteral("units"), QStringLiteral("thickness"), QStringLiteral("friction"),
-                                                  QStringLiteral("radii"), QStringLiteral("legBridges"),
+                                      QStringList{QStringLiteral("units"), QStringLiteral("thickness"),
+                                                  QStringLiteral("friction"), QStringLiteral("radii"),
+                                                  QStringLiteral("legBridges"),
                                                   QStringLiteral("waistFollows"), QStringLiteral("waistSmoothing"),
                                                   QStringLiteral("armClearance"), QStringLiteral("handMittens")});
   const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
@@ -191,7 +192,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     makehuman.base_obj = file(QStringLiteral("obj"));
     makehuman.skeleton_file = file(QStringLiteral("skeleton"));
     makehuman.weights_file = file(QStringLiteral("weights"));
-    makehuman.metres_per_unit = metresPerUnit(fields.choice(QStringLiteral("units"), QStringLiteral("dm"), bodyUnits()));
+    makehuman.metres_per_unit =
+        metresPerUnit(fields.choice(QStringLiteral("units"), QStringLiteral("dm"), bodyUnits()));
     request.setup.makehuman = makehuman;
   } else if (fields.has(QStringLiteral("units"))) {
     fail(QStringLiteral("%1 are the units of the MakeHuman body file (obj): give obj, skeleton and weights with it")

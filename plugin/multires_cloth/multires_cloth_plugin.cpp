@@ -744,7 +744,9 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                     "clip's frame 0)");
     if (distance > 0.3)
       lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: %4")
-                                    .arg(slot).arg(distance, 0, 'f', 2).arg(QString::fromStdString(run.pelvis_joint), advice)});
+                                    .arg(slot)
+                                    .arg(distance, 0, 'f', 2)
+                                    .arg(QString::fromStdString(run.pelvis_joint), advice)});
   }
   // A pre-roll too short for the way from the rest pose to the first frame
   // moves the legs faster than any stride: cloth on them tears.
@@ -1125,8 +1127,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "skipFirst (also at the top level), body: \"capsules\" "
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "
-            "that body), units: \"m\" | \"dm\" | \"cm\" | \"mm\" | \"inch\" = \"dm\" (base.obj's units; MakeHuman exports "
-            "decimetres; a body not 0.5-3 m tall is refused with the units that fit), thickness (m) = 0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
+            "that body), units: \"m\" | \"dm\" | \"cm\" | \"mm\" | \"inch\" = \"dm\" (base.obj's units; MakeHuman "
+            "exports decimetres; a body not 0.5-3 m tall is refused with the units that fit), thickness (m) = "
+            "0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
             "only, 0 removes that joint's capsules), legBridges: \"auto\" | false | 0.5 .. 2 = \"auto\" (capsules "
             "between the legs down to that many bones below the hips, 1 = knees, 2 = ankles, so a skirt cannot "
             "fold in between the legs and be caught; auto: for a garment with two boundary loops, to the knees "
