@@ -221,7 +221,9 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     }
     if (report.non_finite) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
+    const auto measure_start = std::chrono::steady_clock::now();
     measure_frame(scene, model, surface, x, report.frames, report, integrator.pool(), hints);
+    timing.measure_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - measure_start).count();
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);
@@ -238,9 +240,11 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     mean.limiter_ms += t.limiter_ms;
     mean.posing_ms += t.posing_ms;
     mean.first_round_ms += t.first_round_ms;
+    mean.measure_ms += t.measure_ms;
   }
   if (report.frames > 0) {
-    for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms})
+    for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms,
+                         &mean.measure_ms})
       *part /= report.frames;
   }
   if (report.steps > 0) report.mean_rounds /= report.steps;

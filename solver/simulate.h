@@ -60,6 +60,9 @@ struct FrameTiming {
   double limiter_ms = 0.0;      ///< of dynamics_ms: strain limiting
   double posing_ms = 0.0;       ///< of collision_ms: posing the moving bodies
   double first_round_ms = 0.0;  ///< of collision_ms: each step's first round (every vertex against the new pose)
+  /// Not part of the simulation (nor of total_ms): measuring the output frame
+  /// for the report (stretch, depths against the bodies, self-crossings).
+  double measure_ms = 0.0;
   double total_ms() const { return dynamics_ms + collision_ms; }
 };
 
