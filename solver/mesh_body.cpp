@@ -214,7 +214,10 @@ struct MeshBody::Impl {
   Vector3d root_lo{0, 0, 0}, root_hi{0, 0, 0};  ///< the whole mesh's box
   double thickness = 0.0, friction = 0.0;
   unsigned long long serial = 0;  ///< counts update() calls: a memo is only good for the pose it was made in
-  double reach2 = 0.0;        ///< (thickness + margin)^2
+  /// (thickness + kWholeMeshSideBeyond)^2: how far depths() looks for the
+  /// nearest triangle. Beyond it the side alone decides (as signed_contact
+  /// does beyond kWholeMeshSideBeyond), and a point outside has no depth.
+  double depth_reach2 = 0.0;
   double normal_floor = 0.0;  ///< below this distance the pseudo-normal, not p - c, is the normal
 
   static void require_finite(const Eigen::MatrixX3d& vertices) {
@@ -1078,7 +1081,7 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
   if (triangles.empty()) throw ArgumentError("MeshBody: no triangles; expected a closed triangle mesh");
   m.thickness = thickness;
   m.friction = friction;
-  m.reach2 = (thickness + Impl::kMargin) * (thickness + Impl::kMargin);
+  m.depth_reach2 = (thickness + Impl::kWholeMeshSideBeyond) * (thickness + Impl::kWholeMeshSideBeyond);
   Impl::require_finite(vertices);
   m.set_positions(vertices);
   const int vertex_count = static_cast<int>(vertices.rows());
@@ -1303,10 +1306,14 @@ double MeshBody::penetration(const Eigen::Vector3d& p) const { return depths(p).
 double MeshBody::depth(const Eigen::Vector3d& p) const { return depths(p).depth; }
 
 PointDepths MeshBody::depths(const Eigen::Vector3d& p, int* hint) const {
-  // The nearest triangle within reach (thickness + kMargin), else, inside
-  // the root box, the nearest of all, which counts where p is inside. The
-  // hint's triangle bounds whichever search runs, as a memo's does in
-  // resolve.
+  // The nearest triangle within reach (thickness + kWholeMeshSideBeyond),
+  // else, inside the root box, the nearest of all, which counts where p is
+  // inside. The hint's triangle bounds whichever search runs, as a memo's
+  // does in resolve. (Searching out to thickness + kMargin, 5.4 cm, gave
+  // the same numbers: beyond kWholeMeshSideBeyond the side is the whole
+  // mesh's parity either way, or the nearest of all's, and a point found
+  // outside there has no depth; it only cost a search per point in the
+  // band, a third of the measuring of the shared skirt refined twice.)
   const Impl& m = *impl_;
   Impl::Closest seed;
   if (hint && *hint >= 0 && static_cast<std::size_t>(*hint) < m.triangles.size() &&
@@ -1316,8 +1323,8 @@ PointDepths MeshBody::depths(const Eigen::Vector3d& p, int* hint) const {
     seed.at = closest_on_triangle(p, m.corner(t, 0), m.corner(t, 1), m.corner(t, 2));
     seed.d2 = (p - seed.at.point).squaredNorm();
   }
-  Impl::Closest nearest = seed.d2 < m.reach2 ? seed : Impl::Closest{};
-  bool within = m.closest(p, nearest.triangle >= 0 ? nearest.d2 : m.reach2, nearest);
+  Impl::Closest nearest = seed.d2 < m.depth_reach2 ? seed : Impl::Closest{};
+  bool within = m.closest(p, nearest.triangle >= 0 ? nearest.d2 : m.depth_reach2, nearest);
   if (!within) {
     if (!m.inside_root(p)) return {};
     // Beyond reach, with triangles left out, the side is the whole mesh's
