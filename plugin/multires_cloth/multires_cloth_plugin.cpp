@@ -1111,7 +1111,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "\"plane\", point = [0, 0, 0], normal = [0, 1, 0]} | {type: \"sphere\", center, radius} | {type: "
             "\"capsule\", a, b, radius or radiusA and radiusB}, each with thickness (m) = 0.002 and friction = "
             "0.3], output: PC2 file (its folder must exist) = none, objSequence: OBJ file prefix "
-            "(<prefix>_0000.obj ...) = none, updateObject: bool = false (store the last frame as a new "
+            "(<prefix>_0000.obj ...; written when the run completes, its frames held until then) = none, updateObject: bool = false (store the last frame as a new "
             "object)}; lengths in m. On a character (all of these need `motion`; `substeps` is refused): "
             "motion: BVH file or {path, units: \"m\" | \"cmu\" (0.056444 m, CMU files) | \"dm\" | \"cm\" | "
             "\"mm\" | \"inch\" | \"auto\" (those giving the figure an adult's legs) = \"m\" or scale: metres "
