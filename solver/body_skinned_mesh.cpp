@@ -1,5 +1,6 @@
 #include "body_skinned_mesh.h"
 
+#include "joint_names.h"
 #include "json_lite.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/obj_tokens.h"
@@ -129,19 +130,24 @@ std::string printed(const char* format, double value) {
   return text;
 }
 
+/// The body group's height (its faces' vertices' extent along Y), in the
+/// units of `points`.
+double body_height(const ObjData& obj, const std::vector<Vector3d>& points) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const auto& face : obj.group_faces)
+    for (int v : face) {
+      low = std::min(low, points[static_cast<std::size_t>(v)].y());
+      high = std::max(high, points[static_cast<std::size_t>(v)].y());
+    }
+  return high - low;
+}
+
 /// Refuses a body group not the height of a person (0.5-3 m) as read in
 /// `files.metres_per_unit`: a body exported in centimetres and read as
 /// MakeHuman's decimetres stands 16 m tall, and the clip's size check would
 /// blame the clip. Suggests the units that give a height nearest 1.7 m.
-void check_body_height(const MakeHumanOptions& files, const ObjData& obj, const std::vector<Vector3d>& metres) {
+void check_body_height(const MakeHumanOptions& files, double height) {
   constexpr double kLowest = 0.5, kTallest = 3.0, kTypical = 1.7;
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (const auto& face : obj.group_faces)
-    for (int v : face) {
-      low = std::min(low, metres[static_cast<std::size_t>(v)].y());
-      high = std::max(high, metres[static_cast<std::size_t>(v)].y());
-    }
-  const double height = high - low;
   if (height >= kLowest && height <= kTallest) return;
   std::string suggestion;
   double best = std::numeric_limits<double>::infinity();
@@ -361,18 +367,13 @@ VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std:
 /// weights read against another order put most vertices far from theirs
 /// (three quarters beyond 0.2 m) and the body would be torn apart by the
 /// first pose. `heads`, `tails`: per joint, its rig bone in the same space
-/// as `vertices` + `offset`.
+/// as `vertices` + `offset`; `height`: the body's (metres).
 void check_weights_fit_mesh(const MakeHumanOptions& files, const std::vector<Vector3d>& vertices,
                             const std::vector<int>& body_index, const VertexWeights& weights,
                             const std::vector<Vector3d>& heads, const std::vector<Vector3d>& tails,
-                            const std::vector<bool>& has_bone, const Vector3d& offset, const Skeleton& skeleton) {
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (std::size_t v = 0; v < vertices.size(); ++v)
-    if (body_index[v] >= 0) {
-      low = std::min(low, vertices[v].y());
-      high = std::max(high, vertices[v].y());
-    }
-  const double far = 0.2 * (high - low);  // a fifth of the body's height
+                            const std::vector<bool>& has_bone, const Vector3d& offset, const Skeleton& skeleton,
+                            double height) {
+  const double far = 0.2 * height;  // a fifth of the body's height
   std::size_t count = 0, beyond = 0;
   int first = -1, first_joint = -1;
   double first_distance = 0.0;
@@ -515,7 +516,8 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   const ObjData obj = read_obj_group(files.base_obj, "body");
   std::vector<Vector3d> all_vertices = obj.vertices;
   for (Vector3d& v : all_vertices) v *= files.metres_per_unit;
-  check_body_height(files, obj, all_vertices);
+  const double height = body_height(obj, all_vertices);
+  check_body_height(files, height);
   check_body_closed(files.base_obj, obj);
 
   const JsonValue rig = read_json(files.skeleton_file);
@@ -549,7 +551,7 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   // The legs move the garment: a leg joint of the skeleton the rig has no
   // bone for (a bone renamed in the .mhskel) would leave its skin to the
   // joint above, a thigh following the hip, and the hips unaligned.
-  for (const char* leg : {"LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"}) {
+  for (const char* leg : kCmuLegJoints) {
     const int j = skeleton.find(leg);
     if (j >= 0 && !bone_of[static_cast<std::size_t>(j)])
       throw InputError(files.skeleton_file + ": the rig has no bone \"" + leg +
@@ -644,7 +646,8 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
                      "); expected weights for every vertex of the body group (a .mhw of another body or rig?)");
   }
 
-  check_weights_fit_mesh(files, all_vertices, body_index, body.weights, heads, tails, has_bone, offset, skeleton);
+  check_weights_fit_mesh(files, all_vertices, body_index, body.weights, heads, tails, has_bone, offset, skeleton,
+                         height);
 
   body.rest_vertices.resize(body_count, 3);
   for (std::size_t v = 0; v < all_vertices.size(); ++v) {

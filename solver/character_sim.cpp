@@ -1,5 +1,6 @@
 #include "character_sim.h"
 
+#include "joint_names.h"
 #include "mesh_ops/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -34,7 +35,8 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
 /// ankles) that `skeleton` has, by CMU name.
 std::vector<int> leg_joints(const Skeleton& skeleton) {
   std::vector<int> joints;
-  for (const char* name : {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"})
+  if (const int hips = skeleton.find("Hips"); hips >= 0) joints.push_back(hips);
+  for (const char* name : kCmuLegJoints)
     if (const int joint = skeleton.find(name); joint >= 0) joints.push_back(joint);
   return joints;
 }
@@ -451,7 +453,7 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
 
 double automatic_leg_bridges(int boundary_loop_count, const Eigen::MatrixX3d& placed_points, const Skeleton& skeleton) {
   if (boundary_loop_count != 2 || placed_points.rows() == 0) return 0.0;
-  for (const char* name : {"LeftUpLeg", "RightUpLeg", "LeftLeg", "RightLeg", "LeftFoot", "RightFoot"})
+  for (const char* name : kCmuLegJoints)
     if (skeleton.find(name) < 0) return 0.0;
   const Pose rest = rest_pose(skeleton);
   const double knee_height =

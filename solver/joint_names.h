@@ -12,6 +12,10 @@
 
 namespace mrcloth {
 
+/// The joints of the legs by their CMU names, hip joint to ankle, left then
+/// right: what moves a garment on the legs.
+constexpr const char* kCmuLegJoints[] = {"LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"};
+
 /// A joint's name in the file -> the name it takes (a CMU MotionBuilder name).
 using JointRenaming = std::map<std::string, std::string>;
 
