@@ -858,14 +858,69 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   }
 }
 
+/// A file save_mesh wrote (it names mrcloth's layers) ends, as OpenMesh's
+/// writer ends every file, with a sentinel chunk header (entity 7, all other
+/// fields 0). Checked before OpenMesh reads: its reader asserts (aborting
+/// the host) on some custom-layer chunks cut short.
+void check_om_ends_whole(const std::string& path, const std::string& bytes) {
+  if (bytes.find("mrcloth:") == std::string::npos) return;  // another program's file: the checks after reading
+  const bool sentinel = bytes.size() >= 18 && static_cast<unsigned char>(bytes[bytes.size() - 2]) == 0x1c &&
+                        bytes[bytes.size() - 1] == 0;
+  if (!sentinel)
+    throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but does not end as save_mesh "
+                                     "ends a file); expected a .om file as save_mesh writes it, whole"));
+}
+
+/// An OM file cut short in its vertex or face chunks reads fewer elements
+/// than its header counts (or garbage faces): refused before the faces are
+/// looked at. The header: "OM", mesh kind, version, then the vertex, face
+/// and edge counts as 32-bit integers in the writer's (little-endian) order.
+void check_om_counts(const std::string& path, const std::string& bytes, const QuadMesh& mesh) {
+  if (bytes.size() < 16 || bytes.compare(0, 2, "OM") != 0) return;  // the reader refused it already
+  const auto count = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t k = 0; k < 4; ++k) value |= std::uint32_t{static_cast<unsigned char>(bytes[at + k])} << (8 * k);
+    return value;
+  };
+  const std::uint32_t vertices = count(4), faces = count(8);
+  if (mesh.n_vertices() != vertices || mesh.n_faces() != faces)
+    throw InputError(with_path(path, "the file is cut short or damaged (its header counts " + std::to_string(vertices) +
+                                         " vertices and " + std::to_string(faces) + " faces; " +
+                                         std::to_string(mesh.n_vertices()) + " and " + std::to_string(mesh.n_faces()) +
+                                         " could be read); expected a whole .om file"));
+  // OM files store the halfedge connectivity itself: one cut short (or
+  // damaged) inside it reads as links that do not close up.
+  const auto damaged = [&](const std::string& what) {
+    throw InputError(with_path(path, "the file is cut short or damaged (" + what + "); expected a whole .om file"));
+  };
+  const auto valid = [](int index, std::size_t size) { return index >= 0 && static_cast<std::size_t>(index) < size; };
+  for (const auto h : mesh.halfedges()) {
+    const auto next = mesh.next_halfedge_handle(h), opposite = mesh.opposite_halfedge_handle(h);
+    const auto to = mesh.to_vertex_handle(h);
+    if (!valid(next.idx(), mesh.n_halfedges()) || !valid(to.idx(), mesh.n_vertices()) ||
+        mesh.prev_halfedge_handle(next) != h || mesh.from_vertex_handle(opposite) != to ||
+        mesh.face_handle(next) != mesh.face_handle(h) ||
+        (!mesh.is_boundary(h) && !valid(mesh.face_handle(h).idx(), mesh.n_faces())))
+      damaged("halfedge " + std::to_string(h.idx()) + " is not linked to its neighbours");
+  }
+  for (const auto f : mesh.faces()) {
+    const auto first = mesh.halfedge_handle(f);
+    if (!valid(first.idx(), mesh.n_halfedges()) || mesh.face_handle(first) != f)
+      damaged("face " + std::to_string(f.idx()) + " names a halfedge not its own");
+  }
+  for (const auto v : mesh.vertices()) {
+    const auto out = mesh.halfedge_handle(v);
+    if (out.is_valid() && (!valid(out.idx(), mesh.n_halfedges()) || mesh.from_vertex_handle(out) != v))
+      damaged("vertex " + std::to_string(v.idx()) + " names a halfedge not its own");
+  }
+}
+
 /// The OM reader fills only layers that exist before it reads, so every
 /// analysis layer was made first; those the file does not store (a mesh
 /// saved before any analysis) are removed again, so that a save and load
 /// adds no layers of zeros. An OM file stores each property's name as
 /// plain text.
-void drop_analysis_layers_not_stored(const std::string& path, QuadMesh& mesh) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+void drop_analysis_layers_not_stored(const std::string& bytes, QuadMesh& mesh) {
   const auto stored = [&](const char* name) { return bytes.find(name) != std::string::npos; };
   if (OpenMesh::VPropHandleT<int> handle; !stored(layer::computed_mode) && mesh.get_property_handle(handle, layer::computed_mode))
     mesh.remove_property(handle);
@@ -897,6 +952,13 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     ensure_record_uvs(mesh);
   }
 
+  std::string om_bytes;
+  if (*format == Format::om) {
+    std::ifstream in(path, std::ios::binary);
+    om_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    check_om_ends_whole(path, om_bytes);
+  }
+
   CheckingImporter importer(mesh);
   OpenMesh::IO::Options io_options;
   bool read = false;
@@ -916,6 +978,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
                                            extension + " mesh (binary OFF: little-endian, as OpenMesh reads it)"));
     }
   }
+  if (*format == Format::om) check_om_counts(path, om_bytes, mesh);
   const FaceProblem problem = earlier(scan.face_problem, importer.problem());
   if (problem.found()) throw InputError(with_path(path, problem.text));
   if (!read)
@@ -923,7 +986,16 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
                                          " (OpenMesh rejected it); expected a valid " + extension + " mesh"));
   if (mesh.n_vertices() == 0) throw InputError(with_path(path, "the file has no vertices; expected a quad mesh"));
   if (mesh.n_faces() == 0) throw InputError(with_path(path, "the file has no faces; expected a quad mesh"));
-  if (*format == Format::om) drop_analysis_layers_not_stored(path, mesh);
+  if (*format == Format::om) {
+    const std::string& bytes = om_bytes;
+    // save_mesh writes the forest last (ensure_layers): a file holding our
+    // layers but no forest was cut short, and would load as a coarse garment.
+    if (quadtree(mesh).empty() && bytes.find("mrcloth:") != std::string::npos)
+      throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but not the refinement "
+                                       "hierarchy save_mesh writes last); expected a .om file as save_mesh writes "
+                                       "it, whole"));
+    drop_analysis_layers_not_stored(bytes, mesh);
+  }
 
   if (scan_matches(scan, mesh)) {
     for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);

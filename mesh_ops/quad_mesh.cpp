@@ -2,8 +2,11 @@
 
 #include "errors.h"
 #include "quadtree_forest.h"
+#include "texture_coords.h"
 
 #include <algorithm>
+#include <iterator>
+#include <limits>
 #include <type_traits>
 
 namespace mrcloth {
@@ -46,6 +49,10 @@ Layers ensure_layers(QuadMesh& mesh) {
                                                                       OpenMesh::Vec2i(-1, -1));
   l.level = ensure_property<OpenMesh::FPropHandleT<int>>(mesh, layer::level, 1);
   l.quad = ensure_property<OpenMesh::FPropHandleT<int>>(mesh, layer::quad, -1);
+  // The OM writer stores mesh layers in the order they were made, so the
+  // forest, made after the UVs, is the file's last chunk: a file cut short
+  // anywhere lacks it or holds a damaged one (load_garment refuses both).
+  ensure_record_uvs(mesh);
   l.quadtree = ensure_property<OpenMesh::MPropHandleT<std::vector<QuadRecord>>>(
       mesh, layer::quadtree, std::vector<QuadRecord>{});
   return l;
@@ -131,7 +138,11 @@ size_t binary<mrcloth::QuadRecord>::store(std::ostream& os, const value_type& v,
 }
 
 size_t binary<mrcloth::QuadRecord>::restore(std::istream& is, value_type& v, bool swap) {
+  // What a read cut short leaves in place is refused by load_garment's
+  // check of the forest: a negative level and corners (a partly read int
+  // keeps its high byte, 0x80).
   std::int32_t ints[kInts];
+  std::fill(std::begin(ints), std::end(ints), std::numeric_limits<std::int32_t>::min());
   size_t bytes = 0;
   for (std::int32_t& i : ints) bytes += binary<std::int32_t>::restore(is, i, swap);
   v.level = ints[0];

@@ -2,14 +2,21 @@
 #include "test_meshes.h"
 
 #include "mesh_ops/adaptive_refine.h"
+#include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
+#include "mesh_ops/texture_coords.h"
 #include "mesh_ops/uniform_refine.h"
 
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 namespace mrcloth {
 namespace {
@@ -92,6 +99,82 @@ TEST(SaveLoad, ActiveSurfaceExportKeepsTheActivePolygons) {
   EXPECT_EQ(back.warnings.size(), 1u);
   EXPECT_EQ(back.mesh.n_vertices(), mesh.n_vertices() + mesh.n_faces() + mesh.n_edges());
   for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), back.mesh.point(back.mesh.vertex_handle(v.idx())));
+}
+
+// A file cut short anywhere (a copy or disk that stopped midway) is refused:
+// before, a cut after the vertex and face layers loaded as a coarse garment
+// without its hierarchy, and one in the UVs with zeros for the lost ones.
+TEST(SaveLoad, AnOmFileCutShortAnywhereIsRefused) {
+  QuadMesh mesh = refined_tube();
+  std::vector<RecordUV> uvs(quadtree(mesh).size());
+  for (std::size_t r = 0; r < uvs.size(); ++r)
+    for (int k = 0; k < 4; ++k) uvs[r].corner[static_cast<std::size_t>(k)] = OpenMesh::Vec2d(0.01 * r, 0.25 * k);
+  set_record_uvs(mesh, uvs);
+  const fs::path whole = temp_dir() / "whole.om", cut = temp_dir() / "cut.om";
+  save_mesh(mesh, whole.string());
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1000u);
+  ASSERT_TRUE(has_texture_coords(load_garment(whole.string()).mesh));
+
+  // Every byte of the first and last 300 (the header, the forest's last
+  // records) and every 37th between (every layer's chunk).
+  std::vector<std::size_t> lengths;
+  for (std::size_t n = 0; n < bytes.size(); n += (n < 300 || n + 300 > bytes.size()) ? 1 : 37) lengths.push_back(n);
+  std::size_t refused = 0;
+  for (const std::size_t n : lengths) {
+    std::ofstream(cut, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(n));
+    try {
+      load_garment(cut.string());
+      ADD_FAILURE() << "the first " << n << " of " << bytes.size() << " bytes loaded";
+    } catch (const InputError& error) {
+      ++refused;
+      EXPECT_NE(std::string(error.what()).find(cut.string()), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_EQ(refused, lengths.size());
+}
+
+/// Every proper prefix of `bytes` written to `cut` and loaded: the lengths that were not refused.
+std::vector<std::size_t> prefixes_loaded(const std::string& bytes, const fs::path& cut) {
+  std::vector<std::size_t> loaded;
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::ofstream(cut, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(n));
+    try {
+      load_garment(cut.string());
+      loaded.push_back(n);
+    } catch (const InputError&) {
+    }
+  }
+  return loaded;
+}
+
+// Another program's .om (no mrcloth layers, no hierarchy: loaded as a coarse
+// garment) cut short at any byte is refused too: by its header's counts or
+// its halfedge links, which OM files store as they are.
+TEST(SaveLoad, AnotherProgramsOmFileCutShortIsRefused) {
+  const QuadMesh tube = test::make_tube(6, 3, 0.3, 0.5);
+  OpenMesh::PolyMesh_ArrayKernelT<> plain;
+  for (const auto v : tube.vertices()) {
+    const auto& p = tube.point(v);
+    plain.add_vertex(OpenMesh::Vec3f(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])));
+  }
+  for (const auto f : tube.faces()) {
+    std::vector<OpenMesh::VertexHandle> corners;
+    for (const auto v : tube.fv_range(f)) corners.emplace_back(v.idx());
+    plain.add_face(corners);
+  }
+  const fs::path whole = temp_dir() / "plain.om";
+  ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, whole.string(), OpenMesh::IO::Options::Binary));
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.find("mrcloth:"), std::string::npos);
+  ASSERT_EQ(load_garment(whole.string()).mesh.n_faces(), tube.n_faces());
+
+  // Only the last two bytes (OpenMesh's closing sentinel, which its reader
+  // does not need) may go: the same mesh.
+  const std::vector<std::size_t> loaded = prefixes_loaded(bytes, temp_dir() / "plain_cut.om");
+  for (const std::size_t n : loaded) EXPECT_GE(n + 2, bytes.size()) << "the first " << n << " of " << bytes.size() << " bytes loaded";
 }
 
 }  // namespace
