@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <system_error>
 
@@ -105,6 +106,28 @@ void write_file_atomically(const std::string& path, const std::string& extension
 
 std::string temporary_path_beside(const std::string& path, const std::string& extension) {
   return temporary_path(fs::path(path), extension).string();
+}
+
+bool is_temporary_name(const std::string& file_name) {
+  // temporary_path's ".<name>.tmp-<hex entropy>-<counter><extension>".
+  static const std::regex form(R"(^\..*\.tmp-[0-9a-f]{1,8}-[0-9]+(\.[A-Za-z0-9]+)?$)");
+  return std::regex_match(file_name, form);
+}
+
+std::vector<std::string> remove_temporaries_under(const std::string& folder) {
+  std::vector<std::string> removed;
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) return removed;
+  std::vector<fs::path> found;
+  for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+    if (it->is_regular_file(error) && is_temporary_name(it->path().filename().string())) found.push_back(it->path());
+  if (error) throw OutputError(with_path(folder, "cannot list the folder (" + error.message() + ")"));
+  for (const fs::path& file : found) {
+    if (!fs::remove(file, error) && error)
+      throw OutputError(with_path(file.string(), "cannot remove a leftover temporary file (" + error.message() + ")"));
+    removed.push_back(file.string());
+  }
+  return removed;
 }
 
 }  // namespace mrcloth

@@ -2,6 +2,7 @@
 // Writing a file so that it either appears complete or not at all.
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace mrcloth {
 
@@ -24,5 +25,15 @@ void write_file_atomically(const std::string& path, const std::string& extension
 /// is created. For writers that stream into the file themselves and rename it
 /// when done (see write_file_atomically for the one-call version).
 std::string temporary_path_beside(const std::string& path, const std::string& extension);
+
+/// Whether `file_name` (a name, no folder) has the form temporary_path_beside
+/// gives: a temporary a writer left when its process was killed mid-write.
+bool is_temporary_name(const std::string& file_name);
+
+/// Removes every file under `folder` (recursively) whose name
+/// is_temporary_name; returns their paths. Only for a folder no other
+/// process writes into now (a live writer's temporary would go too).
+/// Throws OutputError naming a file that cannot be removed.
+std::vector<std::string> remove_temporaries_under(const std::string& folder);
 
 }  // namespace mrcloth

@@ -14,10 +14,12 @@
 #include "plugin/core/script_values.h"
 #include "solver/material.h"
 
+#include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
 #include <QJSEngine>
+#include <QLockFile>
 #include <QUrl>
 
 #include <algorithm>
@@ -72,6 +74,8 @@ int highestLevel(const std::vector<std::size_t>& faces_per_level) {
 
 ScriptCore::ScriptCore(ObjectStore& store, HostLog& log, QStringList scriptArguments, QObject* parent)
     : QObject(parent), store_(store), log_(log), script_arguments_(std::move(scriptArguments)) {}
+
+ScriptCore::~ScriptCore() = default;
 
 template <class Body>
 auto ScriptCore::guarded(const char* slot, Body&& body) -> decltype(body()) {
@@ -240,6 +244,60 @@ bool ScriptCore::filesEqual(QVariant pathA, QVariant pathB) {
   });
 }
 
+QString ScriptCore::fileHash(QVariant path) {
+  return guarded("fileHash", [&] {
+    const QString name = script::toString(path, QStringLiteral("path"));
+    QFile in(existingFile(name).filePath());
+    if (!in.open(QIODevice::ReadOnly)) throw InputError(name.toStdString() + ": cannot read (" + in.errorString().toStdString() + ")");
+    QCryptographicHash hash(QCryptographicHash::Sha256);
+    if (!hash.addData(&in)) throw InputError(name.toStdString() + ": cannot read (" + in.errorString().toStdString() + ")");
+    return QString::fromLatin1(hash.result().toHex());
+  });
+}
+
+bool ScriptCore::removeFile(QVariant path) {
+  return guarded("removeFile", [&] {
+    const QString name = script::toString(path, QStringLiteral("path"));
+    const QFileInfo info(name);
+    if (!info.exists() && !info.isSymLink()) return false;
+    if (info.isDir()) throw OutputError(name.toStdString() + ": cannot remove (it is a folder; expected a file)");
+    QFile file(name);
+    if (!file.remove()) throw OutputError(name.toStdString() + ": cannot remove (" + file.errorString().toStdString() + ")");
+    return true;
+  });
+}
+
+QStringList ScriptCore::removeTemporaries(QVariant folder) {
+  return guarded("removeTemporaries", [&] {
+    QStringList removed;
+    for (const std::string& file : remove_temporaries_under(script::toString(folder, QStringLiteral("folder")).toStdString()))
+      removed.push_back(QString::fromStdString(file));
+    return removed;
+  });
+}
+
+QVariantMap ScriptCore::lockFile(QVariant path) {
+  return guarded("lockFile", [&] {
+    const QString name = QFileInfo(script::toString(path, QStringLiteral("path"))).absoluteFilePath();
+    if (locks_.count(name)) return QVariantMap{{QStringLiteral("locked"), true}};
+    auto lock = std::make_unique<QLockFile>(name);
+    // Never stale by age (a run may take hours): only when its process is gone.
+    lock->setStaleLockTime(0);
+    if (lock->tryLock(0)) {
+      locks_.emplace(name, std::move(lock));
+      return QVariantMap{{QStringLiteral("locked"), true}};
+    }
+    if (lock->error() != QLockFile::LockFailedError)
+      throw OutputError(name.toStdString() + ": cannot create the lock file (" +
+                        (lock->error() == QLockFile::PermissionError ? "permission denied" : "unknown error") + ")");
+    qint64 pid = 0;
+    QString host, application;
+    lock->getLockInfo(&pid, &host, &application);
+    return QVariantMap{{QStringLiteral("locked"), false}, {QStringLiteral("pid"), pid},
+                       {QStringLiteral("host"), host}, {QStringLiteral("application"), application}};
+  });
+}
+
 void ScriptCore::setScriptPath(const QString& path) {
   const QFileInfo info(path);
   script_folder_ = info.absolutePath();
@@ -379,6 +437,30 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        QStringLiteral("Returns whether two files have exactly the same bytes (InputError if either is missing)."),
        {QStringLiteral("pathA"), QStringLiteral("pathB")},
        {QStringLiteral("first file"), QStringLiteral("second file")}},
+      {QStringLiteral("fileHash(string path) -> string"),
+       QStringLiteral("Returns the SHA-256 of a file's bytes as 64 hex digits, as sha256sum prints it (InputError if "
+                      "it is missing or unreadable)."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file")}},
+      {QStringLiteral("removeFile(string path) -> bool"),
+       QStringLiteral("Removes a file; returns false if there was none (OutputError if it is a folder or cannot be "
+                      "removed)."),
+       {QStringLiteral("path")},
+       {QStringLiteral("file to remove")}},
+      {QStringLiteral("removeTemporaries(string folder) -> string[]"),
+       QStringLiteral("Removes the temporary files a writer killed mid-write left under the folder (hidden "
+                      "\".NAME.tmp-HEX-N[.EXT]\" files, at any depth) and returns their paths; nothing if the "
+                      "folder does not exist. Only for a folder no other process is writing into (see lockFile)."),
+       {QStringLiteral("folder")},
+       {QStringLiteral("folder to sweep")}},
+      {QStringLiteral("lockFile(string path) -> object"),
+       QStringLiteral("Takes a lock file (Qt's QLockFile) held until mrcloth exits, so that two runs do not "
+                      "write into one folder. Returns {locked: true}, also when this run holds it already, or "
+                      "{locked: false, pid, host, application} naming the live process that holds it. A lock "
+                      "whose process is gone (killed) is taken over; a held one never expires. OutputError if "
+                      "the lock file cannot be created."),
+       {QStringLiteral("path")},
+       {QStringLiteral("lock file, e.g. \"out/stages/.lock\" (its folder must exist)")}},
       {QStringLiteral("include(string path) -> bool"),
        QStringLiteral("Evaluates a JavaScript file in the global scope, so its functions and `var`s become globals "
                       "(top-level let/const stay private to the file). A relative path is relative to the "

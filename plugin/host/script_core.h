@@ -12,6 +12,11 @@
 #include <QVariantList>
 #include <QVariantMap>
 
+#include <map>
+#include <memory>
+
+class QLockFile;
+
 namespace mrcloth {
 
 class HostLog;
@@ -23,6 +28,7 @@ class ScriptCore : public QObject, public ScriptInterface {
 
  public:
   ScriptCore(ObjectStore& store, HostLog& log, QStringList scriptArguments, QObject* parent = nullptr);
+  ~ScriptCore() override;  // releases the locks lockFile took
 
   QList<SlotDescription> slotDescriptions() const override;
 
@@ -59,6 +65,10 @@ class ScriptCore : public QObject, public ScriptInterface {
   bool fileExists(QVariant path = QVariant());
   double fileSize(QVariant path = QVariant());
   bool filesEqual(QVariant pathA = QVariant(), QVariant pathB = QVariant());
+  QString fileHash(QVariant path = QVariant());
+  bool removeFile(QVariant path = QVariant());
+  QStringList removeTemporaries(QVariant folder = QVariant());
+  QVariantMap lockFile(QVariant path = QVariant());
   void writeTextFile(QVariant path = QVariant(), QVariant text = QVariant());
   QString readTextFile(QVariant path = QVariant());
   bool fileReadable(QVariant path = QVariant());
@@ -72,6 +82,7 @@ class ScriptCore : public QObject, public ScriptInterface {
   HostLog& log_;
   QStringList script_arguments_;
   QString script_folder_;
+  std::map<QString, std::unique_ptr<QLockFile>> locks_;  ///< by absolute path, held until the host exits
   QSet<QString> included_;  ///< canonical paths of the main script and every file include evaluated
   bool exit_requested_ = false;
   int exit_code_ = 0;

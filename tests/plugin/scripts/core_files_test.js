@@ -1,0 +1,54 @@
+// core's file functions that runs sharing an output folder rely on:
+// fileHash (what --resume compares), removeFile, removeTemporaries (what a
+// killed writer leaves) and lockFile (one run per folder).
+"use strict";
+const [, , tmpDir] = core.scriptArguments();
+core.include("test_asserts.js");
+core.makePath(tmpDir + "/sub/deeper");
+
+// SHA-256 of the bytes, as sha256sum prints it (FIPS 180-2's "abc" example).
+core.writeTextFile(tmpDir + "/abc.txt", "abc");
+expectEqual(core.fileHash(tmpDir + "/abc.txt"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad",
+            "fileHash of \"abc\"");
+core.writeTextFile(tmpDir + "/fox.txt", "The quick brown fox jumps over the lazy dog");
+expectEqual(core.fileHash(tmpDir + "/fox.txt"), "d7a8fbb307d7809469ca9abcb0082e4f8d5651e46d3cdb762d02d0bf37c9e592",
+            "fileHash of the fox");
+// A binary file: the same bytes the same hash; one mode changed, another.
+const mesh = core.loadObject(core.resourcePath() + "/garments/default_skirt.obj");
+core.saveObject(mesh, tmpDir + "/skirt.om");
+core.saveObject(mesh, tmpDir + "/skirt_again.om");
+expectEqual(core.fileHash(tmpDir + "/skirt.om"), core.fileHash(tmpDir + "/skirt_again.om"), "fileHash of one mesh");
+multirescloth.setModes(mesh, [0], 2);
+core.saveObject(mesh, tmpDir + "/skirt_again.om");
+expectEqual(core.fileSize(tmpDir + "/skirt_again.om"), core.fileSize(tmpDir + "/skirt.om"), "size after a mode change");
+if (core.fileHash(tmpDir + "/skirt.om") === core.fileHash(tmpDir + "/skirt_again.om"))
+  throw new Error("fileHash: a changed binary file of the same size has the same hash");
+expectThrows(() => core.fileHash(tmpDir + "/none.txt"), "InputError", "core.fileHash: ", "none.txt", "no such file");
+expectThrows(() => core.fileHash(tmpDir + "/sub"), "InputError", "core.fileHash: ", "not a file");
+
+// removeFile: true once, then false; a folder is refused.
+expectEqual(core.removeFile(tmpDir + "/abc.txt"), true, "removeFile of a file");
+expectEqual(core.fileExists(tmpDir + "/abc.txt"), false, "removed file exists");
+expectEqual(core.removeFile(tmpDir + "/abc.txt"), false, "removeFile of nothing");
+expectThrows(() => core.removeFile(tmpDir + "/sub"), "OutputError", "core.removeFile: ", "/sub", "it is a folder");
+
+// removeTemporaries: the writers' ".NAME.tmp-HEX-N[.EXT]" files at any depth, nothing else.
+const temporaries = [".high.om.tmp-1f2e-0.om", "sub/.instance_high.pc2.tmp-abcdef01-12.pc2", "sub/deeper/.report.md.tmp-9-3"];
+const others = [".hidden", "a.tmp-1-0", ".x.tmp-zz-1", ".y.tmp-12", "sub/high.om", "sub/deeper/.tmp-1-0x"];
+for (const file of temporaries.concat(others)) core.writeTextFile(tmpDir + "/" + file, "x");
+const removed = core.removeTemporaries(tmpDir).map((path) => path.slice(tmpDir.length + 1)).sort();
+expectEqual(removed, temporaries.slice().sort(), "removeTemporaries removed");
+for (const file of temporaries) expectEqual(core.fileExists(tmpDir + "/" + file), false, file + " exists");
+for (const file of others) expectEqual(core.fileExists(tmpDir + "/" + file), true, file + " exists");
+expectEqual(core.removeTemporaries(tmpDir + "/no_such_folder"), [], "removeTemporaries of no folder");
+// A temporary save_mesh leaves when killed has that form (one is made by hand
+// here with the name a save would use: saving succeeds, so leaves none).
+expectEqual(core.removeTemporaries(tmpDir), [], "a second sweep");
+
+// lockFile: taken, taken again by the same run; the file exists while held.
+expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile");
+expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile again");
+expectEqual(core.fileExists(tmpDir + "/sub/.lock"), true, "the lock file exists");
+expectThrows(() => core.lockFile(tmpDir + "/no_such_folder/.lock"), "OutputError", "core.lockFile: ", "no_such_folder/.lock",
+             "cannot create the lock file");
+print("core files: ok (" + checked + " errors checked)");
