@@ -445,14 +445,21 @@ function fileText(path) {
   return fileTexts[path];
 }
 
-/// What --resume compares to tell an input changed in place: its size and a
-/// hash of its text (32-bit FNV-1a over the UTF-16 code units; a binary
-/// file's bytes that are not UTF-8 read alike, so for those mostly its size).
+/// What --resume compares to tell an input changed in place: its size and
+/// the SHA-256 of its bytes.
 function fingerprint(name, path) {
+  return {option: name, path: path, bytes: core.fileSize(path), sha256: core.fileHash(path)};
+}
+
+/// The hash runs recorded before the SHA-256 (no `sha256` in their
+/// fingerprints): 32-bit FNV-1a over the text's UTF-16 code units, which
+/// reads a binary file's bytes that are not UTF-8 alike (so for a binary
+/// garment such a run can tell only its size).
+function textHash(path) {
   const text = fileText(path);
   let hash = 0x811c9dc5 | 0;
   for (let k = 0; k < text.length; ++k) hash = Math.imul(hash ^ text.charCodeAt(k), 16777619);
-  return {option: name, path: path, bytes: core.fileSize(path), hash: (hash >>> 0).toString(16).padStart(8, "0")};
+  return (hash >>> 0).toString(16).padStart(8, "0");
 }
 
 // --- Files and stages ------------------------------------------------------------
@@ -506,13 +513,20 @@ function optionName(key) {
 /// With --resume, before anything is written: the folder's record of its run
 /// (stages/options.json) must hold this run's options and input files.
 /// Returns that run's id, which its stage records carry.
+const RESUME_AGAIN = "; run without --resume to start a new run, or use another --out";
+
+/// With --resume, before the folder is locked: it must hold a run's record.
+function checkResumable(out) {
+  if (!core.fileExists(out)) throw pipelineError("--resume: " + out + " does not exist" + RESUME_AGAIN);
+  if (!core.fileExists(out + "/stages/options.json"))
+    throw pipelineError("--resume: " + out + " holds no stages/options.json, the record of a pipeline run's options" +
+                        RESUME_AGAIN);
+}
+
 function resumedRun(options, inputs) {
   const out = options.out, path = out + "/stages/options.json";
-  const again = "; run without --resume to start a new run, or use another --out";
-  if (!core.fileExists(out)) throw pipelineError("--resume: " + out + " does not exist" + again);
-  if (!core.fileExists(path))
-    throw pipelineError("--resume: " + out + " holds no stages/options.json, the record of a pipeline run's options" +
-                        again);
+  const again = RESUME_AGAIN;
+  checkResumable(out);
   let before;
   try {
     before = JSON.parse(core.readTextFile(path));
@@ -542,12 +556,31 @@ function resumedRun(options, inputs) {
 /// An input file changed in place since the run began would mix its results with new ones.
 function checkInputUnchanged(out, recorded, input, again) {
   const was = recorded.find((entry) => entry && entry.path === input.path);
-  if (was && was.bytes === input.bytes && was.hash === input.hash) return;
+  if (was && was.bytes === input.bytes &&
+      (was.sha256 !== undefined ? was.sha256 === input.sha256 : was.hash === textHash(input.path)))
+    return;
   const how = !was ? "it is not among the run's inputs"
               : was.bytes !== input.bytes ? "now " + input.bytes + " bytes, then " + was.bytes
                                           : "the same size, other contents";
   throw pipelineError("--resume: " + input.path + " (" + input.option + ") has changed since the run in " + out +
                       " began (" + how + "), so its results would mix with new ones" + again, "InputError");
+}
+
+/// One run at a time in a folder: a second one would mix its outputs and
+/// stage records with the first's. The lock (stages/.lock) goes with the
+/// process, also when it is killed; then the temporaries its writers left
+/// are swept.
+function lockOutput(out) {
+  core.makePath(out + "/stages");
+  const lock = core.lockFile(out + "/stages/.lock");
+  if (!lock.locked)
+    throw pipelineError("option --out: " + out + " is in use by another pipeline run (" + lock.application +
+                        " process " + lock.pid + (lock.host ? " on " + lock.host : "") +
+                        "); wait for it to end, or use another --out", "OutputError");
+  const removed = core.removeTemporaries(out);
+  if (removed.length > 0)
+    core.log("pipeline: removed " + removed.length + " temporary file" + (removed.length > 1 ? "s" : "") +
+             " an interrupted writer left (" + removed.slice(0, 3).join(", ") + (removed.length > 3 ? ", ..." : "") + ")");
 }
 
 /// A new run's id: its stage records carry it, so those an earlier run left
@@ -592,7 +625,18 @@ class Stages {
     }
     // Another run's record (an earlier one, with other options) is not this run's result.
     if (record.run !== this.runId || JSON.stringify(record.outputs) !== JSON.stringify(outputs)) return null;
-    return outputs.every((file) => core.fileExists(this.out + "/" + file)) ? record : null;
+    if (!outputs.every((file) => core.fileExists(this.out + "/" + file))) return null;
+    // Records from before the outputs' fingerprints: their files' presence.
+    if (!Array.isArray(record.files)) return record;
+    for (const {file, bytes, sha256} of record.files) {
+      const path = this.out + "/" + file, now = core.fileSize(path);
+      if (now === bytes && core.fileHash(path) === sha256) continue;
+      core.warn("pipeline: " + path + " is not the file " + name + " wrote (" +
+                (now !== bytes ? "now " + now + " bytes, then " + bytes : "the same size, other contents") +
+                "); running " + name + " again");
+      return null;
+    }
+    return record;
   }
 
   /// Runs `work` (which returns the stage's record) unless resuming finds
@@ -611,6 +655,9 @@ class Stages {
     const record = work();
     record.stageSeconds = (Date.now() - started) / 1000;
     record.outputs = outputs;
+    // What resuming checks the files against: cut short, replaced or edited since.
+    record.files = outputs.map((file) => ({file: file, bytes: core.fileSize(this.out + "/" + file),
+                                           sha256: core.fileHash(this.out + "/" + file)}));
     record.run = this.runId;
     core.writeTextFile(this.recordPath(name), JSON.stringify(record, null, 1) + "\n");
     this.ran.push(name);
@@ -719,8 +766,12 @@ function highVertexCount(coarse, coarseInfo, levels) {
 function runPipeline(options, inputs) {
   const out = options.out;
   const {coarse, coarseInfo} = loadGarment(options);
+  if (options.resume) checkResumable(out);
+  lockOutput(out);
   const run = options.resume ? resumedRun(options, inputs) : newRunId();
-  core.makePath(out);
+  // The report is written last: one left from an earlier run must not stand
+  // beside this run's outputs if it stops before.
+  for (const file of ["report.md", "report.json"]) core.removeFile(out + "/" + file);
   for (const folder of ["meshes", "caches", "previews", "plots"]) core.makePath(out + "/" + folder);
   // refine-uniform, instance, modes, refine-adaptive, refine-equal, previews, and
   // per test motion one simulation per model (the equal-size uniform mesh
@@ -865,7 +916,13 @@ function runPipeline(options, inputs) {
   if (uniformRecord.level > 0 && uniformRecord.level < options.levels)
     models.push({name: "uniform_L" + uniformRecord.level, file: "meshes/uniform_equal.om",
                  vertices: uniformRecord.vertices});
-  stages.total = 6 + options.test.length * (models.length + 1);
+  // Counted with the equal-size uniform mesh at first; said where it drops out.
+  const total = 6 + options.test.length * (models.length + 1);
+  if (total !== stages.total)
+    core.log("pipeline: " + total + " stages in all, not " + stages.total + ": the uniform level nearest the " +
+             "multi-resolution mesh's vertex count is the " + (uniformRecord.level === 0 ? "coarse" : "high-resolution") +
+             " mesh itself, which is not run twice");
+  stages.total = total;
   const runs = [];
   for (const test of options.test) {
     const motionName = baseName(test);

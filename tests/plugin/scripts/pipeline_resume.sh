@@ -71,7 +71,58 @@ grep -q "\[warn\] pipeline: .*/run/stages/modes.json is unreadable .*; running m
 grep -q "\[warn\] pipeline: .*/run/stages/compare-walk_new.json is not a stage record" "$tmp/broken_record.err" ||
   fail "no warning naming compare-walk_new.json: $(cat "$tmp/broken_record.err")"
 
-# 5. An input file changed in place (two vertices swapped: the same size) is
+# 5. A stage's output cut short, or edited at the same size, since its stage
+# wrote it: named, and that stage alone is run again.
+size=$(wc -c < "$tmp/run/caches/instance_high.pc2")
+head -c $((size / 2)) "$tmp/run/caches/instance_high.pc2" > "$tmp/cut.pc2" && mv "$tmp/cut.pc2" "$tmp/run/caches/instance_high.pc2"
+ran cut_output $cheap --size 80x80 --out "$tmp/run" --resume
+grep -q "(1 stages run, 10 resumed)" "$tmp/cut_output.out" || fail "a cut cache: $(cat "$tmp/cut_output.out")"
+grep -q "\[warn\] pipeline: .*/run/caches/instance_high.pc2 is not the file instance wrote (now $((size / 2)) bytes, then $size); running instance again" \
+  "$tmp/cut_output.err" || fail "no warning naming the cut cache: $(cat "$tmp/cut_output.err")"
+[ "$(wc -c < "$tmp/run/caches/instance_high.pc2")" -eq "$size" ] || fail "the cache was not written again whole"
+ply="$tmp/run/meshes/high_by_level.ply"
+sed '1s/ply/PLY/' "$ply" > "$tmp/edited.ply" && mv "$tmp/edited.ply" "$ply"
+ran edited_output $cheap --size 80x80 --out "$tmp/run" --resume
+grep -q "(1 stages run, 10 resumed)" "$tmp/edited_output.out" || fail "an edited mesh: $(cat "$tmp/edited_output.out")"
+grep -q "\[warn\] pipeline: .*/run/meshes/high_by_level.ply is not the file refine-uniform wrote (the same size, other contents); running refine-uniform again" \
+  "$tmp/edited_output.err" || fail "no warning naming the edited mesh: $(cat "$tmp/edited_output.err")"
+head -1 "$ply" | grep -qx "ply" || fail "the edited mesh was not written again"
+
+# 6. One run at a time per folder. A fresh run removes the report an earlier
+# run left before any stage (it would stand beside this run's outputs); a
+# second run on the folder is refused naming the first; killed (SIGKILL),
+# the first leaves its lock and a temporary file, which a resume takes over
+# and removes.
+long="--levels 1 --instance-frames 20 --test-frames 300 --preroll 0 --size 64x64 --test $resources/characters/walk_new.bvh"
+ran earlier -q $cheap --out "$tmp/locked"
+[ -f "$tmp/locked/report.md" ] || fail "the earlier run wrote no report"
+"$host" -q pipeline $long --out "$tmp/locked" > "$tmp/first_run.out" 2> "$tmp/first_run.err" &
+first=$!
+tries=0
+until [ -f "$tmp/locked/stages/.lock" ] && [ ! -f "$tmp/locked/report.md" ] && [ -f "$tmp/locked/stages/instance.json" ]; do
+  tries=$((tries + 1))
+  if [ "$tries" -gt 600 ] || ! kill -0 "$first" 2>/dev/null; then
+    fail "the first run did not get to its instance holding the lock"; cat "$tmp/first_run.err"; break
+  fi
+  sleep 0.1
+done
+refused second "option --out: .*/locked is in use by another pipeline run \(mrcloth process $first( on [^)]*)?\); wait for it to end, or use another --out" \
+  $cheap --out "$tmp/locked"
+echo x > "$tmp/locked/caches/.walk_new.pc2.tmp-1a2b-0.pc2"
+kill -KILL "$first"
+wait "$first" 2>/dev/null
+[ -f "$tmp/locked/stages/.lock" ] || fail "the killed run left no lock (the test would not test taking one over)"
+[ -f "$tmp/locked/report.md" ] && fail "the killed run left the earlier run's report"
+ran taken_over $long --out "$tmp/locked" --resume
+grep -Eq ", [1-9][0-9]* resumed\)" "$tmp/taken_over.out" || fail "nothing resumed after the kill: $(cat "$tmp/taken_over.out")"
+# (The killed run may have left one of its own too.)
+grep -Eq "pipeline: removed [1-9][0-9]* temporary files? an interrupted writer left \(.*/locked/" \
+  "$tmp/taken_over.err" || fail "no temporary was said removed: $(cat "$tmp/taken_over.err")"
+leftovers=$(find "$tmp/locked" -name '.*tmp*')
+[ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
+[ -f "$tmp/locked/stages/.lock" ] && fail "the run left its lock behind"
+
+# 7. An input file changed in place (two vertices swapped: the same size) is
 # named; so is one whose size changed. Nothing is written.
 cp "$resources/garments/default_skirt.obj" "$tmp/skirt.obj"
 ran garment -q $cheap --garment "$tmp/skirt.obj" --out "$tmp/garment"
