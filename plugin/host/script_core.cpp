@@ -64,6 +64,18 @@ QFileInfo existingFile(const QString& path) {
   return info;
 }
 
+/// Why QDir::mkpath (which says only that it failed) could not make
+/// `folder`: the nearest existing part of the path is a file, or is a
+/// folder this process may not write into.
+std::string whyNoFolder(const QString& folder) {
+  QFileInfo part(QDir::cleanPath(QFileInfo(folder).absoluteFilePath()));
+  while (!part.exists() && part.absoluteFilePath() != part.absolutePath()) part = QFileInfo(part.absolutePath());
+  const std::string name = part.absoluteFilePath().toStdString();
+  if (!part.isDir()) return name + " is a file, not a folder";
+  if (!part.isWritable()) return "no permission to write into " + name;
+  return "the file system refused; is the disk full?";
+}
+
 int highestLevel(const std::vector<std::size_t>& faces_per_level) {
   for (std::size_t level = faces_per_level.size(); level-- > 0;)
     if (faces_per_level[level] > 0) return static_cast<int>(level);
@@ -183,7 +195,7 @@ QStringList ScriptCore::scriptArguments() { return script_arguments_; }
 void ScriptCore::makePath(QVariant path) {
   guarded("makePath", [&] {
     const QString folder = script::toString(path, QStringLiteral("path"));
-    if (!QDir().mkpath(folder)) throw OutputError("cannot create folder " + folder.toStdString());
+    if (!QDir().mkpath(folder)) throw OutputError("cannot create folder " + folder.toStdString() + " (" + whyNoFolder(folder) + ")");
   });
 }
 

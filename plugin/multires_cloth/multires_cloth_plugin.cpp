@@ -622,6 +622,12 @@ QVariantMap MultiresClothPlugin::compareResults(QVariant id, QVariant cachePath,
                     {QStringLiteral("p95PerFrame"), p95},
                     {QStringLiteral("cancelled"), report.cancelled},
                     {QStringLiteral("milliseconds"), millisecondsSince(timer)}};
+    // A cancelled comparison's numbers cover only the frames it reached: not logged as a result.
+    if (report.cancelled) {
+      emit log(LOGINFO, QStringLiteral("compareResults: %1 against %2 cancelled after %3 frames")
+                            .arg(describeObject(model), describeObject(reference)).arg(report.frames));
+      return last_report_;
+    }
     emit log(LOGINFO, QStringLiteral("compareResults: %1 against %2 over %3 frames: RMS %4 mm, p95 %5 mm, max %6 mm; "
                                      "wrinkle energy kept %7 % (mode-%8 region: %9 %), error %10 (region %11)")
                           .arg(describeObject(model), describeObject(reference)).arg(report.frames)

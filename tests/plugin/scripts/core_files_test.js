@@ -26,6 +26,10 @@ if (core.fileHash(tmpDir + "/skirt.om") === core.fileHash(tmpDir + "/skirt_again
 expectThrows(() => core.fileHash(tmpDir + "/none.txt"), "InputError", "core.fileHash: ", "none.txt", "no such file");
 expectThrows(() => core.fileHash(tmpDir + "/sub"), "InputError", "core.fileHash: ", "not a file");
 
+// makePath says why it cannot make a folder (QDir::mkpath says only that it failed).
+expectThrows(() => core.makePath(tmpDir + "/fox.txt/inner/folder"), "OutputError", "core.makePath: ",
+             "cannot create folder " + tmpDir + "/fox.txt/inner/folder (" + tmpDir + "/fox.txt is a file, not a folder)");
+
 // removeFile: true once, then false; a folder is refused.
 expectEqual(core.removeFile(tmpDir + "/abc.txt"), true, "removeFile of a file");
 expectEqual(core.fileExists(tmpDir + "/abc.txt"), false, "removed file exists");
