@@ -121,5 +121,9 @@ int main(int argc, char* argv[]) {
   InterruptHandler interrupt_handler(engine);
   for (const LoadedPlugin& plugin : plugins.plugins())
     if (qobject_cast<ProcessInterface*>(plugin.object)) interrupt_handler.watchJobs(plugin.object);
-  return runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
+  const int code = runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
+  // The pipeline records each stage as it completes: say how to go on.
+  if (command.pipeline && interruptFlag().load())
+    log.warn(QStringLiteral("pipeline: the same command with --resume continues from the stages complete"));
+  return code;
 }

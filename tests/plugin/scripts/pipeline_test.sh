@@ -96,6 +96,8 @@ kill -INT "$pid"
 wait "$pid"
 code=$?
 [ "$code" -eq 130 ] || { fail "interrupted pipeline: exit code $code, expected 130"; tail -5 "$tmp/int.err"; }
+tail -1 "$tmp/int.err" | grep -q "pipeline: the same command with --resume continues from the stages complete" ||
+  fail "the interrupted pipeline did not say how to go on: $(tail -2 "$tmp/int.err")"
 leftovers=$(find "$tmp/interrupted" -name '.*tmp*')
 [ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
 [ -f "$tmp/interrupted/report.json" ] && fail "an interrupted run wrote a report"
