@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 namespace mrcloth {
 namespace {
@@ -137,15 +138,7 @@ void measure_frame(const CollisionScene& scene, const DynamicsModel& model, cons
 
 }  // namespace
 
-SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
-                          const PinTrajectory& pins, const SimulationProgress& progress,
-                          std::vector<Positions>* frames_out, const MovingBodies& bodies) {
-  check(options);
-  const AnalyticScene fixed(options.colliders);
-  CompositeScene scene;
-  scene.add(&fixed);
-  if (bodies.scene) scene.add(bodies.scene);
-  SimulationReport report;
+IntegratorOptions integrator_options(const SimulationOptions& options) {
   IntegratorOptions io;
   io.time_step = 1.0 / (options.fps * options.substeps);
   io.iterations = options.iterations;
@@ -162,11 +155,31 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   io.threads = options.threads;
   io.gravity = options.gravity;
   io.self_contact = options.self_contact;
+  return io;
+}
+
+SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
+                          const PinTrajectory& pins, const SimulationProgress& progress,
+                          std::vector<Positions>* frames_out, const MovingBodies& bodies,
+                          const ImplicitIntegrator* prepared) {
+  check(options);
+  const AnalyticScene fixed(options.colliders);
+  CompositeScene scene;
+  scene.add(&fixed);
+  if (bodies.scene) scene.add(bodies.scene);
+  SimulationReport report;
+  const IntegratorOptions io = integrator_options(options);
   report.time_step = io.time_step;
 
   auto start = std::chrono::steady_clock::now();
+  if (prepared && prepared->options().time_step != io.time_step)
+    throw std::logic_error("simulate: the prepared integrator steps " + std::to_string(prepared->options().time_step) +
+                           " s, this run " + std::to_string(io.time_step));
   ImplicitIntegrator integrator;
-  integrator.precompute(model, io);
+  if (prepared)
+    integrator = *prepared;
+  else
+    integrator.precompute(model, io);
   report.limiter_acceleration = integrator.limiter_acceleration();
   report.precompute_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

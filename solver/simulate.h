@@ -112,8 +112,16 @@ struct SimulationReport {
 /// time (k + 1) / fps, of all vertices (hanging and pinned included). It
 /// appears only when the run completes; a cancelled or failed run leaves none.
 /// `frames_out`, if given, receives the full positions of every output frame.
+/// `prepared`, if given, is an integrator precomputed for `model` with
+/// integrator_options(options), which the run copies instead of factorising
+/// again (a character's pre-roll and motion share one; the same bits):
+/// its precompute_ms is then the copy's.
 SimulationReport simulate(const DynamicsModel& model, ClothState& initial, const SimulationOptions& options,
                           const PinTrajectory& pins = {}, const SimulationProgress& progress = {},
-                          std::vector<Positions>* frames_out = nullptr, const MovingBodies& bodies = {});
+                          std::vector<Positions>* frames_out = nullptr, const MovingBodies& bodies = {},
+                          const ImplicitIntegrator* prepared = nullptr);
+
+/// The integrator's options for a run with `options` (its step: 1 / (fps x substeps)).
+IntegratorOptions integrator_options(const SimulationOptions& options);
 
 }  // namespace mrcloth
