@@ -1,9 +1,11 @@
 // BVH reading and writing (the Biovision hierarchy + motion format).
 //
-// The reader tokenises the whole file with line numbers, parses the
-// HIERARCHY block without recursion (so deeply nested garbage cannot exhaust
-// the stack), and reads the MOTION data as a token stream: rows may wrap
-// across lines, and every error names the line of the offending token.
+// The reader walks the file's tokens with line numbers as it goes (a
+// cursor, not a list of every token: a clip of 200,000 frames held 24 bytes
+// a value that way), parses the HIERARCHY block without recursion (so deeply
+// nested garbage cannot exhaust the stack), and reads the MOTION data as a
+// token stream: rows may wrap across lines, and every error names the line
+// of the offending token.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -34,34 +36,47 @@ struct Token {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
-/// Splits on white space; '{' and '}' are tokens of their own, and a ':'
-/// ends a token ("Frames:472" gives "Frames:" and "472").
-std::vector<Token> tokenize(std::string_view text) {
-  std::vector<Token> tokens;
-  int line = 1;
-  std::size_t i = 0;
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") i = 3;  // UTF-8 byte order mark
-  while (i < text.size()) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      ++i;
-    } else if (is_space(c)) {
-      ++i;
-    } else if (c == '{' || c == '}') {
-      tokens.push_back({text.substr(i, 1), line});
-      ++i;
-    } else {
-      const std::size_t start = i;
-      while (i < text.size() && !is_space(text[i]) && text[i] != '{' && text[i] != '}') {
-        ++i;
-        if (text[i - 1] == ':') break;
-      }
-      tokens.push_back({text.substr(start, i - start), line});
-    }
+/// The file's tokens one at a time: split on white space; '{' and '}' are
+/// tokens of their own, and a ':' ends a token ("Frames:472" gives "Frames:"
+/// and "472"). A copy walks on independently (to look ahead).
+class TokenCursor {
+ public:
+  explicit TokenCursor(std::string_view text) : text_(text) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;  // UTF-8 byte order mark
   }
-  return tokens;
-}
+
+  /// The next token into `token`; false at the end of the text.
+  bool next(Token& token) {
+    while (i_ < text_.size() && is_space(text_[i_])) {
+      if (text_[i_] == '\n') ++line_;
+      ++i_;
+    }
+    if (i_ >= text_.size()) return false;
+    const std::size_t start = i_;
+    if (text_[i_] == '{' || text_[i_] == '}') {
+      ++i_;
+    } else {
+      while (i_ < text_.size() && !is_space(text_[i_]) && text_[i_] != '{' && text_[i_] != '}') {
+        ++i_;
+        if (text_[i_ - 1] == ':') break;
+      }
+    }
+    token = {text_.substr(start, i_ - start), line_};
+    return true;
+  }
+
+  /// The line of the text's last token (1 if it has none).
+  int last_line() const {
+    std::size_t end = text_.size();
+    while (end > 0 && is_space(text_[end - 1])) --end;
+    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t i_ = 0;
+  int line_ = 1;
+};
 
 /// Parses the whole token as a finite double (locale-independent); a leading '+' is allowed.
 std::optional<double> parse_double(std::string_view s) {
@@ -145,7 +160,9 @@ constexpr double kLongestFrameTime = 60.0;
 class BvhParser {
  public:
   BvhParser(std::string path, std::string_view text, const BvhReadOptions& options)
-      : path_(std::move(path)), tokens_(tokenize(text)), options_(options) {}
+      : path_(std::move(path)), cursor_(text), options_(options) {
+    has_ahead_ = cursor_.next(ahead_);
+  }
 
   Motion parse() {
     parse_hierarchy();
@@ -167,14 +184,23 @@ class BvhParser {
     throw InputError(path_ + ":" + std::to_string(line) + ": " + problem + "; expected " + expected);
   }
 
-  int last_line() const { return tokens_.empty() ? 1 : tokens_.back().line; }
-  bool at_end() const { return pos_ >= tokens_.size(); }
-  const Token* peek() const { return at_end() ? nullptr : &tokens_[pos_]; }
+  int last_line() const { return cursor_.last_line(); }
+  bool at_end() const { return !has_ahead_; }
+  /// The next token without taking it (nullopt at the end).
+  std::optional<Token> peek() const { return has_ahead_ ? std::optional<Token>(ahead_) : std::nullopt; }
+  /// Takes the next token (there must be one).
+  Token take() {
+    const Token token = ahead_;
+    has_ahead_ = cursor_.next(ahead_);
+    return token;
+  }
+  /// The tokens not yet taken, from the next one on (a copy of the cursor).
+  TokenCursor rest() const { return cursor_; }
 
   /// The next token; at the end of the file fails with "<what is missing>; expected <expected>".
-  const Token& next(const std::string& missing, const std::string& expected) {
+  Token next(const std::string& missing, const std::string& expected) {
     if (at_end()) fail(last_line(), "end of file: " + missing, expected);
-    return tokens_[pos_++];
+    return take();
   }
 
   double number(const Token& token, const std::string& what) const {
@@ -196,8 +222,8 @@ class BvhParser {
   // ---- HIERARCHY -------------------------------------------------------
 
   void parse_hierarchy() {
-    if (tokens_.empty()) fail(1, "empty file", "HIERARCHY");
-    const Token& first = next("", "HIERARCHY");
+    if (at_end()) fail(1, "empty file", "HIERARCHY");
+    const Token first = next("", "HIERARCHY");
     if (first.text != "HIERARCHY") fail(first.line, "the file starts with " + quoted(first.text), "HIERARCHY");
 
     std::vector<OpenBlock> open;
@@ -206,7 +232,7 @@ class BvhParser {
         if (!open.empty()) fail_unclosed(open.back(), "the end of the file");
         fail(last_line(), "end of file in the hierarchy", "MOTION");
       }
-      const Token& token = tokens_[pos_++];
+      const Token token = take();
       const std::string_view word = token.text;
       if (open.empty()) {
         if (word == "ROOT") {
@@ -230,7 +256,7 @@ class BvhParser {
         if (block.has_offset)
           fail(token.line, "a second OFFSET in " + joint_label(block.joint), "one OFFSET per joint");
         for (int k = 0; k < 3; ++k) {
-          const Token& value = next("OFFSET has " + std::to_string(k) + " values", "3 numbers after OFFSET");
+          const Token value = next("OFFSET has " + std::to_string(k) + " values", "3 numbers after OFFSET");
           if (!parse_double(value.text) && value.line != token.line)
             fail(token.line, "OFFSET has " + std::to_string(k) + " values", "3 numbers after OFFSET");
           joint.offset[k] = number(value, "OFFSET value") * options_.scale;
@@ -272,7 +298,7 @@ class BvhParser {
     joint.end_site = end_site;
     joint.first_channel = channel_total_;
     if (end_site) {
-      const Token& site = next("'End' without 'Site'", "'End Site'");
+      const Token site = next("'End' without 'Site'", "'End Site'");
       if (site.text != "Site") fail(site.line, "'End' followed by " + quoted(site.text), "'End Site'");
       joint.name = unused_name(skeleton.joints[parent].name + "_end");
       site_names_[joint.name] = static_cast<int>(skeleton.joints.size());
@@ -282,9 +308,8 @@ class BvhParser {
       // tokens the tokenizer parted after a ':' join as they were (Mixamo's
       // "mixamorig:Hips", Maya's namespaces).
       const char* previous_end = nullptr;
-      while (!at_end() && tokens_[pos_].line == keyword.line && tokens_[pos_].text != "{" &&
-             tokens_[pos_].text != "}") {
-        const std::string_view part = tokens_[pos_++].text;
+      while (!at_end() && ahead_.line == keyword.line && ahead_.text != "{" && ahead_.text != "}") {
+        const std::string_view part = take().text;
         if (!joint.name.empty() && part.data() != previous_end) joint.name += ' ';
         joint.name += std::string(part);
         previous_end = part.data() + part.size();
@@ -304,7 +329,7 @@ class BvhParser {
       if (names_.count(joint.name) > 0)
         fail(keyword.line, "a second joint named " + quoted(joint.name), "unique joint names");
     }
-    const Token& brace = next("no '{' after " + quoted(keyword.text), "'{'");
+    const Token brace = next("no '{' after " + quoted(keyword.text), "'{'");
     if (brace.text != "{")
       fail(brace.line, quoted(brace.text) + " after " + quoted(keyword.text) + " " + quoted(joint.name), "'{'");
     names_.insert(joint.name);
@@ -320,14 +345,14 @@ class BvhParser {
   }
 
   void parse_channels(const Token& keyword, Joint& joint) {
-    const Token& count_token = next("CHANNELS without a count", "a channel count in 0..6");
+    const Token count_token = next("CHANNELS without a count", "a channel count in 0..6");
     const auto count = parse_integer(count_token.text);
     if (!count || *count < 0 || *count > 6)
       fail(count_token.line, "channel count " + quoted(count_token.text), "an integer in 0..6");
     const std::string declared = "CHANNELS declares " + std::to_string(*count) + " channels";
     joint.first_channel = channel_total_;  // columns follow the order of the CHANNELS lines
     for (long long k = 0; k < *count; ++k) {
-      const Token* name = peek();
+      const std::optional<Token> name = peek();
       const auto channel = name ? parse_channel(name->text) : std::nullopt;
       if (!channel) {
         // A keyword, a brace or the next line: the list is shorter than its count.
@@ -340,9 +365,9 @@ class BvhParser {
         if (c == *channel)
           fail(name->line, "channel " + quoted(name->text) + " listed twice", "each channel at most once");
       joint.channels.push_back(*channel);
-      ++pos_;
+      take();
     }
-    if (const Token* after = peek(); after && parse_channel(after->text))
+    if (const std::optional<Token> after = peek(); after && parse_channel(after->text))
       fail(keyword.line, declared + " but lists more", std::to_string(*count) + " channel names");
     channel_total_ += static_cast<int>(joint.channels.size());
   }
@@ -350,24 +375,24 @@ class BvhParser {
   // ---- MOTION ----------------------------------------------------------
 
   void parse_motion() {
-    const Token& frames_word = next("no 'Frames:' after MOTION", "'Frames: <count>'");
+    const Token frames_word = next("no 'Frames:' after MOTION", "'Frames: <count>'");
     if (frames_word.text == "Frames" && peek() && peek()->text == ":")
-      ++pos_;
+      take();
     else if (frames_word.text != "Frames:")
       fail(frames_word.line, quoted(frames_word.text) + " after MOTION", "'Frames: <count>'");
-    const Token& count_token = next("no frame count", "'Frames: <count>'");
+    const Token count_token = next("no frame count", "'Frames: <count>'");
     const auto count = parse_integer(count_token.text);
     if (!count) fail(count_token.line, "non-numeric frame count " + quoted(count_token.text), "a positive integer");
     if (*count <= 0) fail(count_token.line, "frame count " + std::to_string(*count), "a positive integer");
     const int frames_line = count_token.line;
 
-    const Token& frame_word = next("no 'Frame Time:'", "'Frame Time: <seconds>'");
-    const Token* time_word = peek();
+    const Token frame_word = next("no 'Frame Time:'", "'Frame Time: <seconds>'");
+    const std::optional<Token> time_word = peek();
     if (frame_word.text != "Frame" || !time_word || (time_word->text != "Time:" && time_word->text != "Time"))
       fail(frame_word.line, quoted(frame_word.text) + " after the frame count", "'Frame Time: <seconds>'");
-    ++pos_;
-    if (time_word->text == "Time" && peek() && peek()->text == ":") ++pos_;
-    const Token& time_token = next("no frame time", "'Frame Time: <seconds>'");
+    take();
+    if (time_word->text == "Time" && peek() && peek()->text == ":") take();
+    const Token time_token = next("no frame time", "'Frame Time: <seconds>'");
     const auto time = parse_double(time_token.text);
     if (!time)
       fail(time_token.line, bad_number_kind(time_token.text) + " frame time " + quoted(time_token.text),
@@ -383,15 +408,19 @@ class BvhParser {
     const long long channels = channel_total_;
     const long long rows = *count;
     if (rows > 2147483647) fail(count_token.line, "frame count " + std::to_string(rows), "at most 2147483647 frames");
-    const long long available = static_cast<long long>(tokens_.size() - pos_);
+    const long long available = survey_rows(channels);
     const bool fits = channels == 0 || rows <= available / channels;  // rows x channels <= available, no overflow
     std::string expectation = std::to_string(rows) + " frames x " + std::to_string(channels) + " channels";
     if (rows <= std::numeric_limits<long long>::max() / std::max(channels, 1LL))
       expectation += " = " + std::to_string(rows * channels) + " values";
-    check_rows(channels);
     if (!fits) {
       // Report a bad value first if there is one: it comes earlier in the file.
-      for (std::size_t k = pos_; k < tokens_.size(); ++k) check_value(tokens_[k], k - pos_, channels);
+      if (!at_end()) {
+        check_value(ahead_, 0, channels);
+        TokenCursor values = rest();
+        Token token;
+        for (std::size_t k = 1; values.next(token); ++k) check_value(token, k, channels);
+      }
       const long long complete = channels > 0 ? available / channels : 0;
       fail(last_line(),
            "motion data ends after " + std::to_string(available) + " values (" + std::to_string(complete) +
@@ -405,41 +434,52 @@ class BvhParser {
     motion_.frames.resize(rows - skip, channels);
     for (long long r = 0; r < rows && channels > 0; ++r)
       for (long long c = 0; c < channels; ++c) {
-        const Token& token = tokens_[pos_];
+        const Token token = take();
         const double value = check_value(token, static_cast<std::size_t>(r * channels + c), channels);
-        ++pos_;
         if (r < skip) continue;
         motion_.frames(r - skip, c) =
             is_position(channel_of_column(c)) ? value * options_.scale - rest_of_column_[static_cast<std::size_t>(c)] : value;
       }
     if (!at_end())
-      fail(tokens_[pos_].line,
-           "extra value " + quoted(tokens_[pos_].text) + " after " + std::to_string(rows) + " frames",
+      fail(ahead_.line, "extra value " + quoted(ahead_.text) + " after " + std::to_string(rows) + " frames",
            "the end of the file after " + expectation);
   }
 
-  /// Where the data's first line holds one whole frame, every line before
-  /// the last must: a row short by a value and the next long by one would
-  /// otherwise shift a frame's channels silently, and a short row within
-  /// the data is named, not the end of the file. (The last line is checked
-  /// against the frame count; rows that wrap over lines are read as one
-  /// stream of values.)
-  void check_rows(long long channels) const {
-    if (channels <= 0 || at_end()) return;
-    std::size_t k = pos_;
-    long long first_count = 0;
-    const int first_line = tokens_[k].line;
-    for (; k < tokens_.size() && tokens_[k].line == first_line; ++k) ++first_count;
-    if (first_count != channels) return;
-    while (k < tokens_.size()) {
-      const int line = tokens_[k].line;
-      long long count = 0;
-      for (; k < tokens_.size() && tokens_[k].line == line; ++k) ++count;
-      if (count != channels && k < tokens_.size())
-        fail(line, "a row of " + std::to_string(count) + " values",
-             std::to_string(channels) + " values per row, as the first frame's row (line " + std::to_string(first_line) +
-                 ")");
+  /// Counts the values left (the next token on) without taking them, and
+  /// checks their rows: where the data's first line holds one whole frame,
+  /// every line before the last must: a row short by a value and the next
+  /// long by one would otherwise shift a frame's channels silently, and a
+  /// short row within the data is named, not the end of the file. (The last
+  /// line is checked against the frame count; rows that wrap over lines are
+  /// read as one stream of values.)
+  long long survey_rows(long long channels) const {
+    if (at_end()) return 0;
+    TokenCursor values = rest();
+    const int first_line = ahead_.line;
+    long long available = 1, first_count = 1, count = 0;
+    int line = first_line;
+    Token token;
+    while (values.next(token)) {
+      ++available;
+      if (token.line == first_line) {
+        ++first_count;
+        continue;
+      }
+      if (token.line != line) {
+        // `line` ended with a token after it: not the last line.
+        if (line != first_line && first_count == channels && count != channels) fail_row(line, count, channels, first_line);
+        line = token.line;
+        count = 0;
+      }
+      ++count;
     }
+    return available;
+  }
+
+  [[noreturn]] void fail_row(int line, long long count, long long channels, int first_line) const {
+    fail(line, "a row of " + std::to_string(count) + " values",
+         std::to_string(channels) + " values per row, as the first frame's row (line " + std::to_string(first_line) +
+             ")");
   }
 
   double check_value(const Token& token, std::size_t index, long long channels) const {
@@ -468,9 +508,10 @@ class BvhParser {
   }
 
   std::string path_;
-  std::vector<Token> tokens_;
+  TokenCursor cursor_;  ///< just after ahead_
+  Token ahead_;         ///< the next token, when has_ahead_
+  bool has_ahead_ = false;
   BvhReadOptions options_;
-  std::size_t pos_ = 0;
   Motion motion_;
   int channel_total_ = 0;
   std::vector<Channel> column_channels_;
