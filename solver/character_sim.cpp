@@ -322,6 +322,30 @@ LegSpeed fastest_leg_speed(const Motion& motion, int first_frame, int last_frame
   return fastest;
 }
 
+double leg_jitter(const Motion& motion, int first_frame, int last_frame) {
+  const std::vector<int> joints = leg_joints(motion.skeleton);
+  const int end = last_frame < 0 ? static_cast<int>(motion.frames.rows()) - 1
+                                 : std::min(last_frame, static_cast<int>(motion.frames.rows()) - 1);
+  const int begin = std::max(0, first_frame);
+  if (joints.empty() || end - begin < 2) return 0.0;
+  std::vector<double> largest;
+  largest.reserve(static_cast<std::size_t>(end - begin - 1));
+  Pose before = frame_pose(motion, begin), now = frame_pose(motion, begin + 1);
+  const double squared_time = motion.frame_time * motion.frame_time;
+  for (int f = begin + 2; f <= end; ++f) {
+    Pose after = frame_pose(motion, f);
+    double most = 0.0;
+    for (const int joint : joints)
+      most = std::max(most, (after.position(joint) - 2.0 * now.position(joint) + before.position(joint)).norm());
+    largest.push_back(most / squared_time);
+    before = std::move(now);
+    now = std::move(after);
+  }
+  const auto middle = largest.begin() + static_cast<std::ptrdiff_t>(largest.size() / 2);
+  std::nth_element(largest.begin(), middle, largest.end());
+  return *middle;
+}
+
 double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = reference_pose(motion, options);
   const Pose first = pose_at(motion, options.motion_start);

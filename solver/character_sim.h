@@ -231,6 +231,16 @@ struct LegSpeed {
 /// frame 65, a root jumping 1 m 120.
 LegSpeed fastest_leg_speed(const Motion& motion, int first_frame = 0, int last_frame = -1);
 
+/// How much a clip's legs jitter: over frames first_frame..last_frame (-1:
+/// its last), the median of the largest acceleration of a joint of the legs
+/// at a frame (its second difference of position over the frame time
+/// squared). A clean walk's is small (the shared clips: see
+/// kLegJitterWarning in the plugin); noise of a fraction of a degree per
+/// frame at 120 frames a second makes it ten times that, and tears cloth on
+/// the legs below the speed fastest_leg_speed warns of. m/s^2; 0 with fewer
+/// than three frames or no leg joints.
+double leg_jitter(const Motion& motion, int first_frame = 0, int last_frame = -1);
+
 /// The fastest a hip, knee or ankle moves in the pre-roll (m/s): each one's
 /// way from the rest pose to the motion's first frame over
 /// options.preroll_seconds, at the blend's steepest (1.5 times the mean);

@@ -4,6 +4,7 @@
 #include "mesh_ops/units.h"
 #include "solver/body_capsules.h"
 #include "solver/figure_size.h"
+#include "solver/motion_filter.h"
 
 #include <QDir>
 #include <QFileInfo>
@@ -112,12 +113,12 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
   }
   if (!options::isObjectLike(value))
     fail(QStringLiteral("%1 must be a BVH file path or an object {path, units or scale, skipFirst, start, joints, axes, "
-                        "positions}, got %2")
+                        "positions, smoothing}, got %2")
              .arg(optionLabel(key), script::describeValue(value)));
   const Fields fields(value, key,
                       {QStringLiteral("path"), QStringLiteral("units"), QStringLiteral("scale"),
                        QStringLiteral("skipFirst"), QStringLiteral("start"), QStringLiteral("joints"),
-                       QStringLiteral("axes"), QStringLiteral("positions")});
+                       QStringLiteral("axes"), QStringLiteral("positions"), QStringLiteral("smoothing")});
   parseJointNames(fields, request);
   request.positionChannels = fields.choice(QStringLiteral("positions"), QStringLiteral("absolute"),
                                            {QStringLiteral("absolute"), QStringLiteral("relative")}) ==
@@ -143,6 +144,12 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
     request.setup.skip_first = fields.boolean(QStringLiteral("skipFirst"), request.setup.skip_first);
   }
   request.setup.motion_start = fields.numberFrom(QStringLiteral("start"), request.setup.motion_start, 0.0, false);
+  request.motionSmoothing = fields.numberFrom(QStringLiteral("smoothing"), 0.0, 0.0, false);
+  // Beyond a second the filter erases the motion itself (a stride takes one).
+  if (request.motionSmoothing > kLongestMotionSmoothing)
+    fail(QStringLiteral("%1 must be at most %2 s (the Gaussian's standard deviation; 0.01-0.03 s takes mocap jitter "
+                        "out), got %3")
+             .arg(fields.label(QStringLiteral("smoothing"))).arg(kLongestMotionSmoothing).arg(request.motionSmoothing));
 }
 
 void parseBody(const Fields& top, CharacterRequest& request) {
@@ -328,7 +335,7 @@ namespace {
 /// (standardise_clip; `changes` receives what that did), frame 0 kept. Units
 /// "auto" are resolved here (the request then says "auto: cm"): the file is
 /// read once in its own units, measured, and scaled.
-Motion readClip(CharacterRequest& request, ClipChanges& changes) {
+Motion readClipAsRecorded(CharacterRequest& request, ClipChanges& changes) {
   const QString motion_label = optionLabel(QStringLiteral("motion"));
   const bool automatic = request.motionUnits == kAutoUnits;
   BvhReadOptions read_options;
@@ -354,6 +361,15 @@ Motion readClip(CharacterRequest& request, ClipChanges& changes) {
   request.motionUnits = QStringLiteral("auto: %1").arg(units);
   request.motionScale = metresPerUnit(units);
   scale_motion(clip, request.motionScale);  // the same numbers as reading it in those units
+  return clip;
+}
+
+/// The clip as readClipAsRecorded reads it, smoothed as motion.smoothing says.
+Motion readClip(CharacterRequest& request, ClipChanges& changes) {
+  Motion clip = readClipAsRecorded(request, changes);
+  // Frame 0 of a clip whose first frame is skipped (CMU's added T-pose) is
+  // no part of the motion: not smoothed into it.
+  smooth_motion(clip, request.motionSmoothing, request.setup.skip_first ? 1 : 0);
   return clip;
 }
 

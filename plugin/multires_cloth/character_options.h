@@ -24,12 +24,16 @@ struct CharacterRequest {
   QString motionPath;
   double motionScale = 1.0;     ///< metres per BVH unit (0 while the units are "auto": loadCharacter resolves them)
   QString motionUnits;          ///< how the scale was given, for the report ("m", "cmu", "scale 0.01", "auto" / resolved "auto: cm")
+  double motionSmoothing = 0.0; ///< motion.smoothing: seconds, the Gaussian's standard deviation (smooth_motion); 0: as recorded
   ClipConventions conventions;  ///< motion.joints and motion.axes
   PositionChannels positionChannels = PositionChannels::absolute;  ///< motion.positions
   CharacterSetup setup;         ///< body, placement, pre-roll, step rate, skipFirst, motion start
   QString bodyOutput;           ///< PC2 cache of the body at the output frames (rest OBJ beside it); empty: none
   bool fitWarning = true;       ///< log a warning when the fit check finds the garment too narrow (the report's fit has it either way)
 };
+
+/// motion.smoothing's largest (seconds): beyond it the filter erases the motion itself.
+constexpr double kLongestMotionSmoothing = 1.0;
 
 /// The largest side (metres) a garment worn by a person may span on a
 /// character run: outside it the garment was loaded in the wrong units
@@ -56,7 +60,7 @@ struct MotionReading {
 };
 
 /// Reads `motion` (simulate's `motion` option: a path or {path, units or
-/// scale, skipFirst, start, joints, axes}) and checks its figure against an
+/// scale, skipFirst, start, joints, axes, positions, smoothing}) and checks its figure against an
 /// adult's (figure_size.h). Errors name the option; a figure too big or
 /// small for its units is an InputError saying which units would fit.
 MotionReading readMotion(const QVariant& motion);

@@ -21,6 +21,7 @@
 #include "solver/result_comparison.h"
 #include "solver/dynamics_model.h"
 #include "solver/instance_curvature.h"
+#include "solver/motion_filter.h"
 #include "solver/implicit_integrator.h"
 #include "solver/point_cache.h"
 #include "solver/self_contact.h"
@@ -33,6 +34,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <cmath>
 #include <memory>
 
@@ -676,7 +678,8 @@ QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
                        {QStringLiteral("axesUndecided"), QString::fromStdString(reading.changes.axes_undecided)},
                        {QStringLiteral("fastestLegSpeed"),
                         QVariantMap{{QStringLiteral("speed"), fastest.speed}, {QStringLiteral("frame"), fastest.frame},
-                                    {QStringLiteral("joint"), QString::fromStdString(fastest.joint)}}}};
+                                    {QStringLiteral("joint"), QString::fromStdString(fastest.joint)}}},
+                       {QStringLiteral("legJitter"), leg_jitter(clip, first)}};
   });
 }
 
@@ -713,6 +716,28 @@ std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest
 /// Above this (m/s) a joint of the legs moves between two frames of a clip
 /// faster than any stride (fastest_leg_speed: the run 09_01's feet 8.2).
 constexpr double kClipLegSpeedWarning = 10.0;
+
+/// Above this (m/s^2) a clip's legs jitter (leg_jitter, the median of the
+/// largest leg joint acceleration at a frame): the shared clips 10-32, the
+/// run 09_01 64; 07_06 with Gaussian noise per frame on every joint angle
+/// 150 (0.1 degrees), 355 (0.25), 710 (0.5: the shared trousers on the
+/// skinned body stretched 89 % in one of two runs), 1420 (1: torn, 81-101
+/// mm open). Smoothed by 0.01 s all of these held (9-10 %).
+constexpr double kLegJitterWarning = 200.0;
+
+/// The smoothing (seconds, more than `already`) that brings the legs' jitter over
+/// frames first..last of `motion` (smoothed by `already` seconds) under half
+/// kLegJitterWarning, of a few candidates; the largest candidate if none does.
+double smoothingAgainstJitter(const Motion& motion, double already, int first, int last) {
+  const double candidates[] = {0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.1};
+  for (const double total : candidates) {
+    if (total <= already) continue;
+    Motion smoothed = motion;
+    smooth_motion(smoothed, std::sqrt(total * total - already * already));  // Gaussians compose in quadrature
+    if (leg_jitter(smoothed, first, last) < 0.5 * kLegJitterWarning) return total;
+  }
+  return candidates[std::size(candidates) - 1];
+}
 
 /// Above this (m/s) a hip, knee or ankle moves too fast in the pre-roll
 /// (preroll_leg_speed): trousers on CMU 07_06 held from 0.1 s (5.6 m/s)
@@ -773,6 +798,18 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
     const int first = static_cast<int>(std::floor(run.motion_start / motion.frame_time));
     const int last = static_cast<int>(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time));
     const int in_file = request.character->setup.skip_first ? 1 : 0;  // the run's frame 0 is the file's 1
+    // Jitter tears below the speed a glitch is told by: said first, with the smoothing that takes it out.
+    if (const double jitter = leg_jitter(motion, first, last); jitter > kLegJitterWarning) {
+      const double already = request.character->motionSmoothing;
+      lines.push_back({LOGWARN, QStringLiteral("%1: the legs of %2 jitter (their largest acceleration at a frame %3 m/s^2 at "
+                                       "the median over the frames the run plays; a clean walk's 10-35, a run's about 65): "
+                                       "raw capture noise, which tears cloth on the legs; option 'motion.smoothing' %4 s "
+                                       "(a Gaussian in time%5) takes it out")
+                            .arg(slot, QFileInfo(request.character->motionPath).fileName())
+                            .arg(jitter, 0, 'f', 0)
+                            .arg(smoothingAgainstJitter(motion, already, first, last))
+                            .arg(already > 0.0 ? QStringLiteral("; now %1 s").arg(already) : QString())});
+    }
     if (const LegSpeed fastest = fastest_leg_speed(motion, first, last); fastest.speed > kClipLegSpeedWarning)
       lines.push_back({LOGWARN, QStringLiteral("%1: %2 moves its %3 at %4 m/s between its frames %5 and %6 (from 0; a run's "
                                        "feet: about 8): a glitch or jitter in the capture? Cloth on the legs may tear "
@@ -1039,13 +1076,15 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "jointsRenamed, axesTurned, axesUndecided (why axes \"auto\" could not tell which way the "
                       "clip stands, \"\" when it could), fastestLegSpeed {speed m/s, frame, joint} (the fastest "
                       "a joint of the legs moves between two frames from where a run starts: above 10 m/s, a glitch "
-                      "or jitter that tears cloth; simulate warns). A figure whose legs are not 0.4-2 times an adult's is refused "
+                      "or jitter that tears cloth; simulate warns), legJitter (m/s^2: the median over the frames "
+                      "of the largest acceleration of a joint of the legs; clean clips 10-65, above 200 raw capture "
+                      "jitter that tears cloth: simulate warns, motion.smoothing takes it out). A figure whose legs are not 0.4-2 times an adult's is refused "
                       "(InputError naming the units that would fit): its units look wrong. For checking clips "
                       "before a long batch."),
        {QStringLiteral("motion")},
        {QStringLiteral("simulate's `motion` option: a BVH path or {path, units: \"m\" | \"cmu\" | \"dm\" | "
                        "\"cm\" | \"mm\" | \"inch\" | \"auto\" = \"m\" or scale, skipFirst, start, joints, axes, "
-                       "positions}")}},
+                       "positions, smoothing}")}},
       {QStringLiteral("simulate(int id, object options = {}) -> object"),
        QStringLiteral("Simulates the object's cloth from rest (mass-spring model of paper section 6, implicit "
                       "steps) and returns a report: frames, steps, timeStep (s), precomputeMs, msPerFrame "
@@ -1130,7 +1169,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "turned by multiples of 90 degrees to stand so, as the MakeHuman body stands; exact), positions: \"absolute\" | "
             "\"relative\" = \"absolute\" (position channels are the joint's translation, its OFFSET only where it "
             "rests, as Blender and MotionBuilder write them; or added to the OFFSET; a CMU clip reads alike either "
-            "way)}, "
+            "way), smoothing: s in [0, 1] = 0 (every channel smoothed in time by a Gaussian of this standard "
+            "deviation, rotations unwrapped, the ends continued by point reflection; 0.01-0.02 takes raw capture "
+            "jitter out, which tears cloth on the legs: a run warns of a jittery clip with the smoothing that "
+            "would do)}, "
             "skipFirst (also at the top level), body: \"capsules\" "
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "

@@ -42,6 +42,9 @@ const USAGE = [
   "  --motion-positions P   absolute | relative: the BVH position channels are each joint's translation",
   "                         (its OFFSET only where it rests; Blender, MotionBuilder) or are added to",
   "                         the OFFSET; CMU clips read alike either way [absolute]",
+  "  --motion-smoothing S   seconds (0..1): every clip smoothed in time by a Gaussian of this standard",
+  "                         deviation; 0.01-0.02 takes raw capture jitter out (motion.smoothing; a run",
+  "                         warns of a jittery clip with the smoothing that would do) [0: as recorded]",
   "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
   "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
   "Method:",
@@ -96,7 +99,7 @@ const DEFAULTS = {
   body: "capsules", place: null,
   instance: resources + "/characters/walk_instance.bvh",
   test: [resources + "/characters/walk_new.bvh", resources + "/characters/squat.bvh"], motionUnits: "m",
-  motionPositions: "absolute", jointMap: "",
+  motionPositions: "absolute", motionSmoothing: 0, jointMap: "",
   levels: 2, modes: 3, delta: [5, 7], mapModes: "index", material: "cotton", fps: 30, instanceFrames: 200, testFrames: 60,
   preroll: 1, threads: 1, out: "pipeline_out", resume: false, size: [800, 800], sequence: false, objSequence: false, help: false,
   tNodeSag: false, stepRate: null,  // null: simulate's default, the mocap rate
@@ -110,7 +113,7 @@ const VALUED = {
   "--garment": "garment", "--units": "units", "--makehuman": "makehuman", "--makehuman-units": "makehumanUnits",
   "--body": "body", "--place": "place",
   "--instance": "instance", "--test": "test", "--motion-units": "motionUnits", "--levels": "levels",
-  "--motion-positions": "motionPositions", "--joint-map": "jointMap",
+  "--motion-positions": "motionPositions", "--motion-smoothing": "motionSmoothing", "--joint-map": "jointMap",
   "--modes": "modes", "--delta": "delta", "--map-modes": "mapModes", "--material": "material", "--fps": "fps",
   "--instance-frames": "instanceFrames", "--test-frames": "testFrames", "--preroll": "preroll", "--out": "out",
   "--threads": "threads", "--step-rate": "stepRate", "--newton-cg": "newtonCg", "--bend-model": "bendModel",
@@ -122,7 +125,8 @@ const HOST_FLAGS = ["-q", "--quiet"];  // mrcloth's own, taken before the script
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
 // The bounds of the values the API takes (or can run in reasonable time).
 const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
-const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, leastFps: 1, stepsPerFrame: 1000,
+const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, motionSmoothing: 1, leastFps: 1,
+                stepsPerFrame: 1000,
                 uniformFaces: 2e7};  // kMostFaces (mesh_ops/quad_refiner.h)
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
@@ -226,6 +230,7 @@ function parseOptions(args) {
         break;
       case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
       case "motionPositions": options.motionPositions = choiceOption(name, text, ["absolute", "relative"]); break;
+      case "motionSmoothing": options.motionSmoothing = numberOption(name, text, 0, false, LIMITS.motionSmoothing); break;
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
       case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
       case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
@@ -323,6 +328,7 @@ function jointsInFile(options, path) {
 /// automatically (the embedded walks beside a clip of other names).
 function motionOption(options, path) {
   const motion = {path: path, units: options.motionUnits, positions: options.motionPositions};
+  if (options.motionSmoothing > 0) motion.smoothing = options.motionSmoothing;
   if (options.joints) {
     const names = jointsInFile(options, path);
     const own = {};
@@ -488,6 +494,7 @@ function resultOptions(options) {
   if (copy.limiterAcceleration === null) delete copy.limiterAcceleration;
   // Runs from before the clips' reading options, read as these defaults do.
   if (copy.motionPositions === "absolute") delete copy.motionPositions;
+  if (copy.motionSmoothing === 0) delete copy.motionSmoothing;
   if (!copy.jointMap) {
     delete copy.jointMap;
     delete copy.joints;
@@ -1146,6 +1153,7 @@ function reportMarkdown(report) {
              (report.options.newtonCg ? "; Newton steps of " + report.options.newtonCg + " CG" : "") +
              (report.options.limiterAcceleration !== undefined && report.options.limiterAcceleration !== null
                   ? "; limiter acceleration " + report.options.limiterAcceleration : "") +
+             (report.options.motionSmoothing ? "; clips smoothed in time by " + report.options.motionSmoothing + " s" : "") +
              "; " + report.options.fps + " fps" +
              (report.table1Instance.stepRate ? ", " + report.table1Instance.stepRate + " steps per second" : "") + ".", "");
   // The deepest vertex's penetration, and where it was a pinned one (it goes

@@ -12,11 +12,13 @@
 #include "solver/dynamics_model.h"
 #include "solver/figure_size.h"
 #include "solver/implicit_integrator.h"
+#include "solver/motion_filter.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <limits>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -253,6 +255,38 @@ TEST(CharacterSetup, FastestLegSpeedFindsAGlitch) {
   EXPECT_NEAR(glitch.speed, 1.0 / clip.frame_time, 0.03 / clip.frame_time) << glitch.joint;
   EXPECT_EQ(fastest_leg_speed(clip, 61).speed, fastest_leg_speed(walk(), 61).speed) << "after the glitch";
   EXPECT_EQ(fastest_leg_speed(clip, 1, 59).speed, fastest_leg_speed(walk(), 1, 59).speed) << "before it";
+}
+
+// The legs' jitter: exact where the figure only accelerates (every leg
+// joint with the root), small on the clean walk, large with noise on its
+// angles, and back down once smoothed.
+TEST(CharacterSetup, LegJitterIsTheMedianLargestLegAcceleration) {
+  Motion still = walk();
+  const int root_x = still.skeleton.joints[0].first_channel;
+  for (Eigen::Index f = 1; f < still.frames.rows(); ++f) still.frames.row(f) = still.frames.row(0);
+  const double a = 3.5;  // m/s^2 along x
+  for (Eigen::Index f = 0; f < still.frames.rows(); ++f) {
+    const double t = static_cast<double>(f) * still.frame_time;
+    still.frames(f, root_x) += 0.5 * a * t * t;
+  }
+  EXPECT_NEAR(leg_jitter(still), a, 1e-6 * a);
+  EXPECT_EQ(leg_jitter(still, 5, 6), 0.0) << "two frames have no second difference";
+
+  const Motion clean = walk();
+  const double calm = leg_jitter(clean, 1);
+  EXPECT_GT(calm, 1.0);
+  EXPECT_LT(calm, 100.0);
+  Motion noisy = clean;
+  std::mt19937 random(5);
+  std::normal_distribution<double> half_degree(0.0, 0.5);
+  for (const Joint& joint : noisy.skeleton.joints)
+    for (std::size_t k = 0; k < joint.channels.size(); ++k)
+      if (!is_position(joint.channels[k]))
+        for (Eigen::Index f = 1; f < noisy.frames.rows(); ++f)
+          noisy.frames(f, joint.first_channel + static_cast<Eigen::Index>(k)) += half_degree(random);
+  EXPECT_GT(leg_jitter(noisy, 1), 5.0 * calm);
+  smooth_motion(noisy, 0.02, 1);
+  EXPECT_LT(leg_jitter(noisy, 1), 2.0 * calm);
 }
 
 TEST(CharacterSetup, OnTheSkinnedBodyARefinedGarmentStartsClearOfIt) {

@@ -40,6 +40,8 @@ refused "option --bend-model: expected one of distance, secondDifference, got \"
 refused "option --bend-stiffness: expected a number >= 0, got \"-0.1\"" --bend-stiffness -0.1
 refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"-0.01\"" --waist-smoothing -0.01
 refused "option --waist-smoothing needs --makehuman DIR" --waist-smoothing 0.03
+refused "option --motion-smoothing: expected a number >= 0 and <= 1, got \"1.5\"" --motion-smoothing 1.5
+refused "option --motion-smoothing: expected a number >= 0 and <= 1, got \"x\"" --motion-smoothing x
 refused "option --makehuman-units needs --makehuman DIR" --makehuman-units cm
 refused "option --makehuman-units: expected one of" --makehuman-units cmu --makehuman "$tmp"
 refused "option --body: expected one of capsules, mesh, got \"robot\"" --body robot

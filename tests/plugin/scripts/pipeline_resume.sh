@@ -57,6 +57,8 @@ cp "$tmp/options.json.kept" "$tmp/run/stages/options.json"
 # --size are not results: the run resumes, rendering its previews again.
 refused other_options "holds a run with other options \(--modes, --instance-frames\)" \
   $cheap --instance-frames 3 --modes 2 --out "$tmp/run" --resume
+refused other_smoothing "holds a run with other options \(--motion-smoothing\)" \
+  $cheap --motion-smoothing 0.01 --out "$tmp/run" --resume
 ran threads_size $cheap --threads 2 --size 80x80 --out "$tmp/run" --resume
 grep -q "(1 stages run, 10 resumed)" "$tmp/threads_size.out" || fail "--threads/--size resume: $(cat "$tmp/threads_size.out")"
 grep -q "previews \.\.\.$" "$tmp/threads_size.err" || fail "the previews were not rendered again: $(cat "$tmp/threads_size.err")"

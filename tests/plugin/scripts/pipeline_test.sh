@@ -67,13 +67,16 @@ grep -q "holds a run made with other solver defaults (revision 1; this build's [
   fail "other revision: $(cat "$tmp/revision.err")"
 cp "$tmp/options.json.kept" "$tmp/command/stages/options.json"
 
-# 4b. The solve and bend options reach every run: the report says so, the
-# runs' settings carry them, and the instance moves otherwise.
-"$host" -q pipeline $small --newton-cg 1 --bend-model secondDifference --bend-stiffness 0.02 --out "$tmp/solve" \
+# 4b. The solve, bend and motion smoothing options reach every run: the
+# report says so, the runs' settings carry them, and the instance moves otherwise.
+"$host" -q pipeline $small --newton-cg 1 --bend-model secondDifference --bend-stiffness 0.02 --motion-smoothing 0.01 \
+  --out "$tmp/solve" \
   > "$tmp/solve.out" 2> "$tmp/solve.err" || { fail "solve options exit code $?"; cat "$tmp/solve.err"; }
 grep -q "with bend stiffness 0.02 N/m (secondDifference bend springs); Newton steps of 1 CG" "$tmp/solve/report.md" ||
   fail "report.md does not name the solve: $(head -3 "$tmp/solve/report.md")"
-for setting in '"newtonCg": 1' '"bendModel": "secondDifference"' '"bendStiffness": 0.02'; do
+grep -q "; clips smoothed in time by 0.01 s;" "$tmp/solve/report.md" ||
+  fail "report.md does not name the smoothing: $(head -3 "$tmp/solve/report.md")"
+for setting in '"newtonCg": 1' '"bendModel": "secondDifference"' '"bendStiffness": 0.02' '"motionSmoothing": 0.01'; do
   grep -q "$setting" "$tmp/solve/report.json" || fail "report.json lacks $setting"
 done
 cmp -s "$tmp/solve/caches/instance_high.pc2" "$tmp/command/caches/instance_high.pc2" &&
