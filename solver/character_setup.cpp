@@ -113,6 +113,11 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
     character.placement = Eigen::Translation3d(skinned->obj_offset);
     character.garment_pose = mesh_pose(*skinned, skeleton);
   }
+  // Where the clip starts facing another way, the reference pose is turned
+  // to it (reference_pose), and the garment with it.
+  if (const Eigen::Isometry3d turn = start_heading_turn(*character.motion, setup.motion_start);
+      !turn.matrix().isIdentity(0.0))
+    character.placement = turn * character.placement;
   const Eigen::MatrixX3d placed = placed_points(garment, character.placement);
   character.leg_bridges = setup.leg_bridges >= 0.0
                               ? setup.leg_bridges

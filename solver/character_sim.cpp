@@ -136,6 +136,19 @@ BodySurface SkinnedPosedBody::surface(const Pose& pose) const {
   return surface;
 }
 
+Eigen::Isometry3d start_heading_turn(const Motion& motion, double time) {
+  const Pose start = pose_at(motion, time);
+  const Eigen::Vector3d left = start.global.front().linear() * Eigen::Vector3d::UnitX();
+  // The rest pose's left is +X (BVH rest rotations are the identity); a
+  // turn by angle a about +Y takes it to (cos a, 0, -sin a).
+  if (std::hypot(left.x(), left.z()) < 1e-6) return Eigen::Isometry3d::Identity();  // lying on its side
+  const double angle = std::atan2(-left.z(), left.x());
+  if (std::abs(angle) <= kHeadingTurnThreshold) return Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d pivot = start.position(0);
+  return Eigen::Translation3d(pivot) * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()) *
+         Eigen::Translation3d(-pivot);
+}
+
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
   const Pose rest = rest_pose(motion.skeleton);
   const Pose first = pose_at(motion, options.motion_start);
@@ -149,6 +162,9 @@ Pose reference_pose(const Motion& motion, const CharacterRunOptions& options) {
     while (motion.skeleton.joints[root].parent >= 0) root = motion.skeleton.joints[root].parent;
     pose.global[j].pretranslate(first.position(root) - rest.position(root));
   }
+  // (Not multiplied by an identity: the poses of clips facing their rest pose keep every bit.)
+  if (const Eigen::Isometry3d turn = start_heading_turn(motion, options.motion_start); !turn.matrix().isIdentity(0.0))
+    for (Eigen::Isometry3d& global : pose.global) global = turn * global;
   return pose;
 }
 

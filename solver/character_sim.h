@@ -115,9 +115,25 @@ struct CharacterRunReport {
   int arm_steps = 0;                 ///< steps at which it opened one
 };
 
+/// The angle (radians) the clip's facing at `time` may differ from its rest
+/// pose's before the reference pose is turned to it (start_heading_turn):
+/// below it the pre-roll's turn is small (every shared clip starts within
+/// 16 degrees of its rest pose's facing), above it the body spun while the
+/// cloth settled (a clip turned 90 degrees ended its pre-roll 4.6 cm from
+/// the same run unturned).
+constexpr double kHeadingTurnThreshold = 30.0 * 3.14159265358979323846 / 180.0;
+
+/// The turn about the vertical (+Y) through the root's position at `time`
+/// that faces the rest pose as the clip faces at `time` (the root's +X, its
+/// left, projected on the ground), where they differ by more than
+/// kHeadingTurnThreshold; else the identity. reference_pose applies it,
+/// and make_character turns the garment's placement by it, so a clip that
+/// starts facing another way does not spin the figure in the pre-roll.
+Eigen::Isometry3d start_heading_turn(const Motion& motion, double time);
+
 /// The reference pose: options.garment_pose (by default the skeleton's rest
 /// pose, for CMU the T-pose) moved so its root stands where the clip's root
-/// is at motion_start. Garments are
+/// is at motion_start, and turned by start_heading_turn. Garments are
 /// simulated from their rest shape in this pose, and the pinned waist keeps
 /// its place relative to the pelvis as posed here.
 Pose reference_pose(const Motion& motion, const CharacterRunOptions& options);
