@@ -114,12 +114,12 @@ bool is_temporary_name(const std::string& file_name) {
   return std::regex_match(file_name, form);
 }
 
-std::vector<std::string> remove_temporaries_under(const std::string& folder) {
+std::vector<std::string> remove_temporaries_in(const std::string& folder) {
   std::vector<std::string> removed;
   std::error_code error;
   if (!fs::is_directory(folder, error)) return removed;
   std::vector<fs::path> found;
-  for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
     if (it->is_regular_file(error) && is_temporary_name(it->path().filename().string())) found.push_back(it->path());
   if (error) throw OutputError(with_path(folder, "cannot list the folder (" + error.message() + ")"));
   for (const fs::path& file : found) {

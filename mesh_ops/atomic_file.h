@@ -30,10 +30,11 @@ std::string temporary_path_beside(const std::string& path, const std::string& ex
 /// gives: a temporary a writer left when its process was killed mid-write.
 bool is_temporary_name(const std::string& file_name);
 
-/// Removes every file under `folder` (recursively) whose name
-/// is_temporary_name; returns their paths. Only for a folder no other
-/// process writes into now (a live writer's temporary would go too).
-/// Throws OutputError naming a file that cannot be removed.
-std::vector<std::string> remove_temporaries_under(const std::string& folder);
+/// Removes every file in `folder` (not in its subfolders, which may be
+/// other runs' outputs) whose name is_temporary_name; returns their paths.
+/// Only for a folder no other process writes into now (a live writer's
+/// temporary would go too). Throws OutputError naming a file that cannot
+/// be removed.
+std::vector<std::string> remove_temporaries_in(const std::string& folder);
 
 }  // namespace mrcloth

@@ -15,6 +15,7 @@
 #include "solver/material.h"
 
 #include <QCryptographicHash>
+#include <QDateTime>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -23,6 +24,7 @@
 #include <QUrl>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -56,6 +58,10 @@ std::vector<std::size_t> verticesPerMode(const QuadMesh& mesh) {
   return counts;
 }
 
+/// How long (ms) a lock file naming no owner may stand before it is taken
+/// for one a killed process left (QLockFile writes its owner at once).
+constexpr qint64 kOwnerlessLockMs = 3000;
+
 /// An existing regular file, else InputError naming it.
 QFileInfo existingFile(const QString& path) {
   const QFileInfo info(path);
@@ -64,16 +70,30 @@ QFileInfo existingFile(const QString& path) {
   return info;
 }
 
-/// Why QDir::mkpath (which says only that it failed) could not make
-/// `folder`: the nearest existing part of the path is a file, or is a
-/// folder this process may not write into.
-std::string whyNoFolder(const QString& folder) {
-  QFileInfo part(QDir::cleanPath(QFileInfo(folder).absoluteFilePath()));
-  while (!part.exists() && part.absoluteFilePath() != part.absolutePath()) part = QFileInfo(part.absolutePath());
-  const std::string name = part.absoluteFilePath().toStdString();
-  if (!part.isDir()) return name + " is a file, not a folder";
-  if (!part.isWritable()) return "no permission to write into " + name;
-  return "the file system refused; is the disk full?";
+/// Why `folder` could not be made: the nearest existing part of the path is
+/// a file, a link to nothing, or the system's reason (`error`).
+std::string whyNoFolder(const std::string& folder, const std::error_code& error) {
+  namespace fs = std::filesystem;
+  std::error_code ignored;
+  for (fs::path part = fs::absolute(folder, ignored).lexically_normal(); !part.empty(); part = part.parent_path()) {
+    if (fs::is_symlink(part, ignored) && !fs::exists(part, ignored)) return part.string() + " is a link to nothing";
+    if (fs::exists(part, ignored)) {
+      if (!fs::is_directory(part, ignored)) return part.string() + " is a file, not a folder";
+      break;
+    }
+    if (part == part.parent_path()) break;
+  }
+  return error ? error.message() : std::string("it is not a folder after creating it");
+}
+
+/// A lock file naming no owner (empty or garbage) that has not changed for
+/// a few seconds: left by a process killed while creating it.
+bool ownerless(const QLockFile& lock, const QString& path) {
+  qint64 pid = 0;
+  QString host, application;
+  if (lock.getLockInfo(&pid, &host, &application) && pid > 0) return false;
+  const QFileInfo file(path);
+  return file.isFile() && file.lastModified().msecsTo(QDateTime::currentDateTime()) > kOwnerlessLockMs;
 }
 
 int highestLevel(const std::vector<std::size_t>& faces_per_level) {
@@ -194,8 +214,12 @@ QStringList ScriptCore::scriptArguments() { return script_arguments_; }
 
 void ScriptCore::makePath(QVariant path) {
   guarded("makePath", [&] {
-    const QString folder = script::toString(path, QStringLiteral("path"));
-    if (!QDir().mkpath(folder)) throw OutputError("cannot create folder " + folder.toStdString() + " (" + whyNoFolder(folder) + ")");
+    const std::string folder = script::toString(path, QStringLiteral("path")).toStdString();
+    // std::filesystem gives the system's reason (QDir::mkpath says only that it failed).
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error || !std::filesystem::is_directory(folder))
+      throw OutputError("cannot create folder " + folder + " (" + whyNoFolder(folder, error) + ")");
   });
 }
 
@@ -282,7 +306,7 @@ bool ScriptCore::removeFile(QVariant path) {
 QStringList ScriptCore::removeTemporaries(QVariant folder) {
   return guarded("removeTemporaries", [&] {
     QStringList removed;
-    for (const std::string& file : remove_temporaries_under(script::toString(folder, QStringLiteral("folder")).toStdString()))
+    for (const std::string& file : remove_temporaries_in(script::toString(folder, QStringLiteral("folder")).toStdString()))
       removed.push_back(QString::fromStdString(file));
     return removed;
   });
@@ -290,12 +314,27 @@ QStringList ScriptCore::removeTemporaries(QVariant folder) {
 
 QVariantMap ScriptCore::lockFile(QVariant path) {
   return guarded("lockFile", [&] {
-    const QString name = QFileInfo(script::toString(path, QStringLiteral("path"))).absoluteFilePath();
+    const QFileInfo given(script::toString(path, QStringLiteral("path")));
+    const QFileInfo folder(given.absolutePath());
+    if (!folder.isDir())
+      throw OutputError(given.absoluteFilePath().toStdString() + ": cannot create the lock file (its folder " +
+                        folder.absoluteFilePath().toStdString() + " does not exist)");
+    if (given.isDir())
+      throw OutputError(given.absoluteFilePath().toStdString() + ": cannot create the lock file (it is a folder)");
+    // One key per file however it is named (a link to its folder).
+    const QString name = QDir(folder.canonicalFilePath()).filePath(given.fileName());
     if (locks_.count(name)) return QVariantMap{{QStringLiteral("locked"), true}};
     auto lock = std::make_unique<QLockFile>(name);
     // Never stale by age (a run may take hours): only when its process is gone.
     lock->setStaleLockTime(0);
-    if (lock->tryLock(0)) {
+    if (!lock->tryLock(0) && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
+      // A process killed between creating the file and writing its owner
+      // leaves it empty: no owner to ask, so it is taken over once it is
+      // older than a writer needs.
+      lock->removeStaleLockFile();
+      lock->tryLock(0);
+    }
+    if (lock->isLocked()) {
       locks_.emplace(name, std::move(lock));
       return QVariantMap{{QStringLiteral("locked"), true}};
     }
@@ -460,9 +499,10 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        {QStringLiteral("path")},
        {QStringLiteral("file to remove")}},
       {QStringLiteral("removeTemporaries(string folder) -> string[]"),
-       QStringLiteral("Removes the temporary files a writer killed mid-write left under the folder (hidden "
-                      "\".NAME.tmp-HEX-N[.EXT]\" files, at any depth) and returns their paths; nothing if the "
-                      "folder does not exist. Only for a folder no other process is writing into (see lockFile)."),
+       QStringLiteral("Removes the temporary files a writer killed mid-write left in the folder (hidden "
+                      "\".NAME.tmp-HEX-N[.EXT]\" files; not in its subfolders, which may be other runs' outputs) "
+                      "and returns their paths; nothing if the folder does not exist. Only for a folder no other "
+                      "process is writing into (see lockFile)."),
        {QStringLiteral("folder")},
        {QStringLiteral("folder to sweep")}},
       {QStringLiteral("lockFile(string path) -> object"),

@@ -576,15 +576,20 @@ function checkInputUnchanged(out, recorded, input, again) {
 /// One run at a time in a folder: a second one would mix its outputs and
 /// stage records with the first's. The lock (stages/.lock) goes with the
 /// process, also when it is killed; then the temporaries its writers left
-/// are swept.
+/// in the run's folders are swept.
 function lockOutput(out) {
   core.makePath(out + "/stages");
   const lock = core.lockFile(out + "/stages/.lock");
   if (!lock.locked)
-    throw pipelineError("option --out: " + out + " is in use by another pipeline run (" + lock.application +
-                        " process " + lock.pid + (lock.host ? " on " + lock.host : "") +
+    throw pipelineError("option --out: " + out + " is in use by another pipeline run (" +
+                        (lock.pid > 0 ? lock.application + " process " + lock.pid + (lock.host ? " on " + lock.host : "")
+                                      : "its lock file stages/.lock names no process yet: one starting now, or a " +
+                                        "run killed while starting, whose lock is taken over after 3 s") +
                         "); wait for it to end, or use another --out", "OutputError");
-  const removed = core.removeTemporaries(out);
+  // Only the folders a run writes: a folder inside --out may be another run's --out.
+  const removed = [];
+  for (const folder of ["", "/stages", "/meshes", "/caches", "/previews", "/previews/frames", "/plots"])
+    removed.push(...core.removeTemporaries(out + folder));
   if (removed.length > 0)
     core.log("pipeline: removed " + removed.length + " temporary file" + (removed.length > 1 ? "s" : "") +
              " an interrupted writer left (" + removed.slice(0, 3).join(", ") + (removed.length > 3 ? ", ..." : "") + ")");

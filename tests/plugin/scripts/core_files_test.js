@@ -30,15 +30,20 @@ expectThrows(() => core.fileHash(tmpDir + "/sub"), "InputError", "core.fileHash:
 expectThrows(() => core.makePath(tmpDir + "/fox.txt/inner/folder"), "OutputError", "core.makePath: ",
              "cannot create folder " + tmpDir + "/fox.txt/inner/folder (" + tmpDir + "/fox.txt is a file, not a folder)");
 
+expectThrows(() => core.makePath(tmpDir + "/" + "x".repeat(300)), "OutputError", "core.makePath: ",
+             "cannot create folder", "(File name too long)");
+
 // removeFile: true once, then false; a folder is refused.
 expectEqual(core.removeFile(tmpDir + "/abc.txt"), true, "removeFile of a file");
 expectEqual(core.fileExists(tmpDir + "/abc.txt"), false, "removed file exists");
 expectEqual(core.removeFile(tmpDir + "/abc.txt"), false, "removeFile of nothing");
 expectThrows(() => core.removeFile(tmpDir + "/sub"), "OutputError", "core.removeFile: ", "/sub", "it is a folder");
 
-// removeTemporaries: the writers' ".NAME.tmp-HEX-N[.EXT]" files at any depth, nothing else.
-const temporaries = [".high.om.tmp-1f2e-0.om", "sub/.instance_high.pc2.tmp-abcdef01-12.pc2", "sub/deeper/.report.md.tmp-9-3"];
-const others = [".hidden", "a.tmp-1-0", ".x.tmp-zz-1", ".y.tmp-12", "sub/high.om", "sub/deeper/.tmp-1-0x"];
+// removeTemporaries: the writers' ".NAME.tmp-HEX-N[.EXT]" files in the
+// folder itself, nothing else (a subfolder may be another run's output folder).
+const temporaries = [".high.om.tmp-1f2e-0.om", ".instance_high.pc2.tmp-abcdef01-12.pc2", ".report.md.tmp-9-3"];
+const others = [".hidden", "a.tmp-1-0", ".x.tmp-zz-1", ".y.tmp-12", "sub/high.om", "sub/deeper/.tmp-1-0x",
+                "sub/.caches.pc2.tmp-1a-0.pc2"];
 for (const file of temporaries.concat(others)) core.writeTextFile(tmpDir + "/" + file, "x");
 const removed = core.removeTemporaries(tmpDir).map((path) => path.slice(tmpDir.length + 1)).sort();
 expectEqual(removed, temporaries.slice().sort(), "removeTemporaries removed");
@@ -54,5 +59,13 @@ expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile");
 expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile again");
 expectEqual(core.fileExists(tmpDir + "/sub/.lock"), true, "the lock file exists");
 expectThrows(() => core.lockFile(tmpDir + "/no_such_folder/.lock"), "OutputError", "core.lockFile: ", "no_such_folder/.lock",
-             "cannot create the lock file");
+             "cannot create the lock file (its folder ", "no_such_folder does not exist)");
+expectThrows(() => core.lockFile(tmpDir + "/sub/deeper"), "OutputError", "core.lockFile: ", "sub/deeper",
+             "cannot create the lock file (it is a folder)");
+// A lock file naming no owner (a process killed while creating it), once
+// older than a writer needs, is taken over.
+core.writeTextFile(tmpDir + "/sub/.ownerless", "\n");
+const since = Date.now();
+while (Date.now() - since < 3200) {}
+expectEqual(core.lockFile(tmpDir + "/sub/.ownerless"), {locked: true}, "lockFile over an ownerless lock");
 print("core files: ok (" + checked + " errors checked)");

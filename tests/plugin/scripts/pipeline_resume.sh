@@ -123,6 +123,13 @@ grep -Eq "pipeline: removed [1-9][0-9]* temporary files? an interrupted writer l
 leftovers=$(find "$tmp/locked" -name '.*tmp*')
 [ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
 [ -f "$tmp/locked/stages/.lock" ] && fail "the run left its lock behind"
+# A lock naming no process (killed while creating it) is taken over once
+# older than a few seconds; a folder inside --out that is not the run's own
+# (another run's --out) keeps its temporaries.
+: > "$tmp/locked/stages/.lock" && touch -d '1 minute ago' "$tmp/locked/stages/.lock"
+mkdir -p "$tmp/locked/other_run" && echo x > "$tmp/locked/other_run/.cache.pc2.tmp-1a2b-0.pc2"
+ran ownerless -q $long --out "$tmp/locked" --resume
+[ -f "$tmp/locked/other_run/.cache.pc2.tmp-1a2b-0.pc2" ] || fail "a temporary outside the run's folders was removed"
 
 # 7. An input file changed in place (two vertices swapped: the same size) is
 # named; so is one whose size changed. Nothing is written.
