@@ -637,13 +637,25 @@ class Stages {
     }
     // Another run's record (an earlier one, with other options) is not this run's result.
     if (record.run !== this.runId || JSON.stringify(record.outputs) !== JSON.stringify(outputs)) return null;
-    if (!outputs.every((file) => core.fileExists(this.out + "/" + file))) return null;
+    const missing = outputs.find((file) => !isFile(this.out + "/" + file));
+    if (missing !== undefined) {
+      core.warn("pipeline: " + this.out + "/" + missing + ", which " + name + " wrote, is gone; running " + name + " again");
+      return null;
+    }
     // Records from before the outputs' fingerprints: their files' presence.
-    if (!Array.isArray(record.files)) return record;
+    if (!("files" in record)) return record;
+    const fingerprinted = Array.isArray(record.files) && record.files.length === outputs.length &&
+                          record.files.every((entry, k) => entry !== null && typeof entry === "object" &&
+                                                           entry.file === outputs[k] && typeof entry.bytes === "number" &&
+                                                           typeof entry.sha256 === "string");
+    if (!fingerprinted) {
+      core.warn("pipeline: " + path + " does not hold a size and SHA-256 for each of its files; running " + name + " again");
+      return null;
+    }
     for (const {file, bytes, sha256} of record.files) {
-      const path = this.out + "/" + file, now = core.fileSize(path);
-      if (now === bytes && core.fileHash(path) === sha256) continue;
-      core.warn("pipeline: " + path + " is not the file " + name + " wrote (" +
+      const output = this.out + "/" + file, now = core.fileSize(output);
+      if (now === bytes && core.fileHash(output) === sha256) continue;
+      core.warn("pipeline: " + output + " is not the file " + name + " wrote (" +
                 (now !== bytes ? "now " + now + " bytes, then " + bytes : "the same size, other contents") +
                 "); running " + name + " again");
       return null;

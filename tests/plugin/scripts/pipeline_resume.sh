@@ -89,6 +89,16 @@ grep -q "(1 stages run, 10 resumed)" "$tmp/edited_output.out" || fail "an edited
 grep -q "\[warn\] pipeline: .*/run/meshes/high_by_level.ply is not the file refine-uniform wrote (the same size, other contents); running refine-uniform again" \
   "$tmp/edited_output.err" || fail "no warning naming the edited mesh: $(cat "$tmp/edited_output.err")"
 head -1 "$ply" | grep -qx "ply" || fail "the edited mesh was not written again"
+# An output deleted, and a record whose fingerprints are damaged: named, run again.
+rm "$tmp/run/meshes/uniform_equal.om"
+sed 's/"files": \[/"files": [null,/' "$tmp/run/stages/modes.json" > "$tmp/modes_damaged.json" &&
+  mv "$tmp/modes_damaged.json" "$tmp/run/stages/modes.json"
+ran gone_output $cheap --size 80x80 --out "$tmp/run" --resume
+grep -q "(2 stages run, 9 resumed)" "$tmp/gone_output.out" || fail "a deleted output, a damaged record: $(cat "$tmp/gone_output.out")"
+grep -q "\[warn\] pipeline: .*/run/meshes/uniform_equal.om, which refine-equal wrote, is gone; running refine-equal again" \
+  "$tmp/gone_output.err" || fail "no warning naming the deleted output: $(cat "$tmp/gone_output.err")"
+grep -q "\[warn\] pipeline: .*/run/stages/modes.json does not hold a size and SHA-256 for each of its files; running modes again" \
+  "$tmp/gone_output.err" || fail "no warning naming the damaged record: $(cat "$tmp/gone_output.err")"
 
 # 6. One run at a time per folder. A fresh run removes the report an earlier
 # run left before any stage (it would stand beside this run's outputs); a
