@@ -48,7 +48,7 @@ class TokenCursor {
   /// The next token into `token`; false at the end of the text.
   bool next(Token& token) {
     while (i_ < text_.size() && is_space(text_[i_])) {
-      if (text_[i_] == '\n') ++line_;
+      if (ends_line(i_)) ++line_;
       ++i_;
     }
     if (i_ >= text_.size()) return false;
@@ -69,10 +69,18 @@ class TokenCursor {
   int last_line() const {
     std::size_t end = text_.size();
     while (end > 0 && is_space(text_[end - 1])) --end;
-    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+    int line = 1;
+    for (std::size_t k = 0; k < end; ++k) line += ends_line(k) ? 1 : 0;
+    return line;
   }
 
  private:
+  /// Whether the character at k ends a line: LF, CRLF (at its LF), or a CR
+  /// alone (classic Mac OS files).
+  bool ends_line(std::size_t k) const {
+    return text_[k] == '\n' || (text_[k] == '\r' && (k + 1 >= text_.size() || text_[k + 1] != '\n'));
+  }
+
   std::string_view text_;
   std::size_t i_ = 0;
   int line_ = 1;

@@ -372,17 +372,24 @@ TEST(BvhRead, MalformedFilesNameTheFileAndTheLine) {
   ASSERT_EQ(base.frames.rows(), 3);
   ASSERT_EQ(base.frames.cols(), 9);
 
-  for (const Malformed& variant : malformed_variants()) {
-    SCOPED_TRACE(variant.name);
-    const std::string path = write_text(dir, std::string(variant.name) + ".bvh", join_lines(variant.lines));
-    try {
-      read_bvh(path);
-      ADD_FAILURE() << "no InputError for " << variant.name;
-    } catch (const InputError& error) {
-      const std::string message = error.what();
-      EXPECT_EQ(message.rfind(path + ":" + std::to_string(variant.line) + ": ", 0), 0u) << message;
-      EXPECT_NE(message.find("; expected "), std::string::npos) << message;
-      EXPECT_NE(message.find(variant.contains), std::string::npos) << message;
+  // With LF, CRLF and lone CR (classic Mac OS) line ends alike: a CR-only
+  // file was one line to the reader, every error on line 1 and a row short
+  // by one value then long by one read with its channels shifted.
+  for (const char* line_end : {"\n", "\r\n", "\r"}) {
+    for (const Malformed& variant : malformed_variants()) {
+      SCOPED_TRACE(std::string(variant.name) + (line_end[0] == '\n' ? "" : line_end[1] ? " (CRLF)" : " (CR)"));
+      std::string text;
+      for (const std::string& line : variant.lines) text += line + line_end;
+      const std::string path = write_text(dir, std::string(variant.name) + ".bvh", text);
+      try {
+        read_bvh(path);
+        ADD_FAILURE() << "no InputError for " << variant.name;
+      } catch (const InputError& error) {
+        const std::string message = error.what();
+        EXPECT_EQ(message.rfind(path + ":" + std::to_string(variant.line) + ": ", 0), 0u) << message;
+        EXPECT_NE(message.find("; expected "), std::string::npos) << message;
+        EXPECT_NE(message.find(variant.contains), std::string::npos) << message;
+      }
     }
   }
 }
