@@ -858,17 +858,75 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   }
 }
 
-/// A file save_mesh wrote (it names mrcloth's layers) ends, as OpenMesh's
-/// writer ends every file, with a sentinel chunk header (entity 7, all other
-/// fields 0). Checked before OpenMesh reads: its reader asserts (aborting
-/// the host) on some custom-layer chunks cut short.
+/// Where a .om file's checksum layer keeps its eight bytes: after the
+/// chunk's name, its type's name (a length byte, then the text) and its
+/// block size (4 bytes, which must be 8).
+struct ChecksumPlace {
+  bool present = false;  ///< the file names the layer (one written before it, or by another program, does not)
+  bool damaged = false;  ///< named, but its frame is not as save_mesh writes it
+  std::size_t offset = 0;
+};
+ChecksumPlace checksum_place(const std::string& bytes) {
+  const std::string name = layer::checksum;
+  const std::size_t at = bytes.find(name);
+  if (at == std::string::npos) return {};
+  const ChecksumPlace damaged{true, true, 0};
+  if (at == 0 || static_cast<unsigned char>(bytes[at - 1]) != name.size()) return damaged;
+  const std::size_t type_at = at + name.size();
+  if (type_at >= bytes.size()) return damaged;
+  const std::size_t size_at = type_at + 1 + static_cast<unsigned char>(bytes[type_at]);
+  if (size_at + 4 + 8 > bytes.size()) return damaged;
+  std::uint32_t block = 0;
+  for (std::size_t k = 0; k < 4; ++k) block |= std::uint32_t{static_cast<unsigned char>(bytes[size_at + k])} << (8 * k);
+  return block == 8 ? ChecksumPlace{true, false, size_at + 4} : damaged;
+}
+
+/// FNV-1a (64 bits) of `bytes` with the eight at `skip` taken as zero.
+std::uint64_t file_checksum(const std::string& bytes, std::size_t skip) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (std::size_t k = 0; k < bytes.size(); ++k) {
+    const unsigned char byte = (k >= skip && k < skip + 8) ? 0 : static_cast<unsigned char>(bytes[k]);
+    hash = (hash ^ byte) * 1099511628211ull;
+  }
+  return hash;
+}
+
+/// A .om file with a checksum layer must match it (any byte changed or cut
+/// off): checked before OpenMesh reads, whose reader asserts (aborting the
+/// host) on some damaged chunks.
+void check_om_checksum(const std::string& path, const std::string& bytes) {
+  const ChecksumPlace place = checksum_place(bytes);
+  if (!place.present) return;
+  std::uint64_t stored = 0;
+  if (!place.damaged)
+    for (std::size_t k = 0; k < 8; ++k)
+      stored |= std::uint64_t{static_cast<unsigned char>(bytes[place.offset + k])} << (8 * k);
+  if (place.damaged || stored != file_checksum(bytes, place.offset))
+    throw InputError(with_path(path, "the file is damaged or cut short (its bytes do not match the checksum save_mesh "
+                                     "wrote into it); expected a .om file as save_mesh writes it, whole"));
+}
+
+/// The OM format version OpenMesh 9 writes (2.2: major << 5 | minor), whose
+/// files all end with a sentinel chunk header.
+constexpr unsigned char kOmVersionWithSentinel = (2 << 5) | 2;
+
+/// A file save_mesh wrote (it names mrcloth's layers), and any of OpenMesh
+/// 9's format, ends with a sentinel chunk header (entity 7, all other fields
+/// 0): one cut short does not (a file cut before its first layer named none,
+/// and loaded as a coarse garment). Checked before OpenMesh reads: its
+/// reader asserts (aborting the host) on some chunks cut short.
 void check_om_ends_whole(const std::string& path, const std::string& bytes) {
-  if (bytes.find("mrcloth:") == std::string::npos) return;  // another program's file: the checks after reading
+  const bool ours = bytes.find("mrcloth:") != std::string::npos;
+  const bool current = bytes.size() >= 4 && bytes.compare(0, 2, "OM") == 0 &&
+                       static_cast<unsigned char>(bytes[3]) >= kOmVersionWithSentinel;
+  if (!ours && !current) return;  // an older format's file: the checks after reading
   const bool sentinel = bytes.size() >= 18 && static_cast<unsigned char>(bytes[bytes.size() - 2]) == 0x1c &&
                         bytes[bytes.size() - 1] == 0;
   if (!sentinel)
-    throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but does not end as save_mesh "
-                                     "ends a file); expected a .om file as save_mesh writes it, whole"));
+    throw InputError(with_path(path, std::string("the file is cut short (") +
+                                         (ours ? "it holds mrcloth's layers but does not end as save_mesh ends a file"
+                                               : "it does not end as OpenMesh's writer ends a file") +
+                                         "); expected a whole .om file"));
 }
 
 /// An OM file cut short in its vertex or face chunks reads fewer elements
@@ -956,6 +1014,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   if (*format == Format::om) {
     std::ifstream in(path, std::ios::binary);
     om_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    check_om_checksum(path, om_bytes);
     check_om_ends_whole(path, om_bytes);
   }
 
@@ -1235,7 +1294,12 @@ bool write_om(const QuadMesh& mesh, const std::string& file) {
     return false;
   }
   std::ofstream out(file, std::ios::binary);
-  const std::string bytes = std::move(encoded).str();
+  std::string bytes = std::move(encoded).str();
+  // The checksum layer's eight bytes take the hash of all the others.
+  if (const ChecksumPlace place = checksum_place(bytes); place.present && !place.damaged) {
+    const std::uint64_t hash = file_checksum(bytes, place.offset);
+    for (std::size_t k = 0; k < 8; ++k) bytes[place.offset + k] = static_cast<char>((hash >> (8 * k)) & 0xff);
+  }
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
   return !out.fail();

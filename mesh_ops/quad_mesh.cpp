@@ -5,6 +5,7 @@
 #include "texture_coords.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <type_traits>
@@ -50,8 +51,10 @@ Layers ensure_layers(QuadMesh& mesh) {
   l.level = ensure_property<OpenMesh::FPropHandleT<int>>(mesh, layer::level, 1);
   l.quad = ensure_property<OpenMesh::FPropHandleT<int>>(mesh, layer::quad, -1);
   // The OM writer stores mesh layers in the order they were made, so the
-  // forest, made after the UVs, is the file's last chunk: a file cut short
-  // anywhere lacks it or holds a damaged one (load_garment refuses both).
+  // forest, made after the checksum and the UVs, is the file's last chunk:
+  // a file cut short anywhere lacks it or holds a damaged one, and its
+  // checksum does not match (load_garment refuses all three).
+  ensure_property<OpenMesh::MPropHandleT<std::uint64_t>>(mesh, layer::checksum, std::uint64_t{0});
   ensure_record_uvs(mesh);
   l.quadtree = ensure_property<OpenMesh::MPropHandleT<std::vector<QuadRecord>>>(
       mesh, layer::quadtree, std::vector<QuadRecord>{});

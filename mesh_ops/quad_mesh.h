@@ -50,6 +50,9 @@ inline constexpr const char* parents = "mrcloth:parents";    ///< vertex Vec2i: 
 inline constexpr const char* level = "mrcloth:level";        ///< face int: refinement level, coarse = 1
 inline constexpr const char* quad = "mrcloth:quad";          ///< face int: index of the face's quadtree record
 inline constexpr const char* quadtree = "mrcloth:quadtree";  ///< mesh std::vector<QuadRecord>: the forest
+/// mesh std::uint64_t: in a .om file save_mesh wrote, the FNV-1a hash of the
+/// file's bytes with these eight taken as zero (load_garment checks it)
+inline constexpr const char* checksum = "mrcloth:checksum";
 }  // namespace layer
 
 /// The default mode of a vertex nobody has painted: the lowest mode.
