@@ -730,11 +730,21 @@ constexpr double kLegJitterWarning = 200.0;
 /// kLegJitterWarning, of a few candidates; the largest candidate if none does.
 double smoothingAgainstJitter(const Motion& motion, double already, int first, int last) {
   const double candidates[] = {0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.1};
+  // Only the frames the run plays and the widest window around them (a
+  // clip may hold hours).
+  const Eigen::Index rows = motion.frames.rows();
+  const auto margin = static_cast<Eigen::Index>(std::ceil(3.0 * candidates[std::size(candidates) - 1] / motion.frame_time)) + 2;
+  const Eigen::Index from = std::max<Eigen::Index>(0, first - margin);
+  const Eigen::Index to = std::min<Eigen::Index>(rows, (last < 0 ? rows : last + 1) + margin);
+  Motion part = motion;
+  part.frames = motion.frames.middleRows(from, to - from);
   for (const double total : candidates) {
     if (total <= already) continue;
-    Motion smoothed = motion;
+    Motion smoothed = part;
     smooth_motion(smoothed, std::sqrt(total * total - already * already));  // Gaussians compose in quadrature
-    if (leg_jitter(smoothed, first, last) < 0.5 * kLegJitterWarning) return total;
+    if (leg_jitter(smoothed, static_cast<int>(first - from), static_cast<int>((last < 0 ? rows - 1 : last) - from)) <
+        0.5 * kLegJitterWarning)
+      return total;
   }
   return candidates[std::size(candidates) - 1];
 }
