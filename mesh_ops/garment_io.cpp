@@ -3,6 +3,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "mode_layer.h"
 #include "obj_tokens.h"
 #include "quadtree_forest.h"
 #include "texture_coords.h"
@@ -855,6 +856,20 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
       throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + face_label(f.idx()) +
                                            " names no active record); expected a .om file as save_mesh writes it, "
                                            "whole"));
+  }
+  // The vertex layers later steps index by (a file saved before the
+  // checksum, damaged inside, crashed objectInfo through them).
+  for (const auto v : mesh.vertices()) {
+    const OpenMesh::Vec2i ends = mesh.property(layers.parents, v);
+    const bool none = ends[0] == -1 && ends[1] == -1;
+    const bool valid = ends[0] >= 0 && ends[0] < n_vertices && ends[1] >= 0 && ends[1] < n_vertices && ends[0] != ends[1];
+    const int mode = mesh.property(layers.mode, v);
+    if ((!none && !valid) || mode < 0 || mode > kLargestMode)
+      throw InputError(with_path(path, "the stored layers are damaged (vertex " + std::to_string(v.idx()) +
+                                           (none || valid ? " has mode " + std::to_string(mode)
+                                                          : " names edge ends " + std::to_string(ends[0]) + ", " +
+                                                                std::to_string(ends[1])) +
+                                           "); expected a .om file as save_mesh writes it, whole"));
   }
 }
 

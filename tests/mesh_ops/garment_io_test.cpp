@@ -467,7 +467,9 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
     mesh.property(l.mode, v) = i % 4 + 1;
     mesh.property(l.r_value, v) = i / 3.0 + 1e-300;
     mesh.property(l.hanging, v) = i % 3 == 1;
-    mesh.property(l.parents, v) = OpenMesh::Vec2i(i - 1, i + 7);
+    // Every vertex a midpoint of two others (the loader refuses pairs out of range).
+    const int n = static_cast<int>(mesh.n_vertices());
+    mesh.property(l.parents, v) = OpenMesh::Vec2i((i + 1) % n, (i + 7) % n);
   }
   for (const auto f : mesh.faces()) {
     mesh.property(l.level, f) = f.idx() + 2;
