@@ -507,10 +507,12 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        {QStringLiteral("folder to sweep")}},
       {QStringLiteral("lockFile(string path) -> object"),
        QStringLiteral("Takes a lock file (Qt's QLockFile) held until mrcloth exits, so that two runs do not "
-                      "write into one folder. Returns {locked: true}, also when this run holds it already, or "
-                      "{locked: false, pid, host, application} naming the live process that holds it. A lock "
-                      "whose process is gone (killed) is taken over; a held one never expires. OutputError if "
-                      "the lock file cannot be created."),
+                      "write into one folder. Returns {locked: true}, also when this run holds it already (by "
+                      "any path to its folder), or {locked: false, pid, host, application} naming the live "
+                      "process that holds it (pid 0: the file names no process yet). A lock whose process is "
+                      "gone (killed), or that has named no process for 3 s (killed while taking it), is taken "
+                      "over; a held one never expires. OutputError if the path is a folder or its folder is "
+                      "missing, or the lock file cannot be created."),
        {QStringLiteral("path")},
        {QStringLiteral("lock file, e.g. \"out/stages/.lock\" (its folder must exist)")}},
       {QStringLiteral("include(string path) -> bool"),
