@@ -517,9 +517,6 @@ function optionName(key) {
   return names.length > 0 ? names[0] : key;
 }
 
-/// With --resume, before anything is written: the folder's record of its run
-/// (stages/options.json) must hold this run's options and input files.
-/// Returns that run's id, which its stage records carry.
 const RESUME_AGAIN = "; run without --resume to start a new run, or use another --out";
 
 /// With --resume, before the folder is locked: it must hold a run's record.
@@ -530,6 +527,9 @@ function checkResumable(out) {
                         RESUME_AGAIN);
 }
 
+/// With --resume, before anything is written: the folder's record of its run
+/// (stages/options.json) must hold this run's options and input files.
+/// Returns that run's id, which its stage records carry.
 function resumedRun(options, inputs) {
   const out = options.out, path = out + "/stages/options.json";
   const again = RESUME_AGAIN;
