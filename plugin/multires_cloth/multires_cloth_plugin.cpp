@@ -233,7 +233,12 @@ QVariantList MultiresClothPlugin::getLayer(QVariant id, QVariant name) {
 void MultiresClothPlugin::saveLayers(QVariant id, QVariant path) {
   guarded("saveLayers", [&] {
     const QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
-    write_vertex_layers_csv(mesh, script::toString(path, QStringLiteral("path")).toStdString());
+    const QString file = script::toString(path, QStringLiteral("path"));
+    // Any other name replaced what was there (a cache, a mesh) with a table.
+    if (QFileInfo(file).suffix().compare(QLatin1String("csv"), Qt::CaseInsensitive) != 0)
+      throw ArgumentError(QStringLiteral("path must end in .csv (the layers are a CSV table), got \"%1\"").arg(file)
+                              .toStdString());
+    write_vertex_layers_csv(mesh, file.toStdString());
     return 0;
   });
 }
@@ -359,6 +364,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     run_warnings_.clear();
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const SimulationRequest request = parseSimulationOptions(options, *input.mesh);
+    requireOutputsSpareInputs(request, input.path);
     if (request.character) return simulateOnCharacter(QStringLiteral("simulate"), input, request);
     const QString contact_warning =
         selfContactWarning(QStringLiteral("simulate"), *input.mesh, request.simulation.self_contact);
@@ -646,6 +652,7 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
     run_warnings_.clear();
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const SimulationRequest request = parseSimulationOptions(options, *input.mesh, SimulationCall::recordInstance);
+    requireOutputsSpareInputs(request, input.path);
     return simulateOnCharacter(QStringLiteral("recordInstance"), input, request);
   });
 }

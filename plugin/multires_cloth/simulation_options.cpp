@@ -169,6 +169,22 @@ std::vector<int> parsePins(const QVariant& value, const QuadMesh& mesh, const QS
   return pins;
 }
 
+/// The frame of the OBJ sequence `prefix` (of `frames` frames) that is the
+/// file `path` (absolute), or -1.
+long long sequenceFrame(const QString& prefix, int frames, const QString& path) {
+  if (prefix.isEmpty()) return -1;
+  // A frame of the sequence: "<prefix>_<digits>.obj" with a frame's number.
+  const QString start = QFileInfo(prefix).absoluteFilePath() + QStringLiteral("_");
+  if (!path.startsWith(start) || !path.endsWith(QLatin1String(".obj"))) return -1;
+  bool number = false;
+  const long long index = path.mid(start.size(), path.size() - start.size() - 4).toLongLong(&number);
+  if (!number || index < 0 || index >= frames) return -1;
+  const QString frame = QFileInfo(QString::fromStdString(obj_sequence_path(
+                                      prefix.toStdString(), static_cast<std::size_t>(index), static_cast<std::size_t>(frames))))
+                            .absoluteFilePath();
+  return frame == path ? index : -1;
+}
+
 /// Refuses two outputs of one run that name one file (the later write
 /// would replace the earlier: a body cache over the garment's, a rest mesh
 /// over an OBJ sequence's frame), naming both options.
@@ -182,25 +198,70 @@ void requireDistinctOutputs(const QString& output, const QString& bodyOutput, co
   add(QStringLiteral("option 'bodyOutput'"), bodyOutput);
   if (!bodyOutput.isEmpty()) add(QStringLiteral("the rest mesh beside option 'bodyOutput'"), restMeshPath(bodyOutput));
   for (std::size_t a = 0; a < files.size(); ++a) {
+    // Written after the run: a folder there failed the call after the run had written its caches.
+    if (QFileInfo(files[a].second).isDir())
+      throw OutputError(QStringLiteral("%1, %2, is a folder; expected a file's path").arg(files[a].first, files[a].second)
+                            .toStdString());
     for (std::size_t b = a + 1; b < files.size(); ++b)
       if (files[a].second == files[b].second)
         fail(QStringLiteral("%1 and %2 are one file, %3; expected outputs that do not overwrite each other")
                  .arg(files[a].first, files[b].first, files[a].second));
-    if (objSequence.isEmpty()) continue;
-    // A frame of the sequence: "<prefix>_<digits>.obj" with a frame's number.
-    const QString prefix = QFileInfo(objSequence).absoluteFilePath() + QStringLiteral("_");
-    const QString& path = files[a].second;
-    if (!path.startsWith(prefix) || !path.endsWith(QLatin1String(".obj"))) continue;
-    bool number = false;
-    const long long index = path.mid(prefix.size(), path.size() - prefix.size() - 4).toLongLong(&number);
-    if (number && index >= 0 && index < frames &&
-        QFileInfo(QString::fromStdString(obj_sequence_path(objSequence.toStdString(), static_cast<std::size_t>(index),
-                                                           static_cast<std::size_t>(frames))))
-                .absoluteFilePath() == path)
+    if (const long long index = sequenceFrame(objSequence, frames, files[a].second); index >= 0)
       fail(QStringLiteral("%1 is frame %2 of option 'objSequence', %3; expected outputs that do not overwrite each other")
-               .arg(files[a].first).arg(index).arg(path));
+               .arg(files[a].first).arg(index).arg(files[a].second));
+  }
+  for (int frame = 0; !objSequence.isEmpty() && frame < frames; ++frame) {
+    const QString path = QString::fromStdString(
+        obj_sequence_path(objSequence.toStdString(), static_cast<std::size_t>(frame), static_cast<std::size_t>(frames)));
+    if (QFileInfo(path).isDir())
+      throw OutputError(QStringLiteral("frame %1 of option 'objSequence', %2, is a folder; expected a file's path")
+                            .arg(frame).arg(QFileInfo(path).absoluteFilePath()).toStdString());
   }
 }
+
+}  // namespace
+
+void requireOutputsSpareInputs(const SimulationRequest& request, const QString& garmentFile) {
+  std::vector<std::pair<QString, QString>> inputs;  // (what, absolute path)
+  const auto add = [&](const QString& what, const QString& path) {
+    if (!path.isEmpty()) inputs.emplace_back(what, QFileInfo(path).absoluteFilePath());
+  };
+  add(QStringLiteral("the garment's file"), garmentFile);
+  QString body_output;
+  if (request.character) {
+    const CharacterRequest& character = *request.character;
+    add(QStringLiteral("option 'motion'"), character.motionPath);
+    if (character.setup.makehuman) {
+      add(QStringLiteral("option 'body.obj'"), QString::fromStdString(character.setup.makehuman->base_obj));
+      add(QStringLiteral("option 'body.skeleton'"), QString::fromStdString(character.setup.makehuman->skeleton_file));
+      add(QStringLiteral("option 'body.weights'"), QString::fromStdString(character.setup.makehuman->weights_file));
+    }
+    body_output = character.bodyOutput;
+  }
+  std::vector<std::pair<QString, QString>> outputs;
+  const auto output = [&](const QString& what, const QString& path) {
+    if (!path.isEmpty()) outputs.emplace_back(what, QFileInfo(path).absoluteFilePath());
+  };
+  output(QStringLiteral("option 'output'"), request.simulation.cache_path.empty() ? QString()
+                                              : QString::fromStdString(request.simulation.cache_path));
+  if (!request.simulation.cache_path.empty())
+    output(QStringLiteral("the rest mesh beside option 'output'"),
+           restMeshPath(QString::fromStdString(request.simulation.cache_path)));
+  output(QStringLiteral("option 'bodyOutput'"), body_output);
+  if (!body_output.isEmpty()) output(QStringLiteral("the rest mesh beside option 'bodyOutput'"), restMeshPath(body_output));
+  for (const auto& [what, path] : inputs) {
+    for (const auto& [written, out] : outputs)
+      if (out == path)
+        throw OutputError(QStringLiteral("%1 is %2, %3; expected outputs that leave the run's inputs as they are")
+                              .arg(written, what, path).toStdString());
+    if (const long long index = sequenceFrame(request.objSequence, request.simulation.frames, path); index >= 0)
+      throw OutputError(QStringLiteral("frame %1 of option 'objSequence' is %2, %3; expected outputs that leave the "
+                                       "run's inputs as they are")
+                            .arg(index).arg(what, path).toStdString());
+  }
+}
+
+namespace {
 
 /// The folder a file (or an OBJ sequence prefix) goes into must exist.
 QString checkedOutputPath(const Fields& fields, const QString& key) {

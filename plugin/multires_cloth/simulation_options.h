@@ -52,6 +52,13 @@ QString restMeshPath(const QString& cache_path);
 SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh,
                                          SimulationCall call = SimulationCall::simulate);
 
+/// Refuses (OutputError, naming both) an output of the run (output,
+/// bodyOutput, their rest meshes, a frame of objSequence) that is one of its
+/// input files: the garment's (`garmentFile`, the object's file; empty:
+/// none), the motion, the MakeHuman body's. Such an output replaced the
+/// body or garment it was made from.
+void requireOutputsSpareInputs(const SimulationRequest& request, const QString& garmentFile);
+
 /// The script's view of a finished (or cancelled) run: frames, steps,
 /// timeStep, precomputeMs, msPerFrame {dynamics, collision, total, limiter,
 /// posing, firstRound},

@@ -64,6 +64,8 @@ multirescloth.setModes(grid, [5, 6], 8);
 const saved = multirescloth.getModes(grid);
 const csv = tmpDir + "/grid_layers.csv";
 multirescloth.saveLayers(grid, csv);
+expectThrows(() => multirescloth.saveLayers(grid, tmpDir + "/grid_layers.pc2"), "ArgumentError",
+             "multirescloth.saveLayers: path must end in .csv", "grid_layers.pc2");
 if (!core.fileExists(csv)) throw new Error("no CSV at " + csv);
 multirescloth.eraseModes(grid);
 expectEqual(multirescloth.loadModes(grid, csv), 16, "rows read");

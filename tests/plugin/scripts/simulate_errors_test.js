@@ -145,6 +145,20 @@ expectThrows(sim({output: tmpDir + "/cache.obj"}), "ArgumentError",
 expectThrows(sim({output: tmpDir + "/clash_0000.pc2", objSequence: tmpDir + "/clash", frames: 2}), "ArgumentError",
              "the rest mesh beside option 'output' is frame 0 of option 'objSequence'");
 expectEqual(core.fileExists(tmpDir + "/clash_0000.obj"), false, "nothing written by the refused call");
+// An output that is one of the run's inputs (its rest mesh replaced the
+// garment's file), and one that is a folder (found after the run had
+// written its cache), are refused before the run.
+core.writeTextFile(tmpDir + "/source.obj", core.readTextFile(dataDir + "/grid3x3.obj"));
+const source = core.loadObject(tmpDir + "/source.obj");
+expectThrows(() => multirescloth.simulate(source, {frames: 1, output: tmpDir + "/source.pc2"}), "OutputError",
+             "the rest mesh beside option 'output' is the garment's file", "source.obj",
+             "expected outputs that leave the run's inputs as they are");
+expectEqual(core.fileExists(tmpDir + "/source.pc2"), false, "no cache written by the refused call");
+core.makePath(tmpDir + "/folder.obj");
+expectThrows(sim({frames: 1, output: tmpDir + "/folder.pc2"}), "OutputError",
+             "the rest mesh beside option 'output', ", "folder.obj, is a folder");
+expectEqual(core.fileExists(tmpDir + "/folder.pc2"), false, "no cache written by the refused call");
+core.deleteObject(source);
 // A frame's work is bounded: progress and Ctrl-C come between frames.
 expectThrows(sim({substeps: 1e9}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 1e+09");
 expectThrows(sim({iterations: 101}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number 101");
