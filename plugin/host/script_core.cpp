@@ -349,6 +349,16 @@ QVariantMap ScriptCore::lockFile(QVariant path) {
   });
 }
 
+bool ScriptCore::unlockFile(QVariant path) {
+  return guarded("unlockFile", [&] {
+    const QFileInfo given(script::toString(path, QStringLiteral("path")));
+    const QString folder = QFileInfo(given.absolutePath()).canonicalFilePath();
+    if (folder.isEmpty()) return false;
+    // Erasing the QLockFile unlocks it, removes the file and closes its descriptor.
+    return locks_.erase(QDir(folder).filePath(given.fileName())) > 0;
+  });
+}
+
 void ScriptCore::setScriptPath(const QString& path) {
   const QFileInfo info(path);
   script_folder_ = info.absolutePath();
@@ -515,6 +525,11 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "missing, or the lock file cannot be created."),
        {QStringLiteral("path")},
        {QStringLiteral("lock file, e.g. \"out/stages/.lock\" (its folder must exist)")}},
+      {QStringLiteral("unlockFile(string path) -> bool"),
+       QStringLiteral("Releases a lock lockFile took (its file is removed; each lock holds a file descriptor, so a "
+                      "batch locking folder after folder releases them); returns false if this run holds none there."),
+       {QStringLiteral("path")},
+       {QStringLiteral("lock file given to lockFile")}},
       {QStringLiteral("include(string path) -> bool"),
        QStringLiteral("Evaluates a JavaScript file in the global scope, so its functions and `var`s become globals "
                       "(top-level let/const stay private to the file). A relative path is relative to the "

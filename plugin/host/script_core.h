@@ -69,6 +69,7 @@ class ScriptCore : public QObject, public ScriptInterface {
   bool removeFile(QVariant path = QVariant());
   QStringList removeTemporaries(QVariant folder = QVariant());
   QVariantMap lockFile(QVariant path = QVariant());
+  bool unlockFile(QVariant path = QVariant());
   void writeTextFile(QVariant path = QVariant(), QVariant text = QVariant());
   QString readTextFile(QVariant path = QVariant());
   bool fileReadable(QVariant path = QVariant());

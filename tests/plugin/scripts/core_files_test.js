@@ -68,4 +68,12 @@ core.writeTextFile(tmpDir + "/sub/.ownerless", "\n");
 const since = Date.now();
 while (Date.now() - since < 3200) {}
 expectEqual(core.lockFile(tmpDir + "/sub/.ownerless"), {locked: true}, "lockFile over an ownerless lock");
+// unlockFile releases (the file goes), once; a batch of locks one after the other holds one at a time.
+expectEqual(core.unlockFile(tmpDir + "/sub/.lock"), true, "unlockFile");
+expectEqual(core.fileExists(tmpDir + "/sub/.lock"), false, "the lock file after unlockFile");
+expectEqual(core.unlockFile(tmpDir + "/sub/.lock"), false, "unlockFile again");
+for (let k = 0; k < 1100; ++k) {  // beyond a 1024-descriptor limit if locks were kept
+  expectEqual(core.lockFile(tmpDir + "/sub/.batch").locked, true, "lock " + k);
+  expectEqual(core.unlockFile(tmpDir + "/sub/.batch"), true, "unlock " + k);
+}
 print("core files: ok (" + checked + " errors checked)");
