@@ -401,6 +401,31 @@ FramePositions Pc2Reader::finite_frame(int frame) {
 // ---------------------------------------------------------------------------
 // OBJ sequences
 
+namespace {
+
+/// The frames from `first` on that an earlier, longer sequence of `prefix`
+/// left (at any of the widths a sequence numbers them with), up to the
+/// first number none is there for: a DCC tool importing the sequence would
+/// take them for this run's.
+void remove_later_frames(const std::string& prefix, std::size_t first) {
+  for (std::size_t k = first;; ++k) {
+    bool found = false;
+    const std::string digits = std::to_string(k);
+    for (std::size_t width = std::max<std::size_t>(4, digits.size()); width <= std::max<std::size_t>(4, digits.size()) + 1;
+         ++width) {
+      const std::string path = prefix + "_" + std::string(width - std::min(width, digits.size()), '0') + digits + ".obj";
+      std::error_code error;
+      if (!std::filesystem::is_regular_file(path, error)) continue;
+      found = true;
+      if (!std::filesystem::remove(path, error) && error)
+        throw OutputError(path + ": cannot remove a frame an earlier sequence left (" + error.message() + ")");
+    }
+    if (!found) return;
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,
                                             const std::vector<std::vector<int>>& faces, const FaceUVs& uvs) {
   std::vector<std::string> paths;
@@ -412,6 +437,7 @@ std::vector<std::string> write_obj_sequence(const std::string& prefix, const std
     write_obj(path, frames[k], faces, uvs);
     paths.push_back(path);
   }
+  remove_later_frames(prefix, frames.size());
   return paths;
 }
 

@@ -97,7 +97,8 @@ std::string obj_sequence_path(const std::string& prefix, std::size_t index, std:
 /// Writes `frames` as an OBJ sequence `<prefix>_0000.obj`, ... sharing the
 /// faces of `faces` (each a vertex-index polygon, 0-based) and their corners'
 /// texture coordinates `uvs` (written as vt, if given). Every file is
-/// written atomically. Returns the paths written. Throws ArgumentError for
+/// written atomically; frames an earlier, longer sequence of the same
+/// prefix left after these are removed. Returns the paths written. Throws ArgumentError for
 /// frames of unequal sizes, a face naming a missing vertex, or uvs not
 /// shaped as the faces.
 std::vector<std::string> write_obj_sequence(const std::string& prefix, const std::vector<FramePositions>& frames,

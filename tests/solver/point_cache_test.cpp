@@ -6,6 +6,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "test_meshes.h"
 
 #include <cstdlib>
@@ -326,6 +328,23 @@ TEST(ObjSequence, WritesNumberedFilesThatLoadBack) {
       for (int j = 0; j < 3; ++j)
         EXPECT_NEAR(mesh.point(v)[j], float(frames[k](v.idx(), j)), 1e-6 * (1 + std::abs(frames[k](v.idx(), j))));
   }
+}
+
+// Written again with fewer frames, a sequence leaves none of the earlier
+// run's later frames (a DCC tool importing it took them for this run's);
+// other files of the folder stay.
+TEST(ObjSequence, FramesAnEarlierLongerSequenceLeftAreRemoved) {
+  const fs::path dir = empty_folder("obj_shorter");
+  const std::string prefix = (dir / "s").string();
+  const std::vector<std::vector<int>> faces = {{0, 1, 2, 3}, {1, 4, 2}};
+  write_obj_sequence(prefix, random_frames(6, 5, 3), faces);
+  std::ofstream(dir / "s_extra.obj") << "# not a frame\n";
+  std::ofstream(dir / "s_0009.obj") << "# not after the last frame\n";
+  std::ofstream(dir / "s_00006.obj") << "# a frame of a longer sequence's width\n";
+  write_obj_sequence(prefix, random_frames(3, 5, 4), faces);
+  std::vector<std::string> names = folder_contents(dir);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"s_0000.obj", "s_0001.obj", "s_0002.obj", "s_0009.obj", "s_extra.obj"}));
 }
 
 TEST(ObjSequence, TextureCoordinatesAreOnePerFaceCorner) {
