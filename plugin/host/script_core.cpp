@@ -58,6 +58,9 @@ std::vector<std::size_t> verticesPerMode(const QuadMesh& mesh) {
   return counts;
 }
 
+/// How long (ms) lockFile tries before it says who holds the lock.
+constexpr int kLockPatienceMs = 500;
+
 /// How long (ms) a lock file naming no owner may stand before it is taken
 /// for one a killed process left (QLockFile writes its owner at once).
 constexpr qint64 kOwnerlessLockMs = 3000;
@@ -327,7 +330,9 @@ QVariantMap ScriptCore::lockFile(QVariant path) {
     auto lock = std::make_unique<QLockFile>(name);
     // Never stale by age (a run may take hours): only when its process is gone.
     lock->setStaleLockTime(0);
-    if (!lock->tryLock(0) && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
+    // Half a second of retries: two runs taking over one stale lock at once
+    // settle on a winner, whose name the other then reads (it read the dead one's).
+    if (!lock->tryLock(kLockPatienceMs) && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
       // A process killed between creating the file and writing its owner
       // leaves it empty: no owner to ask, so it is taken over once it is
       // older than a writer needs.
