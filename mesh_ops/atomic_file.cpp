@@ -109,8 +109,8 @@ std::string temporary_path_beside(const std::string& path, const std::string& ex
 }
 
 bool is_temporary_name(const std::string& file_name) {
-  // temporary_path's ".<name>.tmp-<hex entropy>-<counter><extension>".
-  static const std::regex form(R"(^\..*\.tmp-[0-9a-f]{1,8}-[0-9]+(\.[A-Za-z0-9]+)?$)");
+  // temporary_path's ".<name>.tmp-<entropy>-<counter><extension>", both numbers in hex.
+  static const std::regex form(R"(^\..*\.tmp-[0-9a-f]{1,8}-[0-9a-f]+(\.[A-Za-z0-9]+)?$)");
   return std::regex_match(file_name, form);
 }
 

@@ -20,8 +20,9 @@ void write_file_atomically(const std::string& path, const std::string& extension
                            const std::function<bool(const std::string& temporary_path)>& write);
 
 /// A fresh name for a hidden temporary file beside `path` ending in
-/// `extension` (".name.tmp-<random>-<n><extension>" in the same folder, so a
-/// rename onto `path` stays within one file system). Only the name: nothing
+/// `extension` (".name.tmp-<random>-<n><extension>", both numbers in hex,
+/// in the same folder, so a rename onto `path` stays within one file
+/// system). Only the name: nothing
 /// is created. For writers that stream into the file themselves and rename it
 /// when done (see write_file_atomically for the one-call version).
 std::string temporary_path_beside(const std::string& path, const std::string& extension);

@@ -41,7 +41,8 @@ expectThrows(() => core.removeFile(tmpDir + "/sub"), "OutputError", "core.remove
 
 // removeTemporaries: the writers' ".NAME.tmp-HEX-N[.EXT]" files in the
 // folder itself, nothing else (a subfolder may be another run's output folder).
-const temporaries = [".high.om.tmp-1f2e-0.om", ".instance_high.pc2.tmp-abcdef01-12.pc2", ".report.md.tmp-9-3"];
+const temporaries = [".high.om.tmp-1f2e-0.om", ".instance_high.pc2.tmp-abcdef01-12.pc2", ".report.md.tmp-9-3",
+                     ".coarse_walk.pc2.tmp-56ae6921-d.pc2"];  // the counter is hex too (a writer's 14th temporary)
 const others = [".hidden", "a.tmp-1-0", ".x.tmp-zz-1", ".y.tmp-12", "sub/high.om", "sub/deeper/.tmp-1-0x",
                 "sub/.caches.pc2.tmp-1a-0.pc2"];
 for (const file of temporaries.concat(others)) core.writeTextFile(tmpDir + "/" + file, "x");
