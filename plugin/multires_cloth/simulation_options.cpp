@@ -185,18 +185,24 @@ long long sequenceFrame(const QString& prefix, int frames, const QString& path) 
   return frame == path ? index : -1;
 }
 
+/// (what, absolute path) of a run's files beside its OBJ sequence: the
+/// caches and the rest meshes written beside them.
+std::vector<std::pair<QString, QString>> namedOutputs(const QString& output, const QString& bodyOutput) {
+  std::vector<std::pair<QString, QString>> files;
+  for (const auto& [option, cache] : {std::pair{QStringLiteral("option 'output'"), output},
+                                      std::pair{QStringLiteral("option 'bodyOutput'"), bodyOutput}}) {
+    if (cache.isEmpty()) continue;
+    files.emplace_back(option, QFileInfo(cache).absoluteFilePath());
+    files.emplace_back(QStringLiteral("the rest mesh beside %1").arg(option), QFileInfo(restMeshPath(cache)).absoluteFilePath());
+  }
+  return files;
+}
+
 /// Refuses two outputs of one run that name one file (the later write
 /// would replace the earlier: a body cache over the garment's, a rest mesh
 /// over an OBJ sequence's frame), naming both options.
 void requireDistinctOutputs(const QString& output, const QString& bodyOutput, const QString& objSequence, int frames) {
-  std::vector<std::pair<QString, QString>> files;  // (what, absolute path)
-  const auto add = [&](const QString& what, const QString& path) {
-    if (!path.isEmpty()) files.emplace_back(what, QFileInfo(path).absoluteFilePath());
-  };
-  add(QStringLiteral("option 'output'"), output);
-  if (!output.isEmpty()) add(QStringLiteral("the rest mesh beside option 'output'"), restMeshPath(output));
-  add(QStringLiteral("option 'bodyOutput'"), bodyOutput);
-  if (!bodyOutput.isEmpty()) add(QStringLiteral("the rest mesh beside option 'bodyOutput'"), restMeshPath(bodyOutput));
+  const std::vector<std::pair<QString, QString>> files = namedOutputs(output, bodyOutput);
   for (std::size_t a = 0; a < files.size(); ++a) {
     // Written after the run: a folder there failed the call after the run had written its caches.
     if (QFileInfo(files[a].second).isDir())
@@ -227,7 +233,6 @@ void requireOutputsSpareInputs(const SimulationRequest& request, const QString& 
     if (!path.isEmpty()) inputs.emplace_back(what, QFileInfo(path).absoluteFilePath());
   };
   add(QStringLiteral("the garment's file"), garmentFile);
-  QString body_output;
   if (request.character) {
     const CharacterRequest& character = *request.character;
     add(QStringLiteral("option 'motion'"), character.motionPath);
@@ -236,19 +241,10 @@ void requireOutputsSpareInputs(const SimulationRequest& request, const QString& 
       add(QStringLiteral("option 'body.skeleton'"), QString::fromStdString(character.setup.makehuman->skeleton_file));
       add(QStringLiteral("option 'body.weights'"), QString::fromStdString(character.setup.makehuman->weights_file));
     }
-    body_output = character.bodyOutput;
   }
-  std::vector<std::pair<QString, QString>> outputs;
-  const auto output = [&](const QString& what, const QString& path) {
-    if (!path.isEmpty()) outputs.emplace_back(what, QFileInfo(path).absoluteFilePath());
-  };
-  output(QStringLiteral("option 'output'"), request.simulation.cache_path.empty() ? QString()
-                                              : QString::fromStdString(request.simulation.cache_path));
-  if (!request.simulation.cache_path.empty())
-    output(QStringLiteral("the rest mesh beside option 'output'"),
-           restMeshPath(QString::fromStdString(request.simulation.cache_path)));
-  output(QStringLiteral("option 'bodyOutput'"), body_output);
-  if (!body_output.isEmpty()) output(QStringLiteral("the rest mesh beside option 'bodyOutput'"), restMeshPath(body_output));
+  const std::vector<std::pair<QString, QString>> outputs =
+      namedOutputs(QString::fromStdString(request.simulation.cache_path),
+                   request.character ? request.character->bodyOutput : QString());
   for (const auto& [what, path] : inputs) {
     for (const auto& [written, out] : outputs)
       if (out == path)
