@@ -1039,11 +1039,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   {
     QuietOpenMesh quiet;
     try {
-      if (*format == Format::om) {
-        // The bytes already read and checked (the file is not read twice).
-        std::istringstream bytes(om_bytes, std::ios::binary);
-        read = OpenMesh::IO::IOManager().read(bytes, extension, importer, io_options);
-      } else if (scan.text_for_reader.empty()) {
+      if (scan.text_for_reader.empty()) {
         read = OpenMesh::IO::IOManager().read(path, importer, io_options);
       } else {
         std::istringstream text(scan.text_for_reader);
