@@ -1,6 +1,7 @@
 #include "character_sim.h"
 
 #include "joint_names.h"
+#include "motion_filter.h"
 #include "mesh_ops/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -360,6 +362,25 @@ double leg_jitter(const Motion& motion, int first_frame, int last_frame) {
   const auto middle = largest.begin() + static_cast<std::ptrdiff_t>(largest.size() / 2);
   std::nth_element(largest.begin(), middle, largest.end());
   return *middle;
+}
+
+double smoothing_against_jitter(const Motion& motion, double already, int first_frame, int last_frame, double target) {
+  const double candidates[] = {0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.1};
+  const double widest = candidates[std::size(candidates) - 1];
+  const Eigen::Index rows = motion.frames.rows();
+  const Eigen::Index last = last_frame < 0 ? rows - 1 : std::min<Eigen::Index>(last_frame, rows - 1);
+  const auto margin = static_cast<Eigen::Index>(std::ceil(3.0 * widest / motion.frame_time)) + 2;
+  const Eigen::Index from = std::max<Eigen::Index>(0, first_frame - margin);
+  const Eigen::Index to = std::min<Eigen::Index>(rows, last + 1 + margin);
+  Motion part = motion;
+  part.frames = motion.frames.middleRows(from, to - from);
+  for (const double total : candidates) {
+    if (total <= already) continue;
+    Motion smoothed = part;
+    smooth_motion(smoothed, std::sqrt(total * total - already * already));  // Gaussians compose in quadrature
+    if (leg_jitter(smoothed, static_cast<int>(first_frame - from), static_cast<int>(last - from)) < target) return total;
+  }
+  return widest;
 }
 
 double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& options) {

@@ -257,6 +257,13 @@ LegSpeed fastest_leg_speed(const Motion& motion, int first_frame = 0, int last_f
 /// than three frames or no leg joints.
 double leg_jitter(const Motion& motion, int first_frame = 0, int last_frame = -1);
 
+/// Of a few smoothings (seconds: 0.005 to 0.1), the least, more than
+/// `already` (what `motion` was smoothed by), that brings leg_jitter over
+/// frames first_frame..last_frame (-1: the last) under `target` (m/s^2);
+/// the largest if none does. Smooths only those frames and the widest
+/// window around them (a clip may hold hours).
+double smoothing_against_jitter(const Motion& motion, double already, int first_frame, int last_frame, double target);
+
 /// The fastest a hip, knee or ankle moves in the pre-roll (m/s): each one's
 /// way from the rest pose to the motion's first frame over
 /// options.preroll_seconds, at the blend's steepest (1.5 times the mean);

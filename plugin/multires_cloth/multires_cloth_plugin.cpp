@@ -21,7 +21,6 @@
 #include "solver/result_comparison.h"
 #include "solver/dynamics_model.h"
 #include "solver/instance_curvature.h"
-#include "solver/motion_filter.h"
 #include "solver/implicit_integrator.h"
 #include "solver/point_cache.h"
 #include "solver/self_contact.h"
@@ -732,30 +731,6 @@ constexpr double kClipLegSpeedWarning = 10.0;
 /// mm open). Smoothed by 0.01 s all of these held (9-10 %).
 constexpr double kLegJitterWarning = 200.0;
 
-/// The smoothing (seconds, more than `already`) that brings the legs' jitter over
-/// frames first..last of `motion` (smoothed by `already` seconds) under half
-/// kLegJitterWarning, of a few candidates; the largest candidate if none does.
-double smoothingAgainstJitter(const Motion& motion, double already, int first, int last) {
-  const double candidates[] = {0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.1};
-  // Only the frames the run plays and the widest window around them (a
-  // clip may hold hours).
-  const Eigen::Index rows = motion.frames.rows();
-  const auto margin = static_cast<Eigen::Index>(std::ceil(3.0 * candidates[std::size(candidates) - 1] / motion.frame_time)) + 2;
-  const Eigen::Index from = std::max<Eigen::Index>(0, first - margin);
-  const Eigen::Index to = std::min<Eigen::Index>(rows, (last < 0 ? rows : last + 1) + margin);
-  Motion part = motion;
-  part.frames = motion.frames.middleRows(from, to - from);
-  for (const double total : candidates) {
-    if (total <= already) continue;
-    Motion smoothed = part;
-    smooth_motion(smoothed, std::sqrt(total * total - already * already));  // Gaussians compose in quadrature
-    if (leg_jitter(smoothed, static_cast<int>(first - from), static_cast<int>((last < 0 ? rows - 1 : last) - from)) <
-        0.5 * kLegJitterWarning)
-      return total;
-  }
-  return candidates[std::size(candidates) - 1];
-}
-
 /// Above this (m/s) a hip, knee or ankle moves too fast in the pre-roll
 /// (preroll_leg_speed): trousers on CMU 07_06 held from 0.1 s (5.6 m/s)
 /// and tore below 0.05 s (11 m/s and more).
@@ -824,7 +799,7 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                        "(a Gaussian in time%5) takes it out")
                             .arg(slot, QFileInfo(request.character->motionPath).fileName())
                             .arg(jitter, 0, 'f', 0)
-                            .arg(smoothingAgainstJitter(motion, already, first, last))
+                            .arg(smoothing_against_jitter(motion, already, first, last, 0.5 * kLegJitterWarning))
                             .arg(already > 0.0 ? QStringLiteral("; now %1 s").arg(already) : QString())});
     }
     if (const LegSpeed fastest = fastest_leg_speed(motion, first, last); fastest.speed > kClipLegSpeedWarning)

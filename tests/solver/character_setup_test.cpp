@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -286,6 +287,19 @@ TEST(CharacterSetup, LegJitterIsTheMedianLargestLegAcceleration) {
         for (Eigen::Index f = 1; f < noisy.frames.rows(); ++f)
           noisy.frames(f, joint.first_channel + static_cast<Eigen::Index>(k)) += half_degree(random);
   EXPECT_GT(leg_jitter(noisy, 1), 5.0 * calm);
+  // The smoothing suggested against it is the least of its candidates that works.
+  const double target = 2.0 * calm;
+  const double suggested = smoothing_against_jitter(noisy, 0.0, 1, -1, target);
+  const auto jitter_after = [&](double sigma) {
+    Motion smoothed = noisy;
+    smooth_motion(smoothed, sigma, 1);
+    return leg_jitter(smoothed, 1);
+  };
+  EXPECT_LT(jitter_after(suggested), target) << suggested;
+  const std::vector<double> candidates = {0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.1};
+  const auto at = std::find(candidates.begin(), candidates.end(), suggested);
+  ASSERT_NE(at, candidates.end()) << suggested;
+  EXPECT_GE(jitter_after(at == candidates.begin() ? 0.0 : *(at - 1)), target) << "the candidate before " << suggested;
   smooth_motion(noisy, 0.02, 1);
   EXPECT_LT(leg_jitter(noisy, 1), 2.0 * calm);
 }
