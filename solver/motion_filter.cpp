@@ -71,12 +71,11 @@ int axis_of(Channel c) { return c == Channel::x_rotation ? 0 : c == Channel::y_r
 /// the signs aligned along the way, normalised), the ends continued by the
 /// rotation's point reflection q0 q^-1 q0 (a constant angular velocity
 /// continues, and is kept, exactly).
-std::vector<Eigen::Quaterniond> filtered(std::vector<Eigen::Quaterniond> q, const std::vector<double>& w) {
-  for (std::size_t f = 1; f < q.size(); ++f)
-    if (q[f].dot(q[f - 1]) < 0.0) q[f].coeffs() = -q[f].coeffs();
+std::vector<Eigen::Quaterniond> filtered(const std::vector<Eigen::Quaterniond>& q, const std::vector<double>& w) {
   const auto radius = static_cast<long>(w.size()) - 1;
   std::vector<Eigen::Quaterniond> x = continued<Eigen::Quaterniond>(
       q, radius, [](const Eigen::Quaterniond& end, const Eigen::Quaterniond& v) { return end * v.conjugate() * end; });
+  // Signs aligned along the whole continued sequence (q and -q are one rotation).
   for (std::size_t i = 1; i < x.size(); ++i)
     if (x[i].dot(x[i - 1]) < 0.0) x[i].coeffs() = -x[i].coeffs();
   std::vector<Eigen::Quaterniond> out(q.size());
