@@ -7,6 +7,7 @@
 #include "obj_tokens.h"
 #include "quadtree_forest.h"
 #include "texture_coords.h"
+#include "om_structure.h"
 #include "units.h"
 
 // MeshIO.hh pulls in the reader and writer modules, which register
@@ -921,29 +922,6 @@ void check_om_checksum(const std::string& path, const std::string& bytes) {
                                      "wrote into it); expected a .om file as save_mesh writes it, whole"));
 }
 
-/// The OM format version OpenMesh 9 writes (2.2: major << 5 | minor), whose
-/// files all end with a sentinel chunk header.
-constexpr unsigned char kOmVersionWithSentinel = (2 << 5) | 2;
-
-/// A file save_mesh wrote (it names mrcloth's layers), and any of OpenMesh
-/// 9's format, ends with a sentinel chunk header (entity 7, all other fields
-/// 0): one cut short does not (a file cut before its first layer named none,
-/// and loaded as a coarse garment). Checked before OpenMesh reads: its
-/// reader asserts (aborting the host) on some chunks cut short.
-void check_om_ends_whole(const std::string& path, const std::string& bytes) {
-  const bool ours = bytes.find("mrcloth:") != std::string::npos;
-  const bool current = bytes.size() >= 4 && bytes.compare(0, 2, "OM") == 0 &&
-                       static_cast<unsigned char>(bytes[3]) >= kOmVersionWithSentinel;
-  if (!ours && !current) return;  // an older format's file: the checks after reading
-  const bool sentinel = bytes.size() >= 18 && static_cast<unsigned char>(bytes[bytes.size() - 2]) == 0x1c &&
-                        bytes[bytes.size() - 1] == 0;
-  if (!sentinel)
-    throw InputError(with_path(path, std::string("the file is cut short (") +
-                                         (ours ? "it holds mrcloth's layers but does not end as save_mesh ends a file"
-                                               : "it does not end as OpenMesh's writer ends a file") +
-                                         "); expected a whole .om file"));
-}
-
 /// An OM file cut short in its vertex or face chunks reads fewer elements
 /// than its header counts (or garbage faces): refused before the faces are
 /// looked at. The header: "OM", mesh kind, version, then the vertex, face
@@ -1030,7 +1008,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     std::ifstream in(path, std::ios::binary);
     om_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     check_om_checksum(path, om_bytes);
-    check_om_ends_whole(path, om_bytes);
+    check_om_structure(path, om_bytes);
   }
 
   CheckingImporter importer(mesh);

@@ -12,11 +12,13 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 
 namespace mrcloth {
 namespace {
@@ -207,13 +209,88 @@ std::vector<std::size_t> prefixes_loaded(const std::string& bytes, const fs::pat
   return loaded;
 }
 
+/// A 3 x 2 quad grid in the OM format before 2.0 (OpenMesh 7 and older
+/// wrote it: faces as vertex indices, the edges made while reading), as
+/// bytes: the header counting `header_edges` edges (the grid has 17), the
+/// positions, the faces, and with `layers` a face and an edge layer of ints.
+std::string old_format_om_file(std::uint32_t header_edges, bool layers) {
+  std::string bytes = "OMQ";
+  const auto put = [&](auto value) { bytes.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
+  put(static_cast<std::uint8_t>((1 << 5) | 2));  // version 1.2
+  put(std::uint32_t{12});
+  put(std::uint32_t{6});
+  put(header_edges);
+  put(std::uint16_t{0x1400});  // vertex positions: 3 floats
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) {
+      put(0.1f * static_cast<float>(x));
+      put(0.1f * static_cast<float>(y));
+      put(0.0f);
+    }
+  put(std::uint16_t{0x80e8});  // face topology: 32-bit vertex indices
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      const std::int32_t a = 4 * y + x;
+      for (const std::int32_t corner : {a, a + 1, a + 5, a + 4}) put(corner);
+    }
+  if (layers) {
+    // Named custom chunks: bit 1 named, bits 2-4 the element kind, 5-8 the type.
+    for (const auto& [entity, name, count] : {std::tuple{2, "f:int", 6u}, std::tuple{4, "e:int", header_edges}}) {
+      put(static_cast<std::uint16_t>((1 << 1) | (entity << 2) | (6 << 5)));
+      bytes += static_cast<char>(std::string(name).size());
+      bytes += name;
+      put(static_cast<std::uint32_t>(4 * count));
+      for (std::uint32_t k = 0; k < count; ++k) put(static_cast<std::int32_t>(k));
+    }
+  }
+  return bytes;
+}
+
+// Files of the format before 2.0 load; their layers are sized by the
+// header's counts, which the reader does not check against the edges the
+// faces make (it asserted): a header that disagrees is refused.
+TEST(SaveLoad, AnOldFormatOmFileLoadsAndItsEdgeCountIsChecked) {
+  const fs::path path = temp_dir() / "old_format.om";
+  const auto write = [&](const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  };
+  for (const bool layers : {false, true}) {
+    write(old_format_om_file(17, layers));
+    const QuadMesh mesh = load_garment(path.string()).mesh;
+    EXPECT_EQ(mesh.n_vertices(), 12u);
+    EXPECT_EQ(mesh.n_faces(), 6u);
+    EXPECT_EQ(mesh.n_edges(), 17u);
+  }
+  write(old_format_om_file(20, true));
+  try {
+    load_garment(path.string());
+    ADD_FAILURE() << "a header counting 20 edges for 17 loaded";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), path.string() + ": the file is damaged (its faces make 17 edges, its header "
+                                                         "counts 20 for the layers stored with them); expected a whole "
+                                                         ".om file");
+  }
+}
+
 // Another program's .om (no mrcloth layers, no hierarchy: loaded as a coarse
 // garment) cut short at any byte is refused too: OpenMesh 9's files end
 // with a sentinel; and where the format is older, by the header's counts or
 // the halfedge links, which OM files store as they are.
-TEST(SaveLoad, AnotherProgramsOmFileCutShortIsRefused) {
+/// A tube written by OpenMesh's own writer, as another program would: no
+/// mrcloth layers; with `rich`, also normals, colours, texture coordinates,
+/// flags and a layer of each element kind.
+std::string other_programs_om_file(bool rich) {
   const QuadMesh tube = test::make_tube(6, 3, 0.3, 0.5);
   OpenMesh::PolyMesh_ArrayKernelT<> plain;
+  plain.request_vertex_normals();
+  plain.request_vertex_colors();
+  plain.request_vertex_texcoords2D();
+  plain.request_face_normals();
+  plain.request_face_colors();
+  plain.request_vertex_status();
+  plain.request_face_status();
+  plain.request_edge_status();
+  plain.request_halfedge_status();
   for (const auto v : tube.vertices()) {
     const auto& p = tube.point(v);
     plain.add_vertex(OpenMesh::Vec3f(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])));
@@ -223,15 +300,119 @@ TEST(SaveLoad, AnotherProgramsOmFileCutShortIsRefused) {
     for (const auto v : tube.fv_range(f)) corners.emplace_back(v.idx());
     plain.add_face(corners);
   }
-  const fs::path whole = temp_dir() / "plain.om";
-  ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, whole.string(), OpenMesh::IO::Options::Binary));
-  std::ifstream in(whole, std::ios::binary);
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::Binary;
+  if (rich) {
+    plain.update_normals();
+    OpenMesh::VPropHandleT<int> vertex_layer;
+    OpenMesh::FPropHandleT<double> face_layer;
+    OpenMesh::EPropHandleT<float> edge_layer;
+    OpenMesh::HPropHandleT<bool> halfedge_layer;
+    OpenMesh::MPropHandleT<int> mesh_layer;
+    plain.add_property(vertex_layer, "v:int");
+    plain.add_property(face_layer, "f:double");
+    plain.add_property(edge_layer, "e:float");
+    plain.add_property(halfedge_layer, "h:bool");
+    plain.add_property(mesh_layer, "m:int");
+    plain.property(vertex_layer).set_persistent(true);
+    plain.property(face_layer).set_persistent(true);
+    plain.property(edge_layer).set_persistent(true);
+    plain.property(halfedge_layer).set_persistent(true);
+    plain.mproperty(mesh_layer).set_persistent(true);
+    for (const auto v : plain.vertices()) plain.property(vertex_layer, v) = v.idx();
+    for (const auto h : plain.halfedges()) plain.property(halfedge_layer, h) = h.idx() % 3 == 0;
+    options += OpenMesh::IO::Options::VertexNormal;
+    options += OpenMesh::IO::Options::VertexColor;
+    options += OpenMesh::IO::Options::VertexTexCoord;
+    options += OpenMesh::IO::Options::FaceNormal;
+    options += OpenMesh::IO::Options::FaceColor;
+    options += OpenMesh::IO::Options::Status;
+  }
+  const fs::path path = temp_dir() / (rich ? "other_rich.om" : "other_plain.om");
+  EXPECT_TRUE(OpenMesh::IO::write_mesh(plain, path.string(), options));
+  std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(bytes.find("mrcloth:"), std::string::npos);
-  ASSERT_EQ(load_garment(whole.string()).mesh.n_faces(), tube.n_faces());
+  EXPECT_EQ(load_garment(path.string()).mesh.n_faces(), tube.n_faces());
+  return bytes;
+}
 
-  const std::vector<std::size_t> loaded = prefixes_loaded(bytes, temp_dir() / "plain_cut.om");
-  for (const std::size_t n : loaded) ADD_FAILURE() << "the first " << n << " of " << bytes.size() << " bytes loaded";
+// Another program's .om (no mrcloth layers, no hierarchy: loaded as a coarse
+// garment) cut short at any byte is refused too: OpenMesh 9's files end
+// with a sentinel; and where the format is older, by the header's counts or
+// the halfedge links, which OM files store as they are.
+TEST(SaveLoad, AnotherProgramsOmFileCutShortIsRefused) {
+  for (const bool rich : {false, true}) {
+    const std::string bytes = other_programs_om_file(rich);
+    const std::vector<std::size_t> loaded = prefixes_loaded(bytes, temp_dir() / "other_cut.om");
+    for (const std::size_t n : loaded) ADD_FAILURE() << "the first " << n << " of " << bytes.size() << " bytes loaded";
+  }
+}
+
+// The first damage the walk meets is named by its chunk's byte offset.
+TEST(SaveLoad, AnOmFileDamagedInsideNamesTheChunk) {
+  const std::string bytes = other_programs_om_file(false);
+  const fs::path path = temp_dir() / "named.om";
+  const auto message = [&](const std::string& changed) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(changed.data(), static_cast<std::streamsize>(changed.size()));
+    try {
+      load_garment(path.string());
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("loaded");
+  };
+  // The positions' chunk follows the 16-byte header; its dimensions are
+  // bits 11-13 of its 16-bit header (OpenMesh's reader asserted on 2).
+  std::string two_dimensional = bytes;
+  two_dimensional[17] = static_cast<char>((static_cast<unsigned char>(bytes[17]) & ~0x38u) | 0x08u);
+  EXPECT_EQ(message(two_dimensional), path.string() + ": the file is cut short or damaged (the chunk at byte 16 stores "
+                                                      "vertex positions of 2 components; expected 3); expected a whole "
+                                                      ".om file");
+  // Bytes after the closing chunk.
+  EXPECT_EQ(message(bytes + "xyz"), path.string() + ": the file is cut short or damaged (the chunk at byte " +
+                                        std::to_string(bytes.size() - 2) +
+                                        " closes the file, but 3 bytes follow it); expected a whole .om file");
+}
+
+// A .om file without the checksum (another program's, or one save_mesh
+// wrote before it had one) with any byte changed loads as some mesh or is
+// refused with an InputError naming the file: OpenMesh's reader asserted
+// (aborting the host), wrote out of bounds, or read billions of halfedges
+// past the end on 1-2 % of such files (check_om_structure now walks the
+// chunks first). Each byte is changed three ways: all bits, the lowest, the
+// highest.
+TEST(SaveLoad, AnOmFileWithoutChecksumWithAnyByteChangedLoadsOrIsRefused) {
+  QuadMesh unchecked = refined_tube();
+  OpenMesh::MPropHandleT<std::uint64_t> handle;
+  ASSERT_TRUE(unchecked.get_property_handle(handle, layer::checksum));
+  unchecked.remove_property(handle);
+  const fs::path saved = temp_dir() / "unchecked.om";
+  save_mesh(unchecked, saved.string());
+  std::ifstream in(saved, std::ios::binary);
+  const std::string ours((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  const fs::path changed_path = temp_dir() / "changed.om";
+  for (const std::string& bytes : {other_programs_om_file(false), other_programs_om_file(true), ours,
+                                   old_format_om_file(17, true)}) {
+    std::size_t refused = 0, loaded = 0;
+    for (std::size_t k = 0; k < bytes.size(); ++k) {
+      for (const unsigned mask : {0xffu, 0x01u, 0x80u}) {
+        std::string changed = bytes;
+        changed[k] = static_cast<char>(static_cast<unsigned char>(changed[k]) ^ mask);
+        std::ofstream(changed_path, std::ios::binary | std::ios::trunc)
+            .write(changed.data(), static_cast<std::streamsize>(changed.size()));
+        try {
+          load_garment(changed_path.string());
+          ++loaded;
+        } catch (const InputError& error) {
+          ++refused;
+          EXPECT_EQ(std::string(error.what()).rfind(changed_path.string(), 0), 0u) << error.what();
+        }
+      }
+    }
+    EXPECT_EQ(loaded + refused, 3 * bytes.size());
+    EXPECT_GT(refused, bytes.size() / 4) << "the chunk frames and links should refuse many";
+  }
 }
 
 }  // namespace
