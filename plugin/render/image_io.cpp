@@ -1,8 +1,11 @@
 #include "plugin/render/image_io.h"
 
-#include <QFileInfo>
-#include <QSaveFile>
+#include "mesh_ops/atomic_file.h"
 
+#include <QBuffer>
+#include <QFileInfo>
+
+#include <fstream>
 #include <stdexcept>
 
 namespace mrcloth::render {
@@ -45,14 +48,22 @@ void save_image(const QImage& image, const std::string& path) {
   if (format.isEmpty())
     throw std::invalid_argument("save_image: cannot write " + path + ": '." + QFileInfo(target).suffix().toStdString() +
                                 "' is not an image format written here; expected .png, .jpg, .jpeg, .bmp or .ppm");
-  QSaveFile file(target);
-  if (!file.open(QIODevice::WriteOnly)) fail(file.errorString().toStdString());
+  mrcloth::require_writable_target(path);
+  // Encoded in memory, then written as every other output is: QSaveFile
+  // reported success on a full disk and left an empty or cut file.
+  QByteArray encoded;
+  QBuffer buffer(&encoded);
+  buffer.open(QIODevice::WriteOnly);
   const bool alpha = format == "PNG";
-  if (!(alpha ? image : over_white(image)).save(&file, format.constData(), format == "JPEG" ? 95 : -1)) {
-    file.cancelWriting();
+  if (!(alpha ? image : over_white(image)).save(&buffer, format.constData(), format == "JPEG" ? 95 : -1))
     fail(format.toStdString() + " encoding failed");
-  }
-  if (!file.commit()) fail(file.errorString().toStdString());
+  const std::string extension = "." + QFileInfo(target).suffix().toStdString();
+  mrcloth::write_file_atomically(path, extension, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(encoded.constData(), encoded.size());
+    out.close();
+    return !out.fail();
+  });
 }
 
 }  // namespace mrcloth::render

@@ -6,7 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <sys/mount.h>
+#include <unistd.h>
 
 namespace mrcloth::render {
 namespace {
@@ -31,6 +37,52 @@ TEST(RenderImageIo, RoundTrip) {
   save_image(image.mirrored(), path);
   EXPECT_EQ(QImage(QString::fromStdString(path)).convertToFormat(QImage::Format_ARGB32), image.mirrored());
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden), QStringList{"preview.png"});
+}
+
+/// A folder on a small file system of its own (tmpfs; needs root, as CI
+/// has): where `mounted()`, `fill()` leaves it without a free byte.
+class SmallFileSystem {
+ public:
+  explicit SmallFileSystem(const QString& folder) : folder_(folder.toStdString()) {
+    QDir().mkpath(folder);
+    mounted_ = geteuid() == 0 && mount("tmpfs", folder_.c_str(), "tmpfs", 0, "size=64k") == 0;
+  }
+  ~SmallFileSystem() {
+    if (mounted_) umount(folder_.c_str());
+  }
+  bool mounted() const { return mounted_; }
+  void fill() const {
+    std::FILE* filler = std::fopen((folder_ + "/filler").c_str(), "wb");
+    const std::vector<char> block(512, 'x');
+    while (filler && std::fwrite(block.data(), 1, block.size(), filler) == block.size() && std::fflush(filler) == 0) {
+    }
+    if (filler) std::fclose(filler);
+  }
+
+ private:
+  std::string folder_;
+  bool mounted_ = false;
+};
+
+// A write that runs out of room fails and keeps the file that was there:
+// with QSaveFile an image smaller than Qt's 16 KB buffer was committed
+// empty or cut short on a full disk, and the call reported success.
+TEST(RenderImageIo, AFullDiskFailsAndKeepsTheExistingFile) {
+  QTemporaryDir dir;
+  ASSERT_TRUE(dir.isValid());
+  const SmallFileSystem disk(dir.filePath("disk"));
+  if (!disk.mounted()) GTEST_SKIP() << "mounting a small tmpfs needs root; a full disk cannot be made here";
+  const std::string path = dir.filePath("disk/preview.png").toStdString();
+  save_image(pattern(), path);
+  disk.fill();
+  try {
+    save_image(pattern().mirrored(), path);
+    ADD_FAILURE() << "a write to a full disk reported success";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(QImage(QString::fromStdString(path)).convertToFormat(QImage::Format_ARGB32), pattern());
+  EXPECT_EQ(QDir(dir.filePath("disk")).entryList(QDir::Files | QDir::Hidden), (QStringList{"filler", "preview.png"}));
 }
 
 TEST(RenderImageIo, MissingFolderThrowsNamingThePath) {
