@@ -66,14 +66,49 @@ std::string why_unwritable(const fs::path& file) {
 
 }  // namespace
 
+std::string write_target(const std::string& path) {
+  fs::path target(path);
+  std::error_code error;
+  // A bounded walk: a loop of links ends at its 40th (the kernel's own limit).
+  for (int link = 0; link < 40 && fs::is_symlink(fs::symlink_status(target, error)); ++link) {
+    const fs::path to = fs::read_symlink(target, error);
+    if (error) break;
+    target = to.is_absolute() ? to : target.parent_path() / to;
+  }
+  return target.string();
+}
+
 void require_writable_target(const std::string& path) {
-  const fs::path target(path);
+  const fs::path target(write_target(path));
   const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
   if (!fs::is_directory(folder, error))
     throw OutputError(with_path(path, "cannot write file (folder '" + folder.string() + "' " +
                                           (fs::exists(folder, error) ? "is a file, not a folder)" : "does not exist)")));
-  if (fs::is_directory(target, error)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
+  const fs::file_status status = fs::status(target, error);
+  if (error && error != std::errc::no_such_file_or_directory)  // a loop of links, a folder not searchable
+    throw OutputError(with_path(path, "cannot write file (" + error.message() + ")"));
+  if (fs::is_directory(status)) throw OutputError(with_path(path, "cannot write file (it is a folder)"));
+  if (!fs::exists(status)) return;
+  if (!fs::is_regular_file(status))
+    throw OutputError(with_path(path, "cannot write file (it is a device, pipe or socket, not a regular file; expected "
+                                      "the path of a file to write)"));
+  constexpr fs::perms writable = fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write;
+  if ((status.permissions() & writable) == fs::perms::none)
+    throw OutputError(with_path(path, "cannot write file (it is read-only; make it writable to replace it)"));
+}
+
+void replace_with_temporary(const std::string& temporary, const std::string& path) {
+  const fs::path target(write_target(path));
+  std::error_code error;
+  const fs::file_status replaced = fs::status(target, error);
+  if (fs::is_regular_file(replaced)) fs::permissions(temporary, replaced.permissions(), error);
+  fs::rename(temporary, target, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(with_path(path, "cannot write file (" + error.message() + ")"));
+  }
 }
 
 /// Runs `write` on a temporary file and renames it to `path` only when it
@@ -81,9 +116,8 @@ void require_writable_target(const std::string& path) {
 void write_file_atomically(const std::string& path, const std::string& extension,
                       const std::function<bool(const std::string&)>& write) {
   require_writable_target(path);
-  const fs::path target(path);
   std::error_code error;
-  const fs::path temporary = temporary_path(target, extension);
+  const fs::path temporary = temporary_path(fs::path(write_target(path)), extension);
   bool written = false;
   try {
     written = write(temporary.string());
@@ -96,16 +130,11 @@ void write_file_atomically(const std::string& path, const std::string& extension
     throw OutputError(with_path(path, "cannot write file (writing '" + temporary.filename().string() + "' failed: " +
                                           why_unwritable(temporary) + ")"));
   }
-  fs::rename(temporary, target, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw OutputError(with_path(path, "cannot write file (" + error.message() + ")"));
-  }
+  replace_with_temporary(temporary.string(), path);
 }
 
 std::string temporary_path_beside(const std::string& path, const std::string& extension) {
-  return temporary_path(fs::path(path), extension).string();
+  return temporary_path(fs::path(write_target(path)), extension).string();
 }
 
 bool is_temporary_name(const std::string& file_name) {

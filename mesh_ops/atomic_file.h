@@ -7,8 +7,21 @@
 namespace mrcloth {
 
 /// Throws OutputError naming `path` unless its folder exists and `path`
-/// itself is not a folder: the checks every writer makes before any work.
+/// (where its symbolic links lead) is a regular file that is not read-only,
+/// or nothing yet: the checks every writer makes before any work. A device
+/// or pipe (/dev/stdout, a FIFO) would be replaced by a regular file; a
+/// read-only file is taken as one not to be replaced.
 void require_writable_target(const std::string& path);
+
+/// The file a write to `path` replaces: `path` itself, or the file its
+/// symbolic links lead to (the links stay links; a dangling one gets its
+/// file).
+std::string write_target(const std::string& path);
+
+/// Renames the finished `temporary` (from temporary_path_beside(path, ...))
+/// onto write_target(path), giving it the permissions of the file it
+/// replaces. Throws OutputError naming `path`.
+void replace_with_temporary(const std::string& temporary, const std::string& path);
 
 /// Calls `write(temporary_path)` for a hidden temporary file beside `path`
 /// whose name ends in `extension` (writers that choose a format by extension
@@ -21,8 +34,8 @@ void write_file_atomically(const std::string& path, const std::string& extension
 
 /// A fresh name for a hidden temporary file beside `path` ending in
 /// `extension` (".name.tmp-<random>-<n><extension>", both numbers in hex,
-/// in the same folder, so a rename onto `path` stays within one file
-/// system). Only the name: nothing
+/// in write_target(path)'s folder, so the rename onto it stays within one
+/// file system). Only the name: nothing
 /// is created. For writers that stream into the file themselves and rename it
 /// when done (see write_file_atomically for the one-call version).
 std::string temporary_path_beside(const std::string& path, const std::string& extension);

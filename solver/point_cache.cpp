@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -287,7 +288,9 @@ Pc2Writer::Pc2Writer(const std::string& path, int num_points, double start_frame
 
   impl.temporary = temporary_path_beside(path, ".pc2");
   impl.out.open(impl.temporary, std::ios::binary | std::ios::trunc);
-  if (!impl.out) impl.fail("cannot write file (cannot create '" + fs::path(impl.temporary).filename().string() + "')");
+  if (!impl.out)
+    impl.fail("cannot write file (cannot create '" + fs::path(impl.temporary).filename().string() + "': " +
+              std::strerror(errno) + ")");
   // The sample count stays 0 until finish(): a reader never trusts an
   // unfinished file, and finish() patches it in place.
   Header header;
@@ -329,9 +332,7 @@ void Pc2Writer::finish() {
   impl.out.write(reinterpret_cast<const char*>(count), sizeof count);
   impl.out.close();
   if (impl.out.fail()) throw OutputError(with_path(impl.path, "cannot write file (completing the PC2 header failed)"));
-  std::error_code error;
-  fs::rename(impl.temporary, impl.path, error);
-  if (error) throw OutputError(with_path(impl.path, "cannot write file (" + error.message() + ")"));
+  replace_with_temporary(impl.temporary, impl.path);
   impl.finished = true;
 }
 

@@ -1,5 +1,6 @@
 #include "preview_plugin.h"
 
+#include "mesh_ops/atomic_file.h"
 #include "mesh_ops/errors.h"
 #include "plugin/core/job_scope.h"
 #include "plugin/core/object_store.h"
@@ -195,8 +196,9 @@ void PreviewPlugin::writeAnimation(const QVariantList& frames, const QString& pa
                           .arg(path, gif ? QStringLiteral("ImageMagick's convert") : QStringLiteral("ffmpeg")));
     return;
   }
-  const QFileInfo target(path);
-  const QString temporary = target.dir().filePath(QStringLiteral(".%1.part.%2").arg(target.completeBaseName(), target.suffix()));
+  // A temporary the start-of-run sweep knows, replacing `path` only once whole.
+  const QString temporary = QString::fromStdString(
+      temporary_path_beside(path.toStdString(), "." + QFileInfo(path).suffix().toStdString()));
   QStringList arguments;
   if (gif) {
     arguments << QStringLiteral("-delay") << QString::number(std::max(1L, std::lround(100.0 / fps)))
@@ -221,11 +223,7 @@ void PreviewPlugin::writeAnimation(const QVariantList& frames, const QString& pa
                           .arg(path, tool, QString::fromLocal8Bit(process.readAllStandardError()).trimmed()));
     return;
   }
-  QFile::remove(path);
-  if (!QFile::rename(temporary, path)) {
-    QFile::remove(temporary);
-    throw OutputError(path.toStdString() + ": cannot move the animation into place");
-  }
+  replace_with_temporary(temporary.toStdString(), path.toStdString());
 }
 
 template <class Body>
