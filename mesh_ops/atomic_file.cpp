@@ -133,6 +133,39 @@ void write_file_atomically(const std::string& path, const std::string& extension
   replace_with_temporary(temporary.string(), path);
 }
 
+StagedFile::StagedFile(const std::string& path, const std::string& extension,
+                       const std::function<void(const std::string&)>& write)
+    : path_(path), temporary_(temporary_path_beside(path, extension)) {
+  require_writable_target(path);
+  const auto remove_temporary = [&] {
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+  };
+  try {
+    write(temporary_);
+  } catch (const OutputError& error) {
+    remove_temporary();
+    // Named by the file the user asked for, not its temporary.
+    const std::string what = error.what(), named = temporary_ + ": ";
+    throw OutputError(what.rfind(named, 0) == 0 ? with_path(path_, what.substr(named.size())) : what);
+  } catch (...) {
+    remove_temporary();
+    throw;
+  }
+}
+
+StagedFile::~StagedFile() {
+  if (committed_ || temporary_.empty()) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void StagedFile::commit() {
+  if (committed_) return;
+  replace_with_temporary(temporary_, path_);
+  committed_ = true;
+}
+
 std::string temporary_path_beside(const std::string& path, const std::string& extension) {
   return temporary_path(fs::path(write_target(path)), extension).string();
 }

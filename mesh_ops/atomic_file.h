@@ -32,6 +32,32 @@ void replace_with_temporary(const std::string& temporary, const std::string& pat
 void write_file_atomically(const std::string& path, const std::string& extension,
                            const std::function<bool(const std::string& temporary_path)>& write);
 
+/// A file written now and put in place later, with another output: a rest
+/// mesh staged before its cache is finished is renamed into place right
+/// after it (no room needed then), so a full disk cannot leave a new cache
+/// beside an earlier run's rest mesh. Never committed, the temporary goes.
+class StagedFile {
+ public:
+  /// Calls `write(temporary)`, a writer that writes a whole file at the
+  /// path it is given (any of mrcloth's writers; `extension` ends the
+  /// temporary's name, for writers choosing their format by it). Throws
+  /// OutputError naming `path`, or what `write` throws; nothing is left.
+  StagedFile(const std::string& path, const std::string& extension,
+             const std::function<void(const std::string& temporary_path)>& write);
+  ~StagedFile();
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+
+  /// Puts the file at its path (replace_with_temporary); once.
+  void commit();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::string temporary_;
+  bool committed_ = false;
+};
+
 /// A fresh name for a hidden temporary file beside `path` ending in
 /// `extension` (".name.tmp-<random>-<n><extension>", both numbers in hex,
 /// in write_target(path)'s folder, so the rename onto it stays within one

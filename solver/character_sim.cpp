@@ -2,6 +2,7 @@
 
 #include "joint_names.h"
 #include "motion_filter.h"
+#include "mesh_ops/atomic_file.h"
 #include "mesh_ops/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -590,7 +591,7 @@ void write_body_cache(const Motion& motion, const PosedBody& body, const Charact
                       const std::string& cache_path, const std::string& obj_path) {
   check(options, motion);
   std::unique_ptr<Pc2Writer> writer;
-  BodySurface first;
+  std::unique_ptr<StagedFile> rest_mesh;
   std::vector<int> kept;  // the vertices the faces use (the hands the mittens replace are not)
   for (int f = 0; f < options.frames; ++f) {
     // The garment's output frame f is taken after (f + 1) frame intervals of
@@ -602,12 +603,17 @@ void write_body_cache(const Motion& motion, const PosedBody& body, const Charact
       writer = std::make_unique<Pc2Writer>(cache_path, static_cast<int>(kept.size()), 1.0, 1.0);
     }
     writer->add_frame(surface.vertices(kept, Eigen::all));
-    if (f == 0) first = keep_vertices(surface, kept);
+    if (f == 0 && !obj_path.empty()) {
+      const BodySurface first = keep_vertices(surface, kept);
+      rest_mesh = std::make_unique<StagedFile>(obj_path, ".obj", [&](const std::string& file) {
+        write_obj(file, first.vertices, first.faces, first.uvs);
+      });
+    }
   }
   if (!writer) return;
   writer->finish();
-  // After the cache, so a failed cache leaves no rest mesh without it.
-  if (!obj_path.empty()) write_obj(obj_path, first.vertices, first.faces, first.uvs);
+  // Staged while the cache was written, so that neither stands alone.
+  if (rest_mesh) rest_mesh->commit();
 }
 
 }  // namespace mrcloth

@@ -3,6 +3,7 @@
 #include "mesh_ops/texture_coords.h"
 
 #include "mesh_ops/adaptive_refine.h"
+#include "mesh_ops/atomic_file.h"
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
@@ -75,11 +76,20 @@ FaceUVs faceUVs(const QuadMesh& mesh) {
   return uvs;
 }
 
-QString writeRestMesh(const QuadMesh& mesh, const std::string& cache_path) {
-  if (cache_path.empty()) return {};
-  const QString path = restMeshPath(cache_path);
-  export_surface(mesh, path.toStdString());
-  return path;
+/// The rest mesh written beside its path before the run, put in place
+/// right after the cache (StagedFile: a full disk then cannot leave the new
+/// cache beside an earlier run's rest mesh); none without a cache.
+std::unique_ptr<StagedFile> stageRestMesh(const QuadMesh& mesh, const std::string& cache_path) {
+  if (cache_path.empty()) return nullptr;
+  return std::make_unique<StagedFile>(restMeshPath(cache_path).toStdString(), ".obj",
+                                      [&](const std::string& file) { export_surface(mesh, file); });
+}
+
+/// Puts a staged rest mesh in place after a complete run; its path, or empty.
+QString commitRestMesh(const std::unique_ptr<StagedFile>& rest_mesh, bool complete) {
+  if (!complete || !rest_mesh) return {};
+  rest_mesh->commit();
+  return QString::fromStdString(rest_mesh->path());
 }
 
 /// The counts every refinement report shares, read from the refined mesh.
@@ -372,6 +382,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     ClothState state = rest_state(model);
 
     const SimulationOptions& settings = request.simulation;
+    const std::unique_ptr<StagedFile> staged_rest_mesh = stageRestMesh(*input.mesh, settings.cache_path);
     std::vector<Positions> frames;  // kept only for an OBJ sequence
     SimulationReport report;
     {
@@ -397,7 +408,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
       for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*input.mesh),
                                                       faceUVs(*input.mesh)))
         obj_files << QString::fromStdString(file);
-    const QString rest_mesh = complete ? writeRestMesh(*input.mesh, report.cache_path) : QString();
+    const QString rest_mesh = commitRestMesh(staged_rest_mesh, complete);
     int result = 0;
     if (complete && request.updateObject) {
       auto simulated = std::make_shared<QuadMesh>(
@@ -879,6 +890,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   }
 
   const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  const std::unique_ptr<StagedFile> staged_rest_mesh = stageRestMesh(*garment, run.simulation.cache_path);
   std::vector<Positions> frames;  // kept only for an OBJ sequence
   CharacterRunReport report;
   {
@@ -910,7 +922,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*garment),
                                                       faceUVs(*garment)))
       obj_files << QString::fromStdString(file);
-  const QString rest_mesh = complete ? writeRestMesh(*garment, motion_report.cache_path) : QString();
+  const QString rest_mesh = commitRestMesh(staged_rest_mesh, complete);
   QString body_mesh;
   if (complete && !wanted.bodyOutput.isEmpty()) {
     body_mesh = restMeshPath(wanted.bodyOutput.toStdString());

@@ -97,5 +97,39 @@ TEST(AtomicFile, ReadOnlyFilesAndPipesAreRefused) {
   EXPECT_EQ(entries, 2u);
 }
 
+// A staged file stays out of sight (the earlier file in place) until its
+// commit; never committed, it leaves nothing; a failed write neither.
+TEST(AtomicFile, AStagedFileAppearsOnlyWhenCommitted) {
+  const fs::path folder = test::fresh_folder("atomic_file", "staged");
+  const fs::path file = folder / "rest.obj";
+  write_text(file, "earlier");
+  const auto entries = [&] {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(folder)) ++n;
+    return n;
+  };
+  {
+    StagedFile staged(file.string(), ".obj", [](const std::string& temporary) { std::ofstream(temporary) << "new"; });
+    EXPECT_EQ(read_text(file), "earlier");
+    EXPECT_EQ(entries(), 2u);
+    staged.commit();
+    EXPECT_EQ(read_text(file), "new");
+  }
+  EXPECT_EQ(entries(), 1u);
+  {
+    StagedFile abandoned(file.string(), ".obj", [](const std::string& temporary) { std::ofstream(temporary) << "lost"; });
+  }
+  EXPECT_EQ(read_text(file), "new");
+  EXPECT_EQ(entries(), 1u);
+  EXPECT_THROW(StagedFile(file.string(), ".obj",
+                          [](const std::string& temporary) {
+                            std::ofstream(temporary) << "half";
+                            throw OutputError(temporary + ": disk full");
+                          }),
+               OutputError);
+  EXPECT_EQ(read_text(file), "new");
+  EXPECT_EQ(entries(), 1u);
+}
+
 }  // namespace
 }  // namespace mrcloth
