@@ -44,14 +44,8 @@ enum class Format { obj, off, ply, om };
 
 std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
 
-std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 /// ".obj" for "A/B.OBJ", "" when there is none.
-std::string lower_extension(const std::string& path) { return lower(fs::path(path).extension().string()); }
+std::string lower_extension(const std::string& path) { return ascii_lower(fs::path(path).extension().string()); }
 
 std::optional<Format> format_of(const std::string& extension) {
   if (extension == ".obj") return Format::obj;

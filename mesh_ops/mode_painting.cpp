@@ -3,6 +3,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "mode_layer.h"
+#include "units.h"
 
 #include <OpenMesh/Core/Utils/Property.hh>
 
@@ -283,8 +284,7 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
   const auto named = [](std::string field) {
     field.erase(0, field.find_first_not_of(" \t"));
     field.erase(field.find_last_not_of(" \t\r") + 1);
-    for (char& c : field) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return field;
+    return ascii_lower(field);
   };
   int vertex_column = -1, mode_column = -1;
   for (std::size_t c = 0; c < header.size(); ++c) {

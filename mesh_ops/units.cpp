@@ -25,21 +25,21 @@ constexpr std::array<std::pair<const char*, double>, 10> kUnits{{
     {"in", 0.0254},
 }};
 
-std::string to_lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 }  // namespace
 
 double metres_per_unit(const std::string& unit) {
-  const std::string key = to_lower(unit);
+  const std::string key = ascii_lower(unit);
   for (const auto& [name, metres] : kUnits) {
     if (key == name) return metres;
   }
   throw ArgumentError("unknown unit '" + unit +
                       "'; expected one of m, dm, cm, mm, inch (also metres, meters, metre, meter, in)");
+}
+
+std::string ascii_lower(std::string text) {
+  for (char& c : text)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return text;
 }
 
 }  // namespace mrcloth

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <clocale>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -209,6 +211,20 @@ TEST(Units, NamesAreCaseInsensitive) {
   EXPECT_EQ(mrcloth::metres_per_unit("Cm"), 0.01);
   EXPECT_EQ(mrcloth::metres_per_unit("INCH"), 0.0254);
   EXPECT_EQ(mrcloth::metres_per_unit("Metres"), 1.0);
+}
+
+// In the process's locale (Qt sets the user's): a Turkish one lowered
+// "INCH" to "Inch" (std::tolower's I), refusing it, and ".OBJ" likewise.
+TEST(Units, NamesAreCaseInsensitiveInATurkishLocale) {
+  const std::string before = std::setlocale(LC_ALL, nullptr);
+  if (!std::setlocale(LC_ALL, "tr_TR.UTF-8") && !std::setlocale(LC_ALL, "tr_TR.utf8"))
+    GTEST_SKIP() << "no Turkish locale on this machine (locale-gen tr_TR.UTF-8 makes one)";
+  const bool turkish_lowering = std::tolower('I') != 'i';
+  const double inch = mrcloth::metres_per_unit("INCH");
+  std::setlocale(LC_ALL, before.c_str());
+  EXPECT_TRUE(turkish_lowering) << "the locale should lower I otherwise, or this test shows nothing";
+  EXPECT_EQ(inch, 0.0254);
+  EXPECT_EQ(mrcloth::ascii_lower("INCH.OBJ \xC4\xB0"), "inch.obj \xC4\xB0");
 }
 
 TEST(Units, UnknownUnitIsRefusedWithTheAcceptedList) {
