@@ -782,6 +782,14 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                     .arg(distance, 0, 'f', 2)
                                     .arg(QString::fromStdString(run.pelvis_joint), advice)});
   }
+  // Steps come in whole numbers per output frame: 120 asked at 90 fps ran at
+  // 90, silently (the report's stepRate said so, after the run).
+  const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  if (std::abs(substeps * run.fps - run.step_rate) > 1e-9 * run.step_rate)
+    lines.push_back({LOGWARN, QStringLiteral("%1: option 'stepRate' %2 is no whole number of steps per output frame at "
+                                             "%3 fps: the run takes %4 a frame, %5 steps per second (a stepRate that "
+                                             "is a multiple of fps keeps the rate asked for)")
+                                  .arg(slot).arg(run.step_rate).arg(run.fps).arg(substeps).arg(substeps * run.fps)});
   // A pre-roll too short for the way from the rest pose to the first frame
   // moves the legs faster than any stride: cloth on them tears.
   if (const double speed = preroll_leg_speed(motion, run); speed > kPrerollLegSpeedWarning) {

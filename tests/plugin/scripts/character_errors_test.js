@@ -103,6 +103,20 @@ expectThrows(sim({motion: walk, stepRate: 20}), "ArgumentError", "option 'stepRa
 expectThrows(sim({motion: walk, substeps: 4}), "ArgumentError", "option 'substeps' does not apply with option 'motion'",
              "stepRate");
 
+// A step rate that is no whole number of steps per output frame is
+// rounded to one, and said so before the run (120 at 90 fps ran at 90).
+{
+  const report = multirescloth.simulate(skirt, {motion: walk, body: "capsules", place: "firstFrame", fps: 90,
+                                                stepRate: 120, preroll: 0.1, frames: 1});
+  expectEqual(report.stepRate, 90, "the rate run: one step a frame");
+  expectEqual(report.warnings.some(w => w.includes("option 'stepRate' 120 is no whole number of steps per output frame " +
+                                                   "at 90 fps: the run takes 1 a frame, 90 steps per second")),
+              true, "the warning names the rate run: " + JSON.stringify(report.warnings));
+  const whole = multirescloth.simulate(skirt, {motion: walk, body: "capsules", place: "firstFrame", fps: 30,
+                                               stepRate: 120, preroll: 0.1, frames: 1});
+  expectEqual(whole.warnings.some(w => w.includes("stepRate")), false, "no warning at a multiple of fps");
+}
+
 // Character options without a motion.
 for (const [key, value] of [["body", "capsules"], ["place", "makehuman"], ["waist", "top"], ["preroll", 1],
                             ["stepRate", 240], ["skipFirst", false]])
