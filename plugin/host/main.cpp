@@ -16,7 +16,11 @@
 #include <QGuiApplication>
 #include <QJSEngine>
 
+#include <cerrno>
 #include <cstdio>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace {
 
@@ -54,9 +58,26 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   engine.globalObject().setProperty(name, engine.newQObject(object));
 }
 
+/// Started with stdin, stdout or stderr closed (daemons, some schedulers),
+/// the next file the host opened would take that descriptor, and log lines
+/// meant for stderr would be written into it (a PC2 cache was). /dev/null
+/// keeps 0-2 taken. Must run before anything opens a file.
+void occupyClosedStandardDescriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    // open takes the lowest free descriptor, this one, as the lower ones
+    // are taken by now; dup2 only in case.
+    const int opened = open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+    if (opened == -1 || opened == fd) continue;
+    dup2(opened, fd);
+    close(opened);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char* argv[]) {
+  occupyClosedStandardDescriptors();
   // A GUI application for fonts and images (previews), on Qt's offscreen
   // platform: the host never opens a window and needs no display or GPU.
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
