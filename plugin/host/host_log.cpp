@@ -2,7 +2,10 @@
 
 #include <QtGlobal>
 
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 #include <unistd.h>
 
@@ -10,6 +13,21 @@ namespace mrcloth {
 namespace {
 
 const HostLog* g_message_target = nullptr;
+
+/// The errno of the first failed write to stdout (0: none). Atomic because
+/// a plugin's worker thread may log.
+std::atomic_int g_stdout_error{0};
+
+void noteStdoutError(int error) {
+  int none = 0;
+  g_stdout_error.compare_exchange_strong(none, error != 0 ? error : EIO);
+}
+
+/// Writes all of `bytes` to `stream`; false if the stream refused some.
+bool writeAll(const QByteArray& bytes, std::FILE* stream) {
+  return std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stream) ==
+         static_cast<std::size_t>(bytes.size());
+}
 
 /// Progress lines of a long job come at most this often (plus its last step).
 constexpr qint64 kProgressIntervalNs = 1'000'000'000;
@@ -69,6 +87,15 @@ void routeQtMessage(QtMsgType type, const QMessageLogContext& context, const QSt
 
 }  // namespace
 
+int finishStdout(int exit_code) {
+  if (std::fflush(stdout) != 0) noteStdoutError(errno);
+  if (std::ferror(stdout)) noteStdoutError(0);  // failed in a call that did not say why (printf)
+  const int error = g_stdout_error.load();
+  if (error == 0 || error == EPIPE) return exit_code;
+  std::fprintf(stderr, "[error] cannot write to stdout: %s\n", std::strerror(error));
+  return exit_code == 0 ? 1 : exit_code;
+}
+
 HostLog::HostLog(bool quiet, QObject* parent) : QObject(parent), quiet_(quiet), bar_(progressBarWanted()) {}
 
 HostLog::~HostLog() {
@@ -88,11 +115,12 @@ void HostLog::line(bool to_stdout, const QString& prefix, const QString& text) c
   const QByteArray bytes = (prefix + text + QLatin1Char('\n')).toUtf8();
   clearBar();
   if (to_stdout) {
-    std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stdout);
+    if (!writeAll(bytes, stdout)) noteStdoutError(errno);
   } else {
     // Flush script output first so a terminal shows both streams in order.
-    std::fflush(stdout);
-    std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stderr);
+    if (std::fflush(stdout) != 0) noteStdoutError(errno);
+    // A failed write to stderr has nowhere to be reported.
+    writeAll(bytes, stderr);
     std::fflush(stderr);
   }
 }
@@ -106,7 +134,7 @@ void HostLog::clearBar() const {
 
 void HostLog::drawBar(const QString& text) const {
   const QByteArray bytes = (QStringLiteral("\r\033[K[job] ") + text).toUtf8();
-  std::fflush(stdout);
+  if (std::fflush(stdout) != 0) noteStdoutError(errno);
   std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stderr);
   std::fflush(stderr);
   bar_shown_ = true;

@@ -18,6 +18,13 @@
 
 namespace mrcloth {
 
+/// Flushes stdout and says on stderr if any write to it failed (a full disk,
+/// /dev/full, EIO): output lost must not pass for a successful run. Returns
+/// `exit_code`, or 1 in place of 0 after such a failure. A closed pipe
+/// (EPIPE, with SIGPIPE ignored) is left silent, as `... | head` expects.
+/// Called once, as the host exits.
+int finishStdout(int exit_code);
+
 class HostLog : public QObject {
   Q_OBJECT
 

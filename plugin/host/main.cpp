@@ -74,10 +74,9 @@ void occupyClosedStandardDescriptors() {
   }
 }
 
-}  // namespace
-
-int main(int argc, char* argv[]) {
-  occupyClosedStandardDescriptors();
+/// The host's work; returns the exit code. The application and every
+/// object are gone when it returns, so that whatever they write is in.
+int runHost(int argc, char* argv[]) {
   // A GUI application for fonts and images (previews), on Qt's offscreen
   // platform: the host never opens a window and needs no display or GPU.
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
@@ -147,4 +146,11 @@ int main(int argc, char* argv[]) {
   if (command.pipeline && interruptFlag().load())
     log.warn(QStringLiteral("pipeline: the same command with --resume continues from the stages complete"));
   return code;
+}
+
+}  // namespace
+
+int main(int argc, char* argv[]) {
+  occupyClosedStandardDescriptors();
+  return finishStdout(runHost(argc, argv));
 }
