@@ -79,7 +79,9 @@ void occupyClosedStandardDescriptors() {
 int runHost(int argc, char* argv[]) {
   // A GUI application for fonts and images (previews), on Qt's offscreen
   // platform: the host never opens a window and needs no display or GPU.
-  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  // Always, not only when unset: a desktop's QT_QPA_PLATFORM (wayland, xcb)
+  // inherited by a batch job without a display made Qt abort even --version.
+  qputenv("QT_QPA_PLATFORM", "offscreen");
   // The offscreen platform never uses the runtime folder that Qt warns about
   // on machines without a login session (batch jobs, CI); keep stderr for
   // what matters. The host log's handler takes over once it exists.
