@@ -67,7 +67,7 @@ QString formatRate(double rate) {
 }
 
 void routeQtMessage(QtMsgType type, const QMessageLogContext& context, const QString& message) {
-  if (!g_message_target) return;
+  if (!g_message_target || isRuntimeFolderWarning(message)) return;
   const bool from_script = context.category && qstrcmp(context.category, "js") == 0;
   switch (type) {
     case QtDebugMsg:
@@ -86,6 +86,11 @@ void routeQtMessage(QtMsgType type, const QMessageLogContext& context, const QSt
 }
 
 }  // namespace
+
+bool isRuntimeFolderWarning(const QString& message) {
+  return message.startsWith(QLatin1String("QStandardPaths: ")) &&
+         (message.contains(QLatin1String("XDG_RUNTIME_DIR")) || message.contains(QLatin1String("runtime directory")));
+}
 
 int finishStdout(int exit_code) {
   if (std::fflush(stdout) != 0) noteStdoutError(errno);

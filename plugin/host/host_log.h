@@ -25,6 +25,12 @@ namespace mrcloth {
 /// Called once, as the host exits.
 int finishStdout(int exit_code);
 
+/// Qt's warnings about the runtime folder (XDG_RUNTIME_DIR unset, of the
+/// wrong permissions or owner, or not creatable). The offscreen platform
+/// never uses that folder, and batch jobs and CI often have none: the host
+/// drops them to keep stderr for what matters.
+bool isRuntimeFolderWarning(const QString& message);
+
 class HostLog : public QObject {
   Q_OBJECT
 

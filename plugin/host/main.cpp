@@ -82,13 +82,12 @@ int runHost(int argc, char* argv[]) {
   // Always, not only when unset: a desktop's QT_QPA_PLATFORM (wayland, xcb)
   // inherited by a batch job without a display made Qt abort even --version.
   qputenv("QT_QPA_PLATFORM", "offscreen");
-  // The offscreen platform never uses the runtime folder that Qt warns about
-  // on machines without a login session (batch jobs, CI); keep stderr for
-  // what matters. The host log's handler takes over once it exists.
+  // Qt's runtime-folder warnings come while the application is made, before
+  // the host log exists; its handler drops them too once it takes over.
   const QtMessageHandler default_handler = qInstallMessageHandler(nullptr);
   static QtMessageHandler forward = default_handler;
   qInstallMessageHandler([](QtMsgType type, const QMessageLogContext& context, const QString& message) {
-    if (message.startsWith(QLatin1String("QStandardPaths: XDG_RUNTIME_DIR not set"))) return;
+    if (isRuntimeFolderWarning(message)) return;
     if (forward) forward(type, context, message);
     else std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
   });
