@@ -11,7 +11,6 @@
 #include <QStringList>
 
 #include <algorithm>
-#include <csignal>
 
 namespace mrcloth {
 namespace {
@@ -85,10 +84,10 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   if (!threw) promises.drain([&] { return interrupted.load() || core.exitRequested(); });
   // Ctrl-C wins over everything the interrupted script did afterwards.
   if (interrupted.load()) {
-    const bool terminated = interruptSignal() == SIGTERM;
-    log.error(QStringLiteral("%1: interrupted (%2)")
-                  .arg(path, terminated ? QStringLiteral("SIGTERM") : QStringLiteral("SIGINT")));
-    return terminated ? 128 + SIGTERM : kInterruptedExitCode;
+    const int signal = interruptSignal();
+    log.error(QStringLiteral("%1: interrupted (%2)").arg(path, QLatin1String(interruptSignalName(signal))));
+    // 128 + the signal, as shells report it: 130, 143, 129.
+    return signal > 0 ? 128 + signal : kInterruptedExitCode;
   }
   if (core.exitRequested()) return core.exitCode();
   if (!threw) {

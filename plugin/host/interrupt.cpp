@@ -4,9 +4,13 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstddef>
 
 namespace mrcloth {
 namespace {
+
+/// The signals that stop a script, in the order of InterruptHandler's arrays.
+constexpr std::array<int, 3> kSignals{SIGINT, SIGTERM, SIGHUP};
 
 std::atomic_bool g_interrupted{false};
 std::atomic_int g_signal{0};
@@ -26,13 +30,29 @@ const std::atomic_bool& interruptFlag() { return g_interrupted; }
 
 int interruptSignal() { return g_signal.load(); }
 
+const char* interruptSignalName(int signal) {
+  switch (signal) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "signal";
+  }
+}
+
 InterruptHandler::InterruptHandler(QJSEngine& engine) : engine_(engine) {
-  previous_ = std::signal(SIGINT, onInterrupt);
-  if (previous_ == SIG_ERR) previous_ = SIG_DFL;
-  // A batch system's SIGTERM stops as Ctrl-C does: between frames, no
-  // half-written file left (its default would leave the temporary cache).
-  previous_term_ = std::signal(SIGTERM, onInterrupt);
-  if (previous_term_ == SIG_ERR) previous_term_ = SIG_DFL;
+  // A batch system's SIGTERM and a dropped connection's SIGHUP stop as
+  // Ctrl-C does: between frames, no half-written file left (their default
+  // would leave the temporary cache). A signal ignored on entry was meant to
+  // be by whoever started the host (nohup; a non-interactive shell's
+  // background job ignores SIGINT), so it stays ignored.
+  struct sigaction handler {};
+  handler.sa_handler = onInterrupt;
+  sigemptyset(&handler.sa_mask);
+  handler.sa_flags = SA_RESTART;  // as std::signal had it: file I/O is not cut short by EINTR
+  for (std::size_t k = 0; k < kSignals.size(); ++k) {
+    if (sigaction(kSignals[k], nullptr, &previous_[k]) != 0 || previous_[k].sa_handler == SIG_IGN) continue;
+    replaced_[k] = sigaction(kSignals[k], &handler, nullptr) == 0;
+  }
   watcher_ = std::thread([this] { watch(); });
 }
 
@@ -54,8 +74,8 @@ InterruptHandler::~InterruptHandler() {
   }
   wake_.notify_all();
   watcher_.join();
-  std::signal(SIGINT, previous_);
-  std::signal(SIGTERM, previous_term_);
+  for (std::size_t k = 0; k < kSignals.size(); ++k)
+    if (replaced_[k]) sigaction(kSignals[k], &previous_[k], nullptr);
 }
 
 void InterruptHandler::watch() {

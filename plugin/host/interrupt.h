@@ -3,14 +3,19 @@
 // running jobs see it through ProcessInterface::cancelRequested() and stop
 // early (a simulation leaves no cache), and the script engine is interrupted
 // so the script stops at its next statement; the host then exits with 130
-// (128 + SIGINT, as shells report it). SIGTERM does the same, exit 143. A
-// second signal ends the process at once.
+// (128 + SIGINT, as shells report it). SIGTERM (a batch system) and SIGHUP
+// (an ssh connection dropped) do the same, exit 143 and 129. A signal the
+// parent set to be ignored (nohup, a background job of a script) stays
+// ignored. A second signal ends the process at once.
 #include <QObject>
 
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
+
+#include <signal.h>
 
 class QJSEngine;
 
@@ -19,15 +24,19 @@ namespace mrcloth {
 /// Exit code of a script stopped by SIGINT.
 inline constexpr int kInterruptedExitCode = 130;
 
-/// The host's interrupt flag: false until SIGINT or SIGTERM arrives while
+/// The host's interrupt flag: false until SIGINT, SIGTERM or SIGHUP arrives while
 /// an InterruptHandler is installed. Lives for the whole process.
 const std::atomic_bool& interruptFlag();
 
-/// The signal that raised the flag (SIGINT or SIGTERM; 0: none yet). The
-/// host exits with 128 plus it, as shells report a signal.
+/// The signal that raised the flag (SIGINT, SIGTERM or SIGHUP; 0: none
+/// yet). The host exits with 128 plus it, as shells report a signal.
 int interruptSignal();
 
-/// While alive: SIGINT raises interruptFlag() and interrupts `engine`. A
+/// "SIGINT", "SIGTERM" or "SIGHUP" for the signals above; "signal <n>" else.
+const char* interruptSignalName(int signal);
+
+/// While alive: SIGINT, SIGTERM and SIGHUP raise interruptFlag() and
+/// interrupt `engine`, each unless it was ignored when the handler was made. A
 /// signal handler may only touch lock-free atomics, so a small thread waits
 /// for the flag and calls QJSEngine::setInterrupted (which is thread-safe);
 /// that catches a script busy in JavaScript. A job cancelled by the flag
@@ -39,7 +48,7 @@ class InterruptHandler : public QObject {
 
  public:
   explicit InterruptHandler(QJSEngine& engine);
-  ~InterruptHandler() override;  ///< restores the previous SIGINT disposition
+  ~InterruptHandler() override;  ///< restores the previous dispositions
   InterruptHandler(const InterruptHandler&) = delete;
   InterruptHandler& operator=(const InterruptHandler&) = delete;
 
@@ -58,8 +67,9 @@ class InterruptHandler : public QObject {
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
-  void (*previous_)(int) = nullptr;       ///< SIGINT's disposition before
-  void (*previous_term_)(int) = nullptr;  ///< SIGTERM's
+  /// SIGINT's, SIGTERM's and SIGHUP's dispositions before; only those replaced are restored.
+  std::array<struct sigaction, 3> previous_{};
+  std::array<bool, 3> replaced_{};
   std::thread watcher_;
 };
 

@@ -84,7 +84,9 @@ cmp -s "$tmp/solve/caches/instance_high.pc2" "$tmp/command/caches/instance_high.
 
 # 5. Ctrl-C once the instance is recorded, during the test runs or previews
 # (at 60 steps a second, which the finished report must say).
-"$host" pipeline $small --test-frames 120 --step-rate 60 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
+# (This shell starts a background job with SIGINT ignored, which the host
+# keeps; a terminal's Ctrl-C finds it at its default, as env sets it here.)
+env --default-signal=INT "$host" pipeline $small --test-frames 120 --step-rate 60 --out "$tmp/interrupted" > "$tmp/int.out" 2> "$tmp/int.err" &
 pid=$!
 tries=0
 until [ -f "$tmp/interrupted/stages/modes.json" ]; do

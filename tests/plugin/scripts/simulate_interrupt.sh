@@ -6,7 +6,10 @@
 # and cancels as they do.
 #
 # With SIGNAL=TERM in the environment, a batch system's SIGTERM instead:
-# the same, exit code 143.
+# the same, exit code 143; with SIGNAL=HUP, a dropped ssh connection's
+# SIGHUP: the same, exit code 129. With SIGNAL=IGNORED_INT, the host starts
+# with SIGINT ignored (as a non-interactive shell starts a background job):
+# a SIGINT is ignored, the run goes on, and a SIGTERM then stops it.
 #
 # simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder> [<resources>]
 set -u
@@ -15,7 +18,9 @@ signal=${SIGNAL:-INT}
 case "$signal" in
   INT) expected_code=130 ;;
   TERM) expected_code=143 ;;
-  *) echo "SIGNAL must be INT or TERM, got $signal"; exit 1 ;;
+  HUP) expected_code=129 ;;
+  IGNORED_INT) expected_code=143 ;;
+  *) echo "SIGNAL must be INT, TERM, HUP or IGNORED_INT, got $signal"; exit 1 ;;
 esac
 rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
 script="$tmp/long_simulation.js"
@@ -43,7 +48,13 @@ JS
   cancelled='simulate: cancelled during the pre-roll, after [0-9]* of its 1800 frames'
   stopped='^\[job\] simulate: stopped at [0-9]*/1810'
 fi
-"$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
+# This shell starts a background job with SIGINT ignored, which the host
+# keeps; a terminal's Ctrl-C finds it at its default, as env sets it here.
+if [ "$signal" = IGNORED_INT ]; then
+  "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
+else
+  env --default-signal=INT "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
+fi
 pid=$!
 # Wait until the simulation is running (its job line), at most 60 s.
 tries=0
@@ -55,6 +66,12 @@ until grep -q '^\[job\] simulate: simulation of' "$tmp/stderr" 2>/dev/null; do
   sleep 0.1
 done
 sleep 0.5
+if [ "$signal" = IGNORED_INT ]; then
+  kill -INT "$pid"
+  sleep 1
+  kill -0 "$pid" 2>/dev/null || { echo "a SIGINT ignored on entry stopped the host"; }
+  signal=TERM
+fi
 kill -"$signal" "$pid"
 wait "$pid"
 code=$?
