@@ -1,11 +1,14 @@
 #include "host_log.h"
 
+#include "progress_line.h"
+
 #include <QtGlobal>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include <unistd.h>
 
@@ -42,7 +45,6 @@ qint64 progressInterval(qint64 fallback_ns) {
   const double seconds = qEnvironmentVariable("MRCLOTH_PROGRESS_INTERVAL").toDouble(&ok);
   return ok && seconds > 0.0 && seconds < 1e6 ? static_cast<qint64>(seconds * 1e9) : fallback_ns;
 }
-constexpr int kBarWidth = 24;
 
 /// A bar when stderr is a terminal, plain lines otherwise (logs, pipes, CI);
 /// MRCLOTH_PROGRESS=bar or =lines overrides.
@@ -138,7 +140,7 @@ void HostLog::clearBar() const {
 }
 
 void HostLog::drawBar(const QString& text) const {
-  const QByteArray bytes = (QStringLiteral("\r\033[K[job] ") + text).toUtf8();
+  const QByteArray bytes = (QStringLiteral("\r\033[K") + text).toUtf8();
   if (std::fflush(stdout) != 0) noteStdoutError(errno);
   std::fwrite(bytes.constData(), 1, static_cast<std::size_t>(bytes.size()), stderr);
   std::fflush(stderr);
@@ -193,14 +195,7 @@ void HostLog::onSetJobState(QString jobId, int value) {
   job.printed_ns = now;
 
   const int done = value - job.min;
-  QString text = QStringLiteral("%1: %2/%3 (%4%)").arg(jobId).arg(done).arg(total)
-                     .arg(100.0 * done / total, 0, 'f', 0);
-  if (bar_) {
-    const int filled = static_cast<int>(static_cast<qint64>(kBarWidth) * done / total);
-    text = QStringLiteral("%1: [%2%3] %4/%5 (%6%)").arg(jobId, QString(filled, QLatin1Char('#')),
-                                                         QString(kBarWidth - filled, QLatin1Char('.')))
-               .arg(done).arg(total).arg(100.0 * done / total, 0, 'f', 0);
-  }
+  QString figures = QStringLiteral("%1/%2 (%3%)").arg(done).arg(total).arg(100.0 * done / total, 0, 'f', 0);
   // Rate from the first state on, so that set-up before it (a factorisation,
   // a simulation's pre-roll) does not make the estimate pessimistic; until a
   // second state there is none (a 30-frame pre-roll before the first of 200
@@ -211,13 +206,16 @@ void HostLog::onSetJobState(QString jobId, int value) {
   const double seconds = static_cast<double>(since_first ? now - job.first_state_ns : now) / 1e9;
   if ((since_first || last) && steps > 0 && seconds > 0) {
     const double rate = steps / seconds;
-    text += QStringLiteral(", %1/s").arg(formatRate(rate));
-    if (!last) text += QStringLiteral(", ETA %1").arg(formatDuration((job.max - value) / rate));
+    figures += QStringLiteral(", %1/s").arg(formatRate(rate));
+    if (!last) figures += QStringLiteral(", ETA %1").arg(formatDuration((job.max - value) / rate));
   }
-  if (bar_ && !last)
-    drawBar(text);
-  else
-    line(false, QStringLiteral("[job] "), text);
+  const double fraction = static_cast<double>(done) / total;
+  if (!bar_)
+    line(false, QStringLiteral("[job] "), QStringLiteral("%1: %2").arg(jobId, figures));
+  else if (!last)
+    drawBar(fitProgressBarLine(jobId, fraction, figures, terminalColumns()));
+  else  // a line that stays may wrap: it is written once, whole
+    line(false, {}, fitProgressBarLine(jobId, fraction, figures, std::numeric_limits<int>::max()));
 }
 
 void HostLog::onFinishJob(QString jobId) {

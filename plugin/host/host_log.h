@@ -69,7 +69,7 @@ class HostLog : public QObject {
     qint64 printed_ns = -1;       ///< timer reading of the last progress line
   };
   void line(bool to_stdout, const QString& prefix, const QString& text) const;
-  void drawBar(const QString& text) const;  ///< the progress line, redrawn in place
+  void drawBar(const QString& text) const;  ///< the progress line (fitted to the terminal), redrawn in place
   void clearBar() const;                    ///< erases a drawn bar before another line
 
   bool quiet_;
