@@ -28,6 +28,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 namespace mrcloth {
 namespace {
@@ -207,9 +208,33 @@ void ScriptCore::exitApplication(QVariant code) {
   });
 }
 
-void ScriptCore::print(QJSValue value) { log_.out(value.toString()); }
-void ScriptCore::log(QJSValue value) { log_.info(value.toString()); }
-void ScriptCore::warn(QJSValue value) { log_.warn(value.toString()); }
+namespace {
+
+/// The text of a value a script prints, as String(value) gives it; none if
+/// its toString threw, which is thrown on to the script. QJSValue::toString
+/// would print the error's text instead, and the script went on. String()
+/// returns a string or throws, so anything else is what it threw (a thrown
+/// string alone passes for the text).
+std::optional<QString> printedText(const QObject* core, const QJSValue& value) {
+  QJSEngine* engine = qjsEngine(core);
+  if (!engine || !value.isObject()) return value.toString();
+  const QJSValue text = engine->globalObject().property(QStringLiteral("String")).call({value});
+  if (text.isString()) return text.toString();
+  engine->throwError(text);
+  return std::nullopt;
+}
+
+}  // namespace
+
+void ScriptCore::print(QJSValue value) {
+  if (const auto text = printedText(this, value)) log_.out(*text);
+}
+void ScriptCore::log(QJSValue value) {
+  if (const auto text = printedText(this, value)) log_.info(*text);
+}
+void ScriptCore::warn(QJSValue value) {
+  if (const auto text = printedText(this, value)) log_.warn(*text);
+}
 
 QString ScriptCore::resourcePath() { return resourceFolder(); }
 
