@@ -141,7 +141,8 @@ function numberOption(name, text, least, strictly, most = Infinity) {
   const value = Number(text);
   if (text.trim() === "" || !isFinite(value) || (strictly ? value <= least : value < least) || value > most)
     throw pipelineError("option " + name + ": expected a number " + (strictly ? "> " : ">= ") + least +
-                        (most < Infinity ? " and <= " + most : "") + ", got \"" + text + "\"");
+                        (most < Infinity ? " and <= " + most : "") +
+                        (text.includes(",") ? " (one number, decimals with a point: 5.5)" : "") + ", got \"" + text + "\"");
   return value;
 }
 function choiceOption(name, text, choices) {
@@ -216,7 +217,13 @@ function parseOptions(args) {
         break;
       case "delta": {
         const values = listOption(name, text, "numbers > 0").map((part) => numberOption(name, part, 0, true));
-        options.delta = values.filter((value, k) => values.indexOf(value) === k);
+        // Merging a repeated value made a decimal comma's "5,5" (meant: 5.5)
+        // run delta 5 alone, without a word.
+        const repeated = values.findIndex((value, k) => values.indexOf(value) !== k);
+        if (repeated >= 0)
+          throw pipelineError("option " + name + ": " + values[repeated] + " is given twice in \"" + text +
+                              "\"; expected distinct numbers > 0 separated by commas, decimals with a point (5.5)");
+        options.delta = values;
         break;
       }
       case "test":

@@ -88,6 +88,9 @@ refused "option --out: .*afile exists and is not a folder" $cheap --out "$tmp/af
 refused "option --out: .*afile exists and is not a folder \(the folder .*afile/out would be in it\)" \
   $cheap --out "$tmp/afile/out"
 refused "option --delta: entry 2 of \"5,\" is empty; expected numbers > 0 separated by commas" --delta 5,
+# A decimal comma: "5,5" meant 5.5, not delta 5 twice (once merged into one run without a word).
+refused "option --delta: 5 is given twice in \"5,5\"; expected distinct numbers > 0 separated by commas, decimals with a point \(5\.5\)" --delta 5,5
+refused "option --preroll: expected a number >= 0 and <= [0-9]+ \(one number, decimals with a point: 5\.5\), got \"0,5\"" --preroll 0,5
 refused "option --quiet takes no value" --quiet=1
 # Broken MakeHuman rig files (JSON) are refused before any work, naming --makehuman.
 mkdir -p "$tmp/mh/rigs" "$tmp/mh2/rigs"
