@@ -1162,6 +1162,19 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
 
 // --- The report ------------------------------------------------------------------
 
+/// Text from a file or motion name for a Markdown table cell, heading or
+/// image alt text: "|" would end the cell, "[" and "]" the alt text.
+function markdownText(text) {
+  return String(text).replace(/[\\|[\]]/g, "\\$&");
+}
+/// A relative path as a Markdown link target: each part percent-encoded, and
+/// "(" and ")" too, which encodeURIComponent leaves. "walk 1.bvh"'s preview
+/// was linked as "(previews/sheet_walk 1.png)", which does not render.
+function markdownLinkTarget(path) {
+  return path.split("/").map((part) => encodeURIComponent(part).replace(/[()]/g,
+      (c) => "%" + c.charCodeAt(0).toString(16).toUpperCase())).join("/");
+}
+
 function reportMarkdown(report) {
   const lines = [];
   const fixed = (value, digits) => Number(value).toFixed(digits);
@@ -1191,7 +1204,7 @@ function reportMarkdown(report) {
   lines.push("| mesh | vertices | frames | motion | seconds | ms/frame | max stretch | tear opening | max penetration |",
              "|---|---:|---:|---|---:|---:|---:|---:|---:|",
              "| high (" + report.options.levels + " uniform levels) | " + t1.vertices + " | " + t1.frames + " | " +
-                 t1.motion + " | " + fixed(t1.seconds, 1) + " | " + fixed(t1.msPerFrame.total, 1) + " | " +
+                 markdownText(t1.motion) + " | " + fixed(t1.seconds, 1) + " | " + fixed(t1.msPerFrame.total, 1) + " | " +
                  fixed(100 * t1.maxStretch, 1) + " % | " + fixed(1000 * t1.maxTearOpening, 1) + " mm | " +
                  penetrationCell(t1) + " |", "");
   lines.push("## Refinement (Table 2)", "");
@@ -1219,7 +1232,7 @@ function reportMarkdown(report) {
   const stretchCell = (row) => fixed(100 * row.maxStretch, 1) + " %" +
       (row.stretchPinned && row.maxClothStretch !== undefined ? " (pinned; cloth " + fixed(100 * row.maxClothStretch, 1) + " %)" : "");
   for (const motion of motions) {
-    lines.push("### " + motion, "");
+    lines.push("### " + markdownText(motion), "");
     lines.push("| model | vertices | dynamics ms/frame | collision ms/frame | total ms/frame | max stretch | tear opening | max penetration | faces sunk in |",
                "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (const row of report.table3.filter((r) => r.motion === motion))
@@ -1232,7 +1245,7 @@ function reportMarkdown(report) {
   if (report.warnings.length > 0) {
     lines.push("## Warnings", "", "What the runs warned of (the same lines as on stderr):", "");
     for (const entry of report.warnings)
-      for (const warning of entry.warnings) lines.push("- " + entry.run + ": " + warning.replace(/\|/g, "\\|"));
+      for (const warning of entry.warnings) lines.push("- " + markdownText(entry.run) + ": " + markdownText(warning));
     lines.push("");
   }
   lines.push("## Detail against the high-resolution result", "");
@@ -1241,7 +1254,7 @@ function reportMarkdown(report) {
              "umbrella Laplacian on the high-resolution grid, summed over frames, relative to the " +
              "high-resolution result) over the whole garment and over the top-mode region.", "");
   for (const motion of motions) {
-    lines.push("### " + motion, "");
+    lines.push("### " + markdownText(motion), "");
     lines.push("| model | vertices | RMS | p95 | max | bending kept | in the top-mode region |",
                "|---|---:|---:|---:|---:|---:|---:|");
     const percent = (x) => x === null || x === undefined || !isFinite(x) ? "-" : fixed(100 * x, 1) + " %";
@@ -1253,7 +1266,9 @@ function reportMarkdown(report) {
     lines.push("");
   }
   lines.push("## Pictures", "");
-  for (const image of report.previews) lines.push("### " + image.title, "", "![" + image.title + "](" + image.file + ")", "");
+  for (const image of report.previews)
+    lines.push("### " + markdownText(image.title), "",
+               "![" + markdownText(image.title) + "](" + markdownLinkTarget(image.file) + ")", "");
   lines.push("Caches (PC2 with their rest OBJ, and the body's) are in `caches/`; meshes (`.om` with every layer, " +
              "PLY coloured by level, mode or curvature) in `meshes/`. In Blender: import the rest OBJ, add a Mesh " +
              "Cache modifier, choose the PC2.", "");
