@@ -9,7 +9,7 @@ namespace {
 
 std::string metres(double value) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.2f m", value);  // "C" numeric locale: the host never sets another
+  std::snprintf(text, sizeof text, "%.2f m", value);  // the host keeps LC_NUMERIC "C" (main.cpp)
   return text;
 }
 

@@ -17,6 +17,7 @@
 #include <QJSEngine>
 
 #include <cerrno>
+#include <clocale>
 #include <cstdio>
 
 #include <fcntl.h>
@@ -92,6 +93,10 @@ int runHost(int argc, char* argv[]) {
     else std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
   });
   QGuiApplication application(argc, argv);
+  // Qt has set the C library's locale from the user's; numbers in messages
+  // and files stay "1.5" (in de_DE the libraries' messages said "1,98 m"
+  // beside "0.4-2 times"). Text and collation keep the user's locale.
+  std::setlocale(LC_NUMERIC, "C");
   QCoreApplication::setApplicationName(QStringLiteral("mrcloth"));
   QCoreApplication::setApplicationVersion(QStringLiteral(MRCLOTH_VERSION));
 
