@@ -6,11 +6,13 @@
 # cmake -DHOST=<mrcloth> -DARGS=<a@@b@@...> [-DEXIT_CODE=<n>]
 #       [-DSTDOUT=<re@@re...>] [-DSTDERR=...] [-DNOT_STDOUT=...] [-DNOT_STDERR=...]
 #       [-DFILES=<path@@path...>] [-DWORKING_DIRECTORY=<dir>] -P run_and_check.cmake
-# Lists are joined with "@@" because ";" does not survive add_test.
+# Lists are joined with "@@" because ";" does not survive add_test, and a
+# carriage return in a pattern is written "<CR>" because neither does it.
 cmake_minimum_required(VERSION 3.25)
 
 foreach(list_name ARGS STDOUT STDERR NOT_STDOUT NOT_STDERR FILES)
   string(REPLACE "@@" ";" ${list_name} "${${list_name}}")
+  string(REPLACE "<CR>" "\r" ${list_name} "${${list_name}}")
 endforeach()
 if(NOT DEFINED EXIT_CODE)
   set(EXIT_CODE 0)
