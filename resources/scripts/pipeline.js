@@ -493,12 +493,13 @@ function resultOptions(options) {
   delete copy.resume;
   delete copy.help;
   delete copy.out;
-  if (copy.stepRate === null) delete copy.stepRate;  // runs from before --step-rate still resume
+  // Runs from before --step-rate still resume, and the default given is the default.
+  if (copy.stepRate === null || copy.stepRate === DEFAULT_STEP_RATE) delete copy.stepRate;
   // Likewise runs from before the solve and bend options, at their defaults.
   if (copy.newtonCg === 0) delete copy.newtonCg;
   if (copy.bendModel === "distance") delete copy.bendModel;
   if (copy.bendStiffness === null) delete copy.bendStiffness;
-  if (copy.limiterAcceleration === null) delete copy.limiterAcceleration;
+  if (copy.limiterAcceleration === null || copy.limiterAcceleration === "auto") delete copy.limiterAcceleration;
   // Runs from before the clips' reading options, read as these defaults do.
   if (copy.motionPositions === "absolute") delete copy.motionPositions;
   if (copy.motionSmoothing === 0) delete copy.motionSmoothing;

@@ -61,6 +61,9 @@ refused other_smoothing "holds a run with other options \(--motion-smoothing\)" 
   $cheap --motion-smoothing 0.01 --out "$tmp/run" --resume
 ran threads_size $cheap --threads 2 --size 80x80 --out "$tmp/run" --resume
 grep -q "(1 stages run, 10 resumed)" "$tmp/threads_size.out" || fail "--threads/--size resume: $(cat "$tmp/threads_size.out")"
+# Defaults given by name are the defaults (they were taken for other options).
+ran named_defaults $cheap --step-rate 120 --limiter-acceleration auto --size 80x80 --out "$tmp/run" --resume
+grep -q "(0 stages run, 11 resumed)" "$tmp/named_defaults.out" || fail "named defaults: $(cat "$tmp/named_defaults.out")"
 grep -q "previews \.\.\.$" "$tmp/threads_size.err" || fail "the previews were not rendered again: $(cat "$tmp/threads_size.err")"
 
 # 4. A broken stage record (cut short, or no record at all) is run again, with a warning naming it.
