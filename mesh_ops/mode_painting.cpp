@@ -142,9 +142,7 @@ void set_vertex_layer(QuadMesh& mesh, const std::string& name, const std::vector
 }
 
 std::vector<std::string> vertex_layer_names(const QuadMesh& mesh) {
-  std::vector<std::string> names{"mode"};
-  OpenMesh::VPropHandleT<int> computed;
-  if (mesh.get_property_handle(computed, layer::computed_mode)) names.push_back("computed_mode");
+  std::vector<std::string> names{"mode", "computed_mode"};
   for (const std::string& name : double_layers(mesh)) names.push_back(shown_name(name));
   return names;
 }
@@ -157,6 +155,9 @@ std::vector<double> vertex_layer(const QuadMesh& mesh, const std::string& name) 
     for (const auto v : mesh.vertices()) values[static_cast<std::size_t>(v.idx())] = mesh.property(ints, v);
     return values;
   }
+  // Before any analysis every vertex has none (0), as computed_modes and
+  // the layers' CSV give it.
+  if (stored == layer::computed_mode) return values;
   OpenMesh::VPropHandleT<double> doubles;
   if (!mesh.get_property_handle(doubles, stored)) {
     throw ArgumentError("the mesh has no per-vertex layer '" + shown_name(stored) + "'; it has " +

@@ -94,9 +94,15 @@ TEST(ModePainting, EraseGoesBackToTheComputedModes) {
   EXPECT_EQ(get_modes(mesh)[3], kDefaultMode);
   EXPECT_EQ(get_modes(mesh)[4], 5);
 
+  // The computed-mode layer reads as none (0) before any analysis, as the
+  // layers' CSV writes it (getLayer refused it).
+  EXPECT_EQ(vertex_layer(mesh, "computed_mode"), std::vector<double>(49, 0.0));
+  EXPECT_EQ(vertex_layer_names(mesh), (std::vector<std::string>{"mode", "computed_mode"}));
+
   std::vector<int> computed(49);
   for (int v = 0; v < 49; ++v) computed[static_cast<std::size_t>(v)] = 1 + v % 3;
   set_computed_modes(mesh, computed);
+  EXPECT_EQ(vertex_layer(mesh, "computed_mode")[5], computed[5]);
   EXPECT_EQ(get_modes(mesh), computed) << "painting starts from the computed modes";
   EXPECT_EQ(computed_modes(mesh), computed);
   paint_modes_geodesic(mesh, {24}, 1.0, 7);  // 5 vertices
