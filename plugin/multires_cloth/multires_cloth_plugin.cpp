@@ -1024,13 +1024,13 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        QStringLiteral("Sets the deformation mode of the given vertices; returns how many ids were given."),
        {QStringLiteral("id"), QStringLiteral("vertexIds"), QStringLiteral("mode")},
        {id_text, QStringLiteral("vertex indices in [0, vertices)"),
-        QStringLiteral("mode to set, >= 0 (1 = least deformation, the default)")}},
+        QStringLiteral("mode to set, 0 .. 1000 (1 = least deformation, the default)")}},
       {QStringLiteral("paintModes(int id, object brush) -> int"),
        QStringLiteral("Sets the mode of the vertices a brush selects; returns how many. sphere: within radius of "
                       "center; geodesic: within radius along the mesh's edges from any seed; threshold: where a "
                       "per-vertex layer (getLayer) is >= threshold (<= with below)."),
        {QStringLiteral("id"), QStringLiteral("brush")},
-       {id_text, QStringLiteral("{type: \"sphere\" | \"geodesic\" | \"threshold\" = \"sphere\", mode: int >= 0; "
+       {id_text, QStringLiteral("{type: \"sphere\" | \"geodesic\" | \"threshold\" = \"sphere\", mode: int 0 .. 1000; "
                                 "sphere: center [x, y, z] m, radius m (inclusive); geodesic: seeds int[], radius m; "
                                 "threshold: layer (e.g. \"mean_curvature\"), threshold, below: bool = false}")}},
       {QStringLiteral("eraseModes(int id, int[] vertexIds = all) -> int"),
@@ -1065,10 +1065,11 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("{delta: number = 8 (split a face when the R of its 4 corners sums to >= delta), "
                                 "maxLevel: int >= 1 = 3 (coarse = 1), balance: bool = true (2:1 balance)}")}},
       {QStringLiteral("lastReport() -> object"),
-       QStringLiteral("Report of the last refineUniform/refineAdaptive/simulate. Refinements: operation, source, "
+       QStringLiteral("Report of the last refineUniform/refineAdaptive/simulate/recordInstance/mapModes/extractModes/"
+                      "compareResults (its operation says which). Refinements: operation, source, "
                       "result, vertices, faces, hangingNodes, verticesPerLevel, facesPerLevel (element L = level "
                       "L), milliseconds; adaptive also facesRefinedPerPass, passes, facesRefinedForBalance, delta, "
-                      "maxLevel, balance. simulate: what simulate returned. {} before any of them."),
+                      "maxLevel, balance. The others: what they returned. {} before any of them."),
        {},
        {}},
       {QStringLiteral("exportSurface(int id, string path, object options = {})"),
@@ -1124,7 +1125,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "then `frames` frames of the motion are recorded; the report also has preroll {seconds, "
                       "frames, steps, msPerFrame, maxStretch, maxPenetration, maxDepth, initialPenetration, nonFinite}, "
                       "maxWaistError (m), fit (a tube garment's girth against the moving body's, level by level: "
-                      "largestDemand, levels, stretchLimit), garmentCleared {moved, largestMove} (skinned mesh: "
+                      "largestDemand, levels, stretchLimit), garmentCleared {vertices, largestMove} (skinned mesh: "
                       "vertices moved out of the body before the run), body, capsules or bodyVertices, motion (path), "
                       "motionUnits, motionStart, "
                       "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows, waistSmoothing (m, 0 when the waist follows the pelvis), "
@@ -1193,7 +1194,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "that body), units: \"m\" | \"dm\" | \"cm\" | \"mm\" | \"inch\" = \"dm\" (base.obj's units; MakeHuman "
             "exports decimetres; a body not 0.5-3 m tall is refused with the units that fit), thickness (m) = "
             "0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
-            "only, 0 removes that joint's capsules), legBridges: \"auto\" | false | 0.5 .. 2 = \"auto\" (capsules "
+            "only, 0 removes that joint's capsules), legBridges: \"auto\" (or true) | false | 0.5 .. 2 = \"auto\" (capsules "
             "between the legs down to that many bones below the hips, 1 = knees, 2 = ankles, so a skirt cannot "
             "fold in between the legs and be caught; auto: for a garment with two boundary loops, to the knees "
             "or, if it reaches below them, the ankles, otherwise none), waistFollows: \"auto\" | \"pelvis\" | \"skin\" = "
@@ -1201,7 +1202,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "which bends above the pelvis; auto: skin when the MakeHuman files are given, else pelvis), waistSmoothing: "
             "metres >= 0 = 0.02 (a skinned waist's skin weights averaged over the pins within about that, so the "
             "band keeps its length where skinning stretches the skin under it; 0: each pin exactly as its skin), armClearance: "
-            "\"auto\" | false | metres 0 .. 0.1 = \"auto\" (0.02: each pose's upper arms open outward by the smallest "
+            "\"auto\" (or true) | false | metres 0 .. 0.1 = \"auto\" (0.02: each pose's upper arms open outward by the smallest "
             "angle that keeps the forearms and hands that far from the hips and thighs, as retargeting does when a "
             "body is wider than the capture subject; cloth pinched between a hand and a hip is inside the body "
             "whatever it does; false: the clip's arms), handMittens: boolean = true (type \"mesh\": the hands leave "

@@ -423,12 +423,12 @@ void PreviewPlugin::barChart(QVariant path, QVariant chart) {
 
 QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
   const QString render_options = QStringLiteral(
-      "{width, height: pixels = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
+      "{width, height: pixels 16 .. 8192 = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
       "projection: \"perspective\" | \"orthographic\" = \"perspective\", colorBy: \"none\" | \"mode\" | \"level\" | "
       "\"curvature\" = \"none\" (with a legend or colour bar), wireframe: bool = true (the active faces' edges, "
-      "T-nodes included), legend: bool = true, title: string = none, cache: PC2 of this mesh = none (its frame "
+      "T-nodes included), legend: bool = true (drawn on images at least 240 pixels wide and high), title: string = none, cache: PC2 of this mesh = none (its frame "
       "is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
-      "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction = 0.08, "
+      "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction 0 .. 0.45 (below) = 0.08, "
       "supersample: 1 .. 4 = 2}");
   const QString chart_size = QStringLiteral("width, height: pixels 100..8192 = 800 x 500");
   return {
