@@ -112,7 +112,8 @@ QString usageText() {
       "Environment:\n"
       "  MRCLOTH_RESOURCES        overrides core.resourcePath() (the resources folder)\n"
       "\n"
-      "Exit codes: 0 success, 1 script error, 2 bad command line, other: exitApplication.\n");
+      "Exit codes: 0 success, 1 script error (or a script that cannot be read), 2 bad command line,\n"
+      "other: exitApplication.\n");
 }
 
 }  // namespace mrcloth
