@@ -32,7 +32,7 @@ const std::atomic_bool& interruptFlag();
 /// yet). The host exits with 128 plus it, as shells report a signal.
 int interruptSignal();
 
-/// "SIGINT", "SIGTERM" or "SIGHUP" for the signals above; "signal <n>" else.
+/// "SIGINT", "SIGTERM" or "SIGHUP" for the signals above; "signal" for any other.
 const char* interruptSignalName(int signal);
 
 /// While alive: SIGINT, SIGTERM and SIGHUP raise interruptFlag() and
