@@ -3,9 +3,9 @@
 #include "quad_mesh.h"
 #include "texture_coords.h"
 #include <OpenMesh/Core/IO/OMFormat.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <cstdint>
 #include <set>
-#include <utility>
 #include <vector>
 
 namespace mrcloth {
@@ -223,6 +223,13 @@ void walk_edge_chunk(OmWalk& walk, const om::Header& header, const Chunk::Header
   }
   if (!made.edges) walk.refuse(std::string("fills ") + entity_name(chunk.entity_) + "s before the chunk that adds them");
   made.element_layers = made.element_layers || chunk.type_ == Chunk::Type_Custom;
+  // OpenMesh 9 reads a halfedge's (a face corner's) texture coordinates as
+  // two floats whatever the header says, and asserts two dimensions.
+  if (halfedges && chunk.type_ == Chunk::Type_Texcoord) {
+    require_dimensions(walk, chunk, 2, "texture coordinates");
+    walk.skip(n, 8, "texture coordinates");
+    return;
+  }
   switch (chunk.type_) {
     case Chunk::Type_Status: require_dimensions(walk, chunk, 1, "flags"); walk.skip(n, 4, "flags"); return;
     case Chunk::Type_Custom: walk_layer(walk, header, chunk, name); return;
@@ -232,21 +239,31 @@ void walk_edge_chunk(OmWalk& walk, const om::Header& header, const Chunk::Header
 
 /// In a format before 2.0 the faces make the edges while OpenMesh reads;
 /// its stored layers are sized by the header's counts, and the reader
-/// asserts where the two differ. Checked by making the faces here.
+/// asserts where the mesh it made differs: a face that cannot join the
+/// others (loading skips the faces from it on), or other edges. Checked by
+/// making the faces here, as the loader will.
 void check_old_counts(const std::string& path, const om::Header& header, const Made& made) {
-  std::set<std::pair<std::uint64_t, std::uint64_t>> edges;
-  for (const auto& face : made.old_faces) {
-    std::set<std::uint64_t> corners(face.begin(), face.end());
-    if (face.size() < 3 || corners.size() != face.size() || *corners.rbegin() >= header.n_vertices_)
-      throw InputError(path + ": the file is damaged (a face's corners are not distinct vertices of the " +
-                       std::to_string(header.n_vertices_) + "); expected a whole .om file");
-    for (std::size_t k = 0; k < face.size(); ++k)
-      edges.insert(std::minmax(face[k], face[(k + 1) % face.size()]));
+  const auto damaged = [&](const std::string& what) {
+    throw InputError(path + ": the file is damaged (" + what + "); expected a whole .om file");
+  };
+  OpenMesh::PolyMesh_ArrayKernelT<> mesh;
+  for (std::uint32_t v = 0; v < header.n_vertices_; ++v) mesh.add_vertex(OpenMesh::Vec3f(0.0f, 0.0f, 0.0f));
+  for (std::size_t f = 0; f < made.old_faces.size(); ++f) {
+    const auto& face = made.old_faces[f];
+    std::vector<OpenMesh::VertexHandle> corners;
+    for (const std::uint64_t corner : face) {
+      if (corner >= header.n_vertices_) break;
+      corners.emplace_back(static_cast<int>(corner));
+    }
+    const std::set<OpenMesh::VertexHandle> distinct(corners.begin(), corners.end());
+    if (corners.size() != face.size() || corners.size() < 3 || distinct.size() != corners.size() ||
+        !mesh.add_face(corners).is_valid())
+      damaged("face " + std::to_string(f) + " cannot join the faces before it, and the layers stored with the faces "
+              "count it");
   }
-  if (edges.size() != header.n_edges_)
-    throw InputError(path + ": the file is damaged (its faces make " + std::to_string(edges.size()) +
-                     " edges, its header counts " + std::to_string(header.n_edges_) +
-                     " for the layers stored with them); expected a whole .om file");
+  if (mesh.n_edges() != header.n_edges_)
+    damaged("its faces make " + std::to_string(mesh.n_edges()) + " edges, its header counts " +
+            std::to_string(header.n_edges_) + " for the layers stored with them");
 }
 
 }  // namespace

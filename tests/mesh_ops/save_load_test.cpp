@@ -212,8 +212,9 @@ std::vector<std::size_t> prefixes_loaded(const std::string& bytes, const fs::pat
 /// A 3 x 2 quad grid in the OM format before 2.0 (OpenMesh 7 and older
 /// wrote it: faces as vertex indices, the edges made while reading), as
 /// bytes: the header counting `header_edges` edges (the grid has 17), the
-/// positions, the faces, and with `layers` a face and an edge layer of ints.
-std::string old_format_om_file(std::uint32_t header_edges, bool layers) {
+/// positions, the faces (with `one_face_reversed`, face 1 wound the other
+/// way), and with `layers` a face and an edge layer of ints.
+std::string old_format_om_file(std::uint32_t header_edges, bool layers, bool one_face_reversed = false) {
   std::string bytes = "OMQ";
   const auto put = [&](auto value) { bytes.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
   put(static_cast<std::uint8_t>((1 << 5) | 2));  // version 1.2
@@ -231,7 +232,10 @@ std::string old_format_om_file(std::uint32_t header_edges, bool layers) {
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) {
       const std::int32_t a = 4 * y + x;
-      for (const std::int32_t corner : {a, a + 1, a + 5, a + 4}) put(corner);
+      if (one_face_reversed && y == 0 && x == 1)
+        for (const std::int32_t corner : {a, a + 4, a + 5, a + 1}) put(corner);
+      else
+        for (const std::int32_t corner : {a, a + 1, a + 5, a + 4}) put(corner);
     }
   if (layers) {
     // Named custom chunks: bit 1 named, bits 2-4 the element kind, 5-8 the type.
@@ -269,6 +273,17 @@ TEST(SaveLoad, AnOldFormatOmFileLoadsAndItsEdgeCountIsChecked) {
     EXPECT_EQ(std::string(error.what()), path.string() + ": the file is damaged (its faces make 17 edges, its header "
                                                          "counts 20 for the layers stored with them); expected a whole "
                                                          ".om file");
+  }
+  // A face that cannot join the others: loading skips the faces from it
+  // on, and the reader asserted on the face layer sized for all of them.
+  write(old_format_om_file(17, true, true));
+  try {
+    load_garment(path.string());
+    ADD_FAILURE() << "a face wound against its neighbours loaded";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), path.string() + ": the file is damaged (face 1 cannot join the faces before "
+                                                         "it, and the layers stored with the faces count it); expected "
+                                                         "a whole .om file");
   }
 }
 
@@ -368,6 +383,18 @@ TEST(SaveLoad, AnOmFileDamagedInsideNamesTheChunk) {
   EXPECT_EQ(message(two_dimensional), path.string() + ": the file is cut short or damaged (the chunk at byte 16 stores "
                                                       "vertex positions of 2 components; expected 3); expected a whole "
                                                       ".om file");
+  // Face corners' texture coordinates (a halfedge chunk) of one
+  // dimension: OpenMesh 9 asserts two, and reads two floats each whatever
+  // the header says.
+  const std::size_t edges = *reinterpret_cast<const std::uint32_t*>(bytes.data() + 12);
+  const std::uint16_t corner_uvs = (6 << 2) | (2 << 5) | (1 << 10);
+  std::string one_dimensional = bytes.substr(0, bytes.size() - 2);
+  one_dimensional.append(reinterpret_cast<const char*>(&corner_uvs), 2);
+  one_dimensional.append(std::string(2 * edges * 8, '\0'));
+  one_dimensional += bytes.substr(bytes.size() - 2);
+  EXPECT_EQ(message(one_dimensional), path.string() + ": the file is cut short or damaged (the chunk at byte " +
+                                          std::to_string(bytes.size() - 2) + " stores halfedge texture coordinates "
+                                          "of 1 components; expected 2); expected a whole .om file");
   // Bytes after the closing chunk.
   EXPECT_EQ(message(bytes + "xyz"), path.string() + ": the file is cut short or damaged (the chunk at byte " +
                                         std::to_string(bytes.size() - 2) +
