@@ -12,6 +12,9 @@
 #include <sstream>
 #include <system_error>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace mrcloth {
 namespace {
 
@@ -73,7 +76,12 @@ std::string write_target(const std::string& path) {
   for (int link = 0; link < 40 && fs::is_symlink(fs::symlink_status(target, error)); ++link) {
     const fs::path to = fs::read_symlink(target, error);
     if (error) break;
-    target = to.is_absolute() ? to : target.parent_path() / to;
+    // From the link's folder as the system finds it: joining every hop's
+    // relative path grew past PATH_MAX on a chain of long links.
+    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::error_code unresolved;
+    const fs::path resolved = fs::weakly_canonical(folder, unresolved);
+    target = to.is_absolute() ? to : (unresolved ? folder : resolved) / to;
   }
   return target.string();
 }
@@ -96,13 +104,27 @@ void require_writable_target(const std::string& path) {
   constexpr fs::perms writable = fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write;
   if ((status.permissions() & writable) == fs::perms::none)
     throw OutputError(with_path(path, "cannot write file (it is read-only; make it writable to replace it)"));
+  // Renaming over a file needs only its folder's permission: another user's
+  // file in a shared folder was replaced where `echo >>` is refused.
+  if (access(target.c_str(), W_OK) != 0 && errno == EACCES)
+    throw OutputError(with_path(path, "cannot write file (this user may not change it)"));
 }
 
 void replace_with_temporary(const std::string& temporary, const std::string& path) {
   const fs::path target(write_target(path));
   std::error_code error;
   const fs::file_status replaced = fs::status(target, error);
-  if (fs::is_regular_file(replaced)) fs::permissions(temporary, replaced.permissions(), error);
+  if (fs::is_regular_file(replaced)) {
+    // The replaced file's owner where this user may give it (root), and its
+    // permissions, but never set-user or set-group-id onto a file written here.
+    struct stat owner {};
+    if (stat(target.c_str(), &owner) == 0) {
+      // Where this user may not give it away (not root), the file is this
+      // user's now, as any editor's save makes it.
+      [[maybe_unused]] const int given = chown(temporary.c_str(), owner.st_uid, owner.st_gid);
+    }
+    fs::permissions(temporary, replaced.permissions() & ~(fs::perms::set_uid | fs::perms::set_gid), error);
+  }
   fs::rename(temporary, target, error);
   if (error) {
     std::error_code ignored;

@@ -12,6 +12,8 @@
 #include <string>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace mrcloth {
 namespace {
@@ -63,6 +65,20 @@ TEST(AtomicFile, ALinkStaysALinkAndItsFileIsWritten) {
   EXPECT_NE(refusal(folder / "loop_a.txt"), "written");
 }
 
+// A chain of long relative links the system follows is followed here too
+// (joining every hop's path grew past PATH_MAX and was refused).
+TEST(AtomicFile, AChainOfLongLinksIsFollowed) {
+  const fs::path folder = test::fresh_folder("atomic_file", "long_links");
+  std::string dots;
+  for (int k = 0; k < 190; ++k) dots += "./";
+  write_text(folder / "final.txt", "old");
+  fs::create_symlink(dots + "final.txt", folder / "l1");
+  for (int k = 2; k <= 12; ++k) fs::create_symlink(dots + "l" + std::to_string(k - 1), folder / ("l" + std::to_string(k)));
+  write_text(folder / "l12", "new");
+  EXPECT_TRUE(fs::is_symlink(folder / "l12"));
+  EXPECT_EQ(read_text(folder / "final.txt"), "new");
+}
+
 // The replaced file's permissions carry over (they were reset to the
 // umask's, widening a 0640 file to 0644).
 TEST(AtomicFile, AReplacedFileKeepsItsPermissions) {
@@ -73,6 +89,46 @@ TEST(AtomicFile, AReplacedFileKeepsItsPermissions) {
   write_text(file, "new");
   EXPECT_EQ(read_text(file), "new");
   EXPECT_EQ(fs::status(file).permissions(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  // Never set-user or set-group-id onto a file written here (a 6755 file
+  // came out set-uid root when root wrote it).
+  constexpr fs::perms program = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec;
+  fs::permissions(file, program | fs::perms::set_uid | fs::perms::set_gid);
+  write_text(file, "newer");
+  EXPECT_EQ(fs::status(file).permissions(), program);
+}
+
+// As root, a replaced file keeps its owner (another user's file came out
+// root's, which its owner could no longer read); a user who may not change
+// a file (another's, in a folder anyone can write) is refused, where the
+// rename went through before.
+TEST(AtomicFile, OwnersAreKeptAndOthersFilesRefused) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to make a file of another user";
+  const fs::path folder = test::fresh_folder("atomic_file", "owners");
+  const fs::path file = folder / "theirs.txt";
+  write_text(file, "old");
+  constexpr uid_t other = 54321;
+  ASSERT_EQ(chown(file.c_str(), other, other), 0);
+  write_text(file, "new");
+  struct stat kept {};
+  ASSERT_EQ(stat(file.c_str(), &kept), 0);
+  EXPECT_EQ(kept.st_uid, other);
+  EXPECT_EQ(kept.st_gid, other);
+
+  // A user of its own, in a child process, against root's file.
+  const fs::path roots = folder / "roots.txt";
+  write_text(roots, "root's");
+  fs::permissions(folder, fs::perms::all);
+  const pid_t child = fork();
+  if (child == 0) {
+    if (setgid(other) != 0 || setuid(other) != 0) _exit(2);
+    const std::string said = refusal(roots);
+    _exit(said == roots.string() + ": cannot write file (this user may not change it)" ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the other user's write was not refused as expected";
+  EXPECT_EQ(read_text(roots), "root's");
 }
 
 // A read-only file and a pipe (as a device: /dev/stdout) are refused by
