@@ -1164,9 +1164,14 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
 // --- The report ------------------------------------------------------------------
 
 /// Text from a file or motion name for a Markdown table cell, heading or
-/// image alt text: "|" would end the cell, "[" and "]" the alt text.
+/// image alt text, read as the text it is: "|" would end the cell, "[" and
+/// "]" the alt text, "<" start HTML (a "<!--" hid the rest of the report),
+/// "*" and "`" emphasis and code, "_" emphasis where it starts or ends a
+/// word (inside one, as in "walk_new", it is text), and a line break would
+/// end the heading or the line.
 function markdownText(text) {
-  return String(text).replace(/[\\|[\]]/g, "\\$&");
+  return String(text).replace(/[\r\n]+/g, " ").replace(/[\\|[\]<>*`]/g, "\\$&")
+      .replace(/(^|[^A-Za-z0-9])_|_(?=$|[^A-Za-z0-9])/g, (match) => match.replace("_", "\\_"));
 }
 /// A relative path as a Markdown link target: each part percent-encoded, and
 /// "(" and ")" too, which encodeURIComponent leaves. "walk 1.bvh"'s preview

@@ -36,19 +36,21 @@ grep -q "; 5 of its 5 simulations warned (its Warnings section)" "$tmp/warned.ou
 grep -q "^- multires_d5 on walk_new: simulate: the pre-roll of 0.02 s moves the legs" "$tmp/warned/report.md" ||
   fail "warned run's report.md has no such warning"
 
-# 1c. A motion named with a space, "|" and "]": report.md escapes it in
-# tables, headings and alt text, and percent-encodes it in image links.
-odd="walk 1|a]"
+# 1c. A motion named with a space, "|", "]", "<!--" and "*": report.md
+# escapes it in tables, headings and alt text (a "<!--" hid the rest of
+# the report), and percent-encodes it in image links.
+odd="walk 1|a]<!-- *x*"
 cp "$resources/characters/walk_new.bvh" "$tmp/$odd.bvh" || fail "cannot copy the walk"
 "$host" -q pipeline --levels 1 --instance-frames 2 --test-frames 1 --preroll 0.1 --size 64x64 \
   --test "$tmp/$odd.bvh" --out "$tmp/odd" > "$tmp/odd.out" 2> "$tmp/odd.err" ||
   { fail "odd-name run exit code $?"; cat "$tmp/odd.err"; }
 [ -f "$tmp/odd/previews/sheet_$odd.png" ] || fail "no preview sheet named after the motion"
-grep -qF '![walk 1\|a\]: every model at three frames](previews/sheet_walk%201%7Ca%5D.png)' "$tmp/odd/report.md" ||
-  fail "report.md: the sheet's image link is not escaped: $(grep -F 'sheet_' "$tmp/odd/report.md")"
-grep -qxF '### walk 1\|a\]' "$tmp/odd/report.md" || fail "report.md: no escaped heading for the motion"
+grep -qF '![walk 1\|a\]\<!-- \*x\*: every model at three frames](previews/sheet_walk%201%7Ca%5D%3C!--%20*x*.png)' \
+  "$tmp/odd/report.md" || fail "report.md: the sheet's image link is not escaped: $(grep -F 'sheet_' "$tmp/odd/report.md")"
+grep -qxF '### walk 1\|a\]\<!-- \*x\*' "$tmp/odd/report.md" || fail "report.md: no escaped heading for the motion"
 grep -qF '| multires_d5 |' "$tmp/odd/report.md" || fail "report.md: no table row for multires_d5"
 grep -F 'walk 1|' "$tmp/odd/report.md" && fail "report.md: the motion's name unescaped"
+grep -F ']<!--' "$tmp/odd/report.md" && fail "report.md: an HTML comment opened"
 
 # 2. The script through the public API, same options (the default mode
 # mapping spelled out) on two threads: same numbers.
