@@ -7,10 +7,12 @@
 namespace mrcloth {
 
 /// Throws OutputError naming `path` unless its folder exists and `path`
-/// (where its symbolic links lead) is a regular file that is not read-only,
-/// or nothing yet: the checks every writer makes before any work. A device
-/// or pipe (/dev/stdout, a FIFO) would be replaced by a regular file; a
-/// read-only file is taken as one not to be replaced.
+/// (where its symbolic links lead) is nothing yet, or a regular file that
+/// is not read-only and that this user may change: the checks every writer
+/// makes before any work. A device or pipe (/dev/stdout, a FIFO) would be
+/// replaced by a regular file; a read-only file is taken as one not to be
+/// replaced, and another user's as not this user's to replace (a rename
+/// needs only the folder's permission).
 void require_writable_target(const std::string& path);
 
 /// The file a write to `path` replaces: `path` itself, or the file its
@@ -20,7 +22,8 @@ std::string write_target(const std::string& path);
 
 /// Renames the finished `temporary` (from temporary_path_beside(path, ...))
 /// onto write_target(path), giving it the permissions of the file it
-/// replaces. Throws OutputError naming `path`.
+/// replaces (never set-user or set-group-id) and, where this user may (root),
+/// its owner. Throws OutputError naming `path`.
 void replace_with_temporary(const std::string& temporary, const std::string& path);
 
 /// Calls `write(temporary_path)` for a hidden temporary file beside `path`
