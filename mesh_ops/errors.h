@@ -26,4 +26,13 @@ struct OutputError : Error {
   using Error::Error;
 };
 
+/// Why a file named `path` (UTF-8) cannot be opened when it does not exist:
+/// a name holding U+FFFD came from bytes that were not UTF-8 (a Latin-1
+/// name, say), which Qt's scripts cannot name at all.
+inline std::string missing_file_reason(const std::string& path) {
+  if (path.find("\xEF\xBF\xBD") == std::string::npos) return "it does not exist";
+  return "it does not exist; its name holds U+FFFD, the mark of bytes that were not UTF-8: a file whose name is "
+         "not UTF-8 (Latin-1, say) cannot be named from a script, so rename it";
+}
+
 }  // namespace mrcloth

@@ -564,7 +564,7 @@ bool scan_matches(const TextScan& scan, const QuadMesh& mesh) {
 void require_input_file(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) throw InputError(with_path(path, "cannot open file (it does not exist)"));
+  if (!fs::exists(status)) throw InputError(with_path(path, "cannot open file (" + missing_file_reason(path) + ")"));
   if (fs::is_directory(status)) throw InputError(with_path(path, "cannot open file (it is a folder)"));
   std::ifstream probe(path, std::ios::binary);
   if (!probe) throw InputError(with_path(path, "cannot open file (it is not readable)"));

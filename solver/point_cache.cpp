@@ -105,7 +105,7 @@ struct Pc2File {
 std::uintmax_t file_size_or_throw(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) throw InputError(with_path(path, "cannot open file (it does not exist)"));
+  if (!fs::exists(status)) throw InputError(with_path(path, "cannot open file (" + missing_file_reason(path) + ")"));
   if (fs::is_directory(status)) throw InputError(with_path(path, "cannot open file (it is a folder)"));
   const std::uintmax_t size = fs::file_size(path, error);
   if (error) throw InputError(with_path(path, "cannot open file (" + error.message() + ")"));

@@ -334,7 +334,10 @@ TEST(GarmentLoad, AllTriangleOffIsSplitWithPluralWarning) {
 
 TEST(GarmentLoadErrors, MissingFile) {
   ScratchDir dir;
-  EXPECT_LOAD_ERROR(dir.file("absent.obj"), "cannot open file");
+  EXPECT_LOAD_ERROR(dir.file("absent.obj"), "cannot open file (it does not exist)");
+  // A name decoded from bytes that were not UTF-8 (a Latin-1 "caf\xe9.obj"
+  // reaches the loader as "caf\uFFFD.obj"): said so, not only "missing".
+  EXPECT_LOAD_ERROR(dir.file("caf\xEF\xBF\xBD.obj"), "its name holds U+FFFD, the mark of bytes that were not UTF-8");
 }
 
 TEST(GarmentLoadErrors, FolderInsteadOfFile) {
