@@ -400,6 +400,10 @@ int preroll_frame_count(const CharacterRunOptions& options) {
   return std::max(1, static_cast<int>(std::lround(options.preroll_seconds * options.fps)));
 }
 
+int steps_per_frame(const CharacterRunOptions& options) {
+  return std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
+}
+
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
                                          PosedBody& body, const CharacterRunOptions& options,
                                          const SimulationProgress& progress, std::vector<Positions>* frames_out) {
@@ -468,7 +472,7 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
 
   SimulationOptions sim = options.simulation;
   sim.fps = options.fps;
-  sim.substeps = std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
+  sim.substeps = steps_per_frame(options);
 
   const int preroll_frames = preroll_frame_count(options);
   const int total_frames = preroll_frames + options.frames;

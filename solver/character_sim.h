@@ -280,6 +280,11 @@ double preroll_leg_speed(const Motion& motion, const CharacterRunOptions& option
 /// counted first by simulate_on_character's progress.
 int preroll_frame_count(const CharacterRunOptions& options);
 
+/// The steps of each output frame: options.step_rate / options.fps rounded,
+/// at least one (steps come in whole numbers per frame, so the rate run is
+/// this times options.fps, which may differ from step_rate).
+int steps_per_frame(const CharacterRunOptions& options);
+
 /// Runs the pre-roll and the motion. The model's rest shape must sit on the
 /// reference pose (place_garment in character_setup.h puts it there); its pinned vertices follow the pelvis
 /// joint rigidly from there. `state` starts at rest and is advanced.

@@ -492,7 +492,7 @@ QString placementName(GarmentPlacement place) {
 QVariantMap characterReportMap(const CharacterRunReport& report, const CharacterRequest& request,
                                const Character& character, const CharacterRunOptions& run) {
   const SimulationReport& pre = report.preroll;
-  const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  const int substeps = steps_per_frame(run);
   const Eigen::Vector3d shift = character.placement.translation();
   QVariantMap map{
       {QStringLiteral("preroll"),

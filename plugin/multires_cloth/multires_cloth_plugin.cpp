@@ -784,7 +784,7 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
   }
   // Steps come in whole numbers per output frame: 120 asked at 90 fps ran at
   // 90, silently (the report's stepRate said so, after the run).
-  const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  const int substeps = steps_per_frame(run);
   if (std::abs(substeps * run.fps - run.step_rate) > 1e-9 * run.step_rate)
     lines.push_back({LOGWARN, QStringLiteral("%1: option 'stepRate' %2 is no whole number of steps per output frame at "
                                              "%3 fps: the run takes %4 a frame, %5 steps per second (a stepRate that "
@@ -897,7 +897,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     else emit log(line.type, line.text);
   }
 
-  const int substeps = std::max(1, static_cast<int>(std::lround(run.step_rate / run.fps)));
+  const int substeps = steps_per_frame(run);
   const std::unique_ptr<StagedFile> staged_rest_mesh = stageRestMesh(*garment, run.simulation.cache_path);
   std::vector<Positions> frames;  // kept only for an OBJ sequence
   CharacterRunReport report;
