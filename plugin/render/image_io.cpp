@@ -48,7 +48,6 @@ void save_image(const QImage& image, const std::string& path) {
   if (format.isEmpty())
     throw std::invalid_argument("save_image: cannot write " + path + ": '." + QFileInfo(target).suffix().toStdString() +
                                 "' is not an image format written here; expected .png, .jpg, .jpeg, .bmp or .ppm");
-  mrcloth::require_writable_target(path);
   // Encoded in memory, then written as every other output is: QSaveFile
   // reported success on a full disk and left an empty or cut file.
   QByteArray encoded;
@@ -57,7 +56,10 @@ void save_image(const QImage& image, const std::string& path) {
   const bool alpha = format == "PNG";
   if (!(alpha ? image : over_white(image)).save(&buffer, format.constData(), format == "JPEG" ? 95 : -1))
     fail(format.toStdString() + " encoding failed");
-  const std::string extension = "." + QFileInfo(target).suffix().toStdString();
+  // No suffix (written as PNG): no extension, so the temporary's name stays
+  // one the start-of-run sweep knows (it ended in a lone "." before).
+  const QString suffix = QFileInfo(target).suffix();
+  const std::string extension = suffix.isEmpty() ? std::string() : "." + suffix.toStdString();
   mrcloth::write_file_atomically(path, extension, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(encoded.constData(), encoded.size());
