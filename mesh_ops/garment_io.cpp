@@ -114,6 +114,25 @@ FaceProblem earlier(const FaceProblem& a, const FaceProblem& b) {
 
 std::string face_label(long face) { return "face " + std::to_string(face); }
 
+std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
+
+/// Where each vertex and face of a text file stands (1-based line numbers,
+/// in the file's order, which is the mesh's): messages about an element
+/// found wrong after reading (the surface checks) name its line, so that
+/// an index counted from 0 cannot be mistaken for OBJ's count from 1.
+/// Empty (no lines named) for binary files and .om.
+struct ElementLines {
+  std::vector<std::size_t> vertex, face;
+
+  std::string vertex_name(long v) const { return "vertex " + std::to_string(v) + line_of(vertex, v); }
+  std::string face_name(long f) const { return face_label(f) + line_of(face, f); }
+
+ private:
+  static std::string line_of(const std::vector<std::size_t>& lines, long k) {
+    return k >= 0 && static_cast<std::size_t>(k) < lines.size() ? at_line(lines[static_cast<std::size_t>(k)]) : "";
+  }
+};
+
 /// Checks every face as the reader hands it over. ImporterT would log and
 /// drop bad faces, and would silently duplicate the vertices of a face that
 /// does not fit the manifold built so far; we want the read to fail instead.
@@ -121,7 +140,9 @@ std::string face_label(long face) { return "face " + std::to_string(face); }
 /// remembered and load_garment throws once the reader has returned.
 class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
  public:
-  explicit CheckingImporter(QuadMesh& mesh) : ImporterT(mesh), target_(mesh) {}
+  /// `lines` (kept by reference: it must outlive the importer) names the
+  /// file's lines in messages.
+  CheckingImporter(QuadMesh& mesh, const ElementLines& lines) : ImporterT(mesh), target_(mesh), lines_(lines) {}
 
   using ImporterT::add_face;
 
@@ -131,11 +152,11 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
     // can still run to its end.
     if (problem_.found()) return OpenMesh::FaceHandle();
     if (std::string issue = corner_issue(corners); !issue.empty()) {
-      problem_ = {face, face_label(face) + issue};
+      problem_ = {face, lines_.face_name(face) + issue};
       return OpenMesh::FaceHandle();
     }
     const OpenMesh::FaceHandle added = target_.add_face(corners);
-    if (!added.is_valid()) problem_ = {face, face_label(face) + why_not_added(corners)};
+    if (!added.is_valid()) problem_ = {face, lines_.face_name(face) + why_not_added(corners)};
     return added;
   }
 
@@ -148,12 +169,12 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
     const std::string expected = "; expected an oriented 2-manifold quad mesh";
     for (std::size_t k = 0; k < corners.size(); ++k) {
       const VertexHandle a = corners[k], b = corners[(k + 1) % corners.size()];
-      const std::string edge = "edge " + std::to_string(a.idx()) + "-" + std::to_string(b.idx());
+      const std::string edge = "edge from " + lines_.vertex_name(a.idx()) + " to " + lines_.vertex_name(b.idx());
       const auto along = target_.find_halfedge(a, b), against = target_.find_halfedge(b, a);
       if (along.is_valid() && !target_.is_boundary(along)) {
         if (against.is_valid() && !target_.is_boundary(against))
           return " would be a third face on its " + edge + expected;
-        return " runs its " + edge + " the way face " + std::to_string(target_.face_handle(along).idx()) +
+        return " runs its " + edge + " the way " + lines_.face_name(target_.face_handle(along).idx()) +
                " does: one of them is wound the other way round (or the surface is one-sided, a Moebius strip)" +
                expected + " (faces wound alike, as seen from one side)";
       }
@@ -167,19 +188,20 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<QuadMesh> {
     const int n_vertices = static_cast<int>(target_.n_vertices());
     for (const VertexHandle v : corners) {
       if (v.idx() < 0 || v.idx() >= n_vertices)
-        return " refers to vertex " + std::to_string(v.idx()) + ", which does not exist (the file has " +
+        return " refers to vertex " + std::to_string(v.idx()) + " (counted from 0), which does not exist (the file has " +
                std::to_string(n_vertices) + " vertices)";
     }
     for (std::size_t i = 0; i < corners.size(); ++i) {
       for (std::size_t j = i + 1; j < corners.size(); ++j) {
         if (corners[i] == corners[j])
-          return " uses vertex " + std::to_string(corners[i].idx()) + " more than once; expected distinct corners";
+          return " uses " + lines_.vertex_name(corners[i].idx()) + " more than once; expected distinct corners";
       }
     }
     return {};
   }
 
   QuadMesh& target_;
+  const ElementLines& lines_;
   long next_face_ = 0;
   FaceProblem problem_;
 };
@@ -196,6 +218,7 @@ struct TextScan {
   bool binary = false;                  ///< binary OFF/PLY: OpenMesh's values are all there is
   std::vector<OpenMesh::Vec3d> points;  ///< in file order, unscaled
   FaceProblem face_problem;             ///< OBJ only
+  ElementLines lines;                   ///< OBJ and ASCII OFF: each vertex's and face's line
   /// OBJ only: the `vt` lines, and per face its corners' (vertex, texture
   /// coordinate) indices from 0 (-1: the corner names none); `uv_readable`
   /// false when a corner's texture index could not be read.
@@ -271,8 +294,6 @@ OpenMesh::Vec3d parse_point(const std::string& path, const std::vector<std::stri
           parse_coordinate(path, words[first + 2], vertex, where)};
 }
 
-std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
-
 /// One OBJ face line checked the way CheckingImporter checks faces, but with
 /// the file's own 1-based (or negative, relative) indices in the message.
 std::string obj_face_issue(const std::vector<std::string>& words, long n_defined) {
@@ -294,8 +315,8 @@ std::string obj_face_issue(const std::vector<std::string>& words, long n_defined
   for (std::size_t i = 0; i < corners.size(); ++i) {
     for (std::size_t j = i + 1; j < corners.size(); ++j) {
       if (corners[i] == corners[j])
-        return " uses vertex " + words[i + 1].substr(0, words[i + 1].find('/')) +
-               " more than once; expected distinct corners";
+        return " uses vertex " + std::to_string(corners[i]) + " (written " +
+               words[i + 1].substr(0, words[i + 1].find('/')) + ") more than once; expected distinct corners";
     }
   }
   return {};
@@ -328,6 +349,7 @@ TextScan scan_obj_lines(const std::string& path, std::istream& in) {
     if (words.empty()) continue;
     if (words[0] == "v") {
       scan.points.push_back(parse_point(path, words, 1, scan.points.size(), at_line(line_number)));
+      scan.lines.vertex.push_back(line_number);
     } else if (words[0] == "vt") {
       OpenMesh::Vec2d uv(0.0, 0.0);
       for (int c = 0; c < 2 && c + 1 < static_cast<int>(words.size()); ++c)
@@ -335,6 +357,7 @@ TextScan scan_obj_lines(const std::string& path, std::istream& in) {
       scan.texcoords.push_back(uv);
     } else if (words[0] == "f") {
       const long face = n_faces++;
+      scan.lines.face.push_back(line_number);
       scan.face_corners.push_back(obj_face_corners(words, static_cast<long>(scan.points.size()),
                                                    static_cast<long>(scan.texcoords.size()), scan.uv_readable));
       if (scan.face_problem.found()) continue;
@@ -445,8 +468,11 @@ TextScan scan_off(const std::string& path, std::istream& in) {
                                          std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
                                          " faces, but only " + std::to_string(lines.size()) +
                                          " lines of data follow; expected one line per vertex and per face"));
-  for (std::size_t v = 0; v < counts[0]; ++v)
+  for (std::size_t v = 0; v < counts[0]; ++v) {
     scan.points.push_back(parse_point(path, lines[v].second, 0, v, at_line(lines[v].first)));
+    scan.lines.vertex.push_back(lines[v].first);
+  }
+  for (std::size_t f = 0; f < counts[1]; ++f) scan.lines.face.push_back(lines[counts[0] + f].first);
   scan.understood = true;
   scan.text_for_reader = std::move(cleaned);
   return scan;
@@ -716,17 +742,17 @@ void read_texture_coords(const TextScan& scan, QuadMesh& mesh, std::size_t faces
 /// pass twice), a vertex in no face (no mass: the solver refuses it), or a
 /// face without area (the same: its corners coincide, lie on a line or
 /// cross). Faces are named in file order, vertices by their index.
-void check_garment_surface(const std::string& path, const QuadMesh& mesh) {
+void check_garment_surface(const std::string& path, const QuadMesh& mesh, const ElementLines& lines) {
   for (const auto v : mesh.vertices()) {
     if (mesh.is_isolated(v)) {
       std::size_t loose = 0;
       for (const auto u : mesh.vertices()) loose += mesh.is_isolated(u) ? 1 : 0;
-      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) + " belongs to no face" +
+      throw InputError(with_path(path, lines.vertex_name(v.idx()) + " belongs to no face" +
                                            (loose > 1 ? " (nor do " + std::to_string(loose - 1) + " more)" : "") +
                                            "; expected every vertex in a face (delete loose vertices)"));
     }
     if (!mesh.is_manifold(v))
-      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) +
+      throw InputError(with_path(path, lines.vertex_name(v.idx()) +
                                            " is non-manifold (two fans of faces meet only at it, a bow-tie); "
                                            "expected an oriented 2-manifold quad mesh"));
   }
@@ -741,7 +767,7 @@ void check_garment_surface(const std::string& path, const QuadMesh& mesh) {
       longest2 = std::max(longest2, (b - a).sqrnorm());
     }
     if (!(twice_area.norm() > 1e-24 * longest2))
-      throw InputError(with_path(path, face_label(f.idx()) +
+      throw InputError(with_path(path, lines.face_name(f.idx()) +
                                            " has no area (its corners coincide, lie on a line, or cross as a "
                                            "bow-tie); expected faces with area"));
   }
@@ -750,7 +776,7 @@ void check_garment_surface(const std::string& path, const QuadMesh& mesh) {
 /// A warning when a face is concave (a dart: one corner turned inwards):
 /// its bilinear split folds a child face over another, the surface
 /// overlapping itself. Empty when every face is convex.
-std::string concave_faces_warning(const std::string& path, const QuadMesh& mesh) {
+std::string concave_faces_warning(const std::string& path, const QuadMesh& mesh, const ElementLines& lines) {
   std::size_t concave = 0;
   int first_face = -1, first_corner = -1;
   for (const auto f : mesh.faces()) {
@@ -774,7 +800,7 @@ std::string concave_faces_warning(const std::string& path, const QuadMesh& mesh)
     }
   }
   if (concave == 0) return {};
-  return with_path(path, face_label(first_face) + " is concave at its corner " + std::to_string(first_corner) +
+  return with_path(path, lines.face_name(first_face) + " is concave at its corner " + std::to_string(first_corner) +
                              (concave > 1 ? " (and " + std::to_string(concave - 1) + " more faces are concave)" : "") +
                              ": refining it folds a child face over another; expected convex faces (split or "
                              "reshape darts)");
@@ -784,7 +810,7 @@ std::string concave_faces_warning(const std::string& path, const QuadMesh& mesh)
 /// millionth of the median edge): panels exported with their seams not
 /// welded, which the simulation would let fall apart, only the pinned
 /// piece staying up. Empty when there are none.
-std::string unwelded_seams_warning(const std::string& path, const QuadMesh& mesh) {
+std::string unwelded_seams_warning(const std::string& path, const QuadMesh& mesh, const ElementLines& lines) {
   std::vector<std::pair<OpenMesh::Vec3d, int>> rim;
   for (const auto v : mesh.vertices())
     if (mesh.is_boundary(v)) rim.emplace_back(mesh.point(v), v.idx());
@@ -807,9 +833,9 @@ std::string unwelded_seams_warning(const std::string& path, const QuadMesh& mesh
       }
   if (pairs == 0) return {};
   return with_path(path, std::to_string(pairs) + " pair" + (pairs > 1 ? "s" : "") +
-                             " of boundary vertices lie on one another (vertex " + std::to_string(first_a) +
-                             " on vertex " + std::to_string(first_b) +
-                             "): seams that are not welded, along which the garment falls apart; weld them (merge "
+                             " of boundary vertices lie on one another" + (pairs > 1 ? ", the first " : ": ") +
+                             lines.vertex_name(first_a) + " on " + lines.vertex_name(first_b) +
+                             ": seams that are not welded, along which the garment falls apart; weld them (merge "
                              "by distance) before simulating");
 }
 
@@ -1005,7 +1031,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     check_om_structure(path, om_bytes);
   }
 
-  CheckingImporter importer(mesh);
+  CheckingImporter importer(mesh, scan.lines);
   OpenMesh::IO::Options io_options;
   bool read = false;
   {
@@ -1043,7 +1069,8 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     drop_analysis_layers_not_stored(bytes, mesh);
   }
 
-  if (scan_matches(scan, mesh)) {
+  const bool scanned = scan_matches(scan, mesh);
+  if (scanned) {
     for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);
   } else if (*format != Format::om && !scan.binary) {
     result.warnings.push_back(with_path(
@@ -1062,10 +1089,13 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     check_stored_forest(path, mesh);
     return result;
   }
-  check_garment_surface(path, mesh);
-  if (std::string unwelded = unwelded_seams_warning(path, mesh); !unwelded.empty())
+  // Lines are named only where the scan saw the vertices OpenMesh read.
+  const ElementLines no_lines;
+  const ElementLines& lines = scanned ? scan.lines : no_lines;
+  check_garment_surface(path, mesh, lines);
+  if (std::string unwelded = unwelded_seams_warning(path, mesh, lines); !unwelded.empty())
     result.warnings.push_back(std::move(unwelded));
-  if (std::string concave = concave_faces_warning(path, mesh); !concave.empty())
+  if (std::string concave = concave_faces_warning(path, mesh, lines); !concave.empty())
     result.warnings.push_back(std::move(concave));
 
   const std::size_t faces_read = mesh.n_faces();

@@ -388,16 +388,17 @@ TEST(GarmentLoadErrors, NonFiniteCoordinateOffAndPly) {
 TEST(GarmentLoadErrors, NonManifoldEdge) {
   ScratchDir dir;
   EXPECT_LOAD_ERROR(write_file(dir.file("fan.obj"), kThreeQuadsOnOneEdgeObj),
-                    "face 2 would be a third face on its edge 0-1; expected an oriented 2-manifold quad mesh");
+                    "face 2 (line 11) would be a third face on its edge from vertex 0 (line 1) to vertex 1 (line 2); "
+                    "expected an oriented 2-manifold quad mesh");
   // With texture coordinates the OBJ reader takes another path after add_face.
   EXPECT_LOAD_ERROR(write_file(dir.file("fan_uv.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\nv 1 -1 0\nv 0 0 1\nv 1 0 1\nvt 0 0\n"
                                "f 1/1 2/1 3/1 4/1\nf 2/1 1/1 5/1 6/1\nf 1/1 2/1 8/1 7/1\nf 5/1 6/1 8/1\n"),
-                    "face 2 would be a third face on its edge 0-1");
+                    "face 2 (line 12) would be a third face on its edge from vertex 0 (line 1) to vertex 1 (line 2)");
   EXPECT_LOAD_ERROR(write_file(dir.file("fan.off"),
                                "OFF\n8 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 -1 0\n1 -1 0\n0 0 1\n1 0 1\n"
                                "4 0 1 2 3\n4 1 0 4 5\n4 1 0 6 7\n"),
-                    "face 2 would be a third face on its edge 1-0");
+                    "face 2 (line 13) would be a third face on its edge from vertex 1 (line 4) to vertex 0 (line 3)");
 }
 
 TEST(GarmentLoadErrors, AFaceWoundTheOtherWayIsNamedWithItsEdge) {
@@ -405,7 +406,8 @@ TEST(GarmentLoadErrors, AFaceWoundTheOtherWayIsNamedWithItsEdge) {
   ScratchDir dir;
   EXPECT_LOAD_ERROR(write_file(dir.file("flipped.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 3 6 5\n"),
-                    "face 1 runs its edge 1-2 the way face 0 does: one of them is wound the other way round");
+                    "face 1 (line 8) runs its edge from vertex 1 (line 2) to vertex 2 (line 3) the way face 0 (line 7) does: "
+                    "one of them is wound the other way round");
 }
 
 TEST(GarmentLoadErrors, NonManifoldVertex) {
@@ -416,16 +418,16 @@ TEST(GarmentLoadErrors, NonManifoldVertex) {
                                "OFF\n12 5 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n0 2 0\n1 2 0\n2 2 0\n"
                                "1 1 1\n2 1 1\n2 2 1\n"
                                "4 0 1 4 3\n4 1 2 5 4\n4 3 4 7 6\n4 4 5 8 7\n4 4 9 10 11\n"),
-                    "face 4 would join the faces before it only at a vertex (a bow-tie)");
+                    "face 4 (line 19) would join the faces before it only at a vertex (a bow-tie)");
 }
 
 TEST(GarmentLoadErrors, RepeatedVertexInFace) {
   ScratchDir dir;
   const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n";
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.obj"), vertices + "f 1 2 3 4\nf 2 5 5 6\n"),
-                    "face 1 (line 8) uses vertex 5 more than once");
+                    "face 1 (line 8) uses vertex 4 (written 5) more than once");
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 1 3\n"),
-                    "face 0 uses vertex 1 more than once");
+                    "face 0 (line 7) uses vertex 1 (line 4) more than once");
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.ply"), ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 3 2 3\n"),
                     "face 0 uses vertex 3 more than once");
 }
@@ -438,10 +440,10 @@ TEST(GarmentLoadErrors, VertexIndexOutOfRange) {
   EXPECT_LOAD_ERROR(write_file(dir.file("zero.obj"), vertices + "f 1 2 3 4\nf 0 1 2 3\n"),
                     "face 1 (line 6) refers to vertex 0, which does not exist");
   EXPECT_LOAD_ERROR(write_file(dir.file("range.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n"),
-                    "face 0 refers to vertex 7, which does not exist (the file has 4 vertices)");
+                    "face 0 (line 7) refers to vertex 7 (counted from 0), which does not exist (the file has 4 vertices)");
   EXPECT_LOAD_ERROR(write_file(dir.file("range.ply"), ply_header(4, 2) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
                                                                           "4 0 1 2 3\n3 0 2 12\n"),
-                    "face 1 refers to vertex 12, which does not exist (the file has 4 vertices)");
+                    "face 1 refers to vertex 12 (counted from 0), which does not exist (the file has 4 vertices)");
 }
 
 TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
@@ -449,12 +451,12 @@ TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
   // Face 1 repeats a vertex (seen by the OBJ scan), face 2 is out of range.
   EXPECT_LOAD_ERROR(write_file(dir.file("two.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 1 2 3\nf 1 2 3 7\n"),
-                    "face 1 (line 6) uses vertex 1 more than once");
+                    "face 1 (line 6) uses vertex 0 (written 1) more than once");
   // Face 1 cannot join face 0 (found by the importer) before face 2 repeats a vertex.
   EXPECT_LOAD_ERROR(write_file(dir.file("order.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\n"
                                "f 1 2 3 4\nf 1 2 3 5\nf 1 4 4 5\n"),
-                    "face 1 runs its edge 0-1 the way face 0 does");
+                    "face 1 (line 7) runs its edge from vertex 0 (line 1) to vertex 1 (line 2) the way face 0 (line 6) does");
 }
 
 TEST(GarmentLoadErrors, OpenMeshDiagnosticsStayQuiet) {
@@ -546,15 +548,15 @@ TEST(GarmentLoadErrors, WhatNoGarmentCanBeIsRefusedAtLoading) {
   // Two quads that share only a corner: a bow-tie vertex.
   EXPECT_LOAD_ERROR(write_file(dir.file("bowtie.obj"),
                                square + "v 2 1 0\nv 2 2 0\nv 1 2 0\nf 1 2 3 4\nf 3 5 6 7\n"),
-                    "vertex 2 is non-manifold (two fans of faces meet only at it, a bow-tie)");
+                    "vertex 2 (line 3) is non-manifold (two fans of faces meet only at it, a bow-tie)");
   EXPECT_LOAD_ERROR(write_file(dir.file("loose.obj"), square + "v 5 5 5\nv 6 6 6\nf 1 2 3 4\n"),
-                    "vertex 4 belongs to no face (nor do 1 more)");
+                    "vertex 4 (line 5) belongs to no face (nor do 1 more)");
   EXPECT_LOAD_ERROR(write_file(dir.file("line.obj"), "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n" + square +
                                                          "f 5 6 7 8\nf 1 2 3 4\n"),
-                    "face 1 has no area");
+                    "face 1 (line 10) has no area");
   // Crossed as a bow-tie: the halves cancel.
   EXPECT_LOAD_ERROR(write_file(dir.file("twisted.obj"), "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\n"),
-                    "face 0 has no area");
+                    "face 0 (line 5) has no area");
   // Beyond float range OpenMesh's reader would drop the vertex and shift the faces.
   EXPECT_LOAD_ERROR(write_file(dir.file("huge.obj"), "v 0 0 0\nv 1e39 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
                     "vertex 1 (line 2) has a coordinate beyond single precision's range (1e39)");
@@ -587,7 +589,7 @@ TEST(GarmentLoad, UnweldedSeamsAreNamedInAWarning) {
                              "f 1 2 3 4\nf 5 6 7 8\n";
   const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("panels.obj"), panels));
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_NE(loaded.warnings[0].find("2 pairs of boundary vertices lie on one another (vertex 1 on vertex 4)"),
+  EXPECT_NE(loaded.warnings[0].find("2 pairs of boundary vertices lie on one another, the first vertex 1 (line 2) on vertex 4 (line 5): "),
             std::string::npos)
       << loaded.warnings[0];
   // Welded, nothing to say.
@@ -605,7 +607,7 @@ TEST(GarmentLoad, AConcaveFaceIsNamedInAWarning) {
   const std::string dart = "v 0 0 0\nv 2 0 0\nv 0.5 0.5 0\nv 0 2 0\nf 1 2 3 4\n";
   const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("dart.obj"), dart));
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_NE(loaded.warnings[0].find("dart.obj: face 0 is concave at its corner 2: refining it folds a child face over another"),
+  EXPECT_NE(loaded.warnings[0].find("dart.obj: face 0 (line 5) is concave at its corner 2: refining it folds a child face over another"),
             std::string::npos)
       << loaded.warnings[0];
   // The same turned the other way (clockwise) is as concave; a kite is not.
