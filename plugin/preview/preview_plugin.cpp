@@ -88,9 +88,16 @@ RenderRequest parseRenderOptions(const Fields& fields) {
   request.legend = fields.boolean(QStringLiteral("legend"), request.legend);
   request.title = fields.string(QStringLiteral("title"));
   request.supersample = fields.integerAtLeast(QStringLiteral("supersample"), request.supersample, 1);
-  if (request.supersample > 4) options::fail(QStringLiteral("option 'supersample' must be 1 .. 4"));
+  if (request.supersample > 4)
+    options::fail(QStringLiteral("option 'supersample' must be 1 .. 4, got %1").arg(request.supersample));
+  const long long samples = static_cast<long long>(request.width) * request.height * request.supersample * request.supersample;
+  if (samples > render::kMaxRenderSamples)
+    options::fail(QStringLiteral("options 'width' x 'height' (%1 x %2) at 'supersample' %3 take %4 samples; expected at "
+                                 "most %5 (for instance 5792 x 5792 at 2, 8192 x 4096 at 2, or 8192 x 8192 at 1)")
+                      .arg(request.width).arg(request.height).arg(request.supersample).arg(samples)
+                      .arg(render::kMaxRenderSamples));
   request.margin = fields.numberFrom(QStringLiteral("margin"), request.margin, 0.0, false);
-  if (request.margin >= 0.45) options::fail(QStringLiteral("option 'margin' must be below 0.45 (a fraction of the image)"));
+  if (request.margin >= 0.45) options::fail(QStringLiteral("option 'margin' must be below 0.45 (a fraction of the image), got %1").arg(request.margin));
   request.fit_all = fields.choice(QStringLiteral("fit"), QStringLiteral("garment"),
                                   {QStringLiteral("garment"), QStringLiteral("all")}) == QLatin1String("all");
   if (fields.has(QStringLiteral("cache")))

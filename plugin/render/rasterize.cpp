@@ -14,8 +14,6 @@
 namespace mrcloth::render {
 namespace {
 
-// Keeps the buffers within a few GB even for silly requests.
-constexpr long long max_samples = 1LL << 27;
 
 struct Rgb {
   double r = 0, g = 0, b = 0;
@@ -360,7 +358,7 @@ QImage render(const Scene& scene, const Camera& camera, const RenderOptions& opt
   if (options.supersample < 1 || options.supersample > 8)
     throw std::invalid_argument("render: supersample must be 1..8, got " + std::to_string(options.supersample));
   const int factor = options.supersample;
-  if (static_cast<long long>(options.width) * options.height * factor * factor > max_samples)
+  if (static_cast<long long>(options.width) * options.height * factor * factor > kMaxRenderSamples)
     throw std::invalid_argument("render: image too large (" + std::to_string(options.width) + " x " +
                                 std::to_string(options.height) + " at " + std::to_string(factor) +
                                 "x supersampling)");

@@ -13,6 +13,10 @@ namespace mrcloth::render {
 /// shows exactly its colour (which makes colours testable), two-sided
 /// because cloth is a single sheet: a back face is lit with its normal
 /// flipped.
+/// The most samples (width x height x supersample^2) one image may take:
+/// keeps the buffers within a few GB even for silly requests.
+constexpr long long kMaxRenderSamples = 1LL << 27;
+
 struct RenderOptions {
   int width = 1024;             ///< output image width in pixels (> 0)
   int height = 768;             ///< output image height in pixels (> 0)

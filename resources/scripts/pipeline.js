@@ -246,6 +246,11 @@ function parseOptions(args) {
         const match = /^(\d+)x(\d+)$/.exec(text);
         if (!match || Number(match[1]) < 64 || Number(match[2]) < 64 || Number(match[1]) > 8192 || Number(match[2]) > 8192)
           throw pipelineError("option " + name + ": expected WIDTHxHEIGHT in pixels, 64..8192 each, got \"" + text + "\"");
+        // The previews are drawn at 2 x 2 samples a pixel, which the renderer
+        // bounds (preview.render would refuse them only after the simulations).
+        if (Number(match[1]) * Number(match[2]) > 8192 * 4096)
+          throw pipelineError("option " + name + ": " + text + " is " + Number(match[1]) * Number(match[2]) +
+                              " pixels; expected at most 33554432 (for instance 5792x5792 or 8192x4096)");
         options.size = [Number(match[1]), Number(match[2])];
         break;
       }

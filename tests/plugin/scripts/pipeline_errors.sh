@@ -48,6 +48,7 @@ refused "option --body: expected one of capsules, mesh, got \"robot\"" --body ro
 refused "option --map-modes: expected one of index, highest, frequent, got \"nearest\"" --map-modes nearest
 refused "option --units: expected one of m, dm, cm, mm, inch, got \"feet\"" --units feet
 refused "option --size: expected WIDTHxHEIGHT" --size 800
+refused "option --size: 8000x8000 is 64000000 pixels; expected at most 33554432" --size 8000x8000
 refused "option --modes needs a value" --modes
 refused "option --garment: no such file: .*missing.obj" --garment "$tmp/missing.obj"
 refused "option --test: no such file: .*nowhere.bvh" --test "$resources/characters/walk_new.bvh,$tmp/nowhere.bvh"

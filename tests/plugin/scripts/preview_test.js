@@ -129,6 +129,10 @@ expectThrows(() => preview.render(grid, bad, {projection: "fisheye"}), "Argument
 expectThrows(() => preview.render(grid, bad, {colorBy: "stretch"}), "ArgumentError", "option 'colorBy'", "\"mode\"",
              "\"level\"", "\"curvature\"");
 expectThrows(() => preview.render(grid, bad, {frame: 2}), "ArgumentError", "option 'frame' needs option 'cache'");
+// Sizes the renderer cannot hold are refused with the options that ask for them.
+expectThrows(() => preview.render(grid, bad, {width: 8000, height: 8000}), "ArgumentError",
+             "options 'width' x 'height' (8000 x 8000) at 'supersample' 2 take 256000000 samples; expected at most 134217728");
+expectThrows(() => preview.render(grid, bad, {margin: 0.5}), "ArgumentError", "option 'margin'", "got 0.5");
 expectThrows(() => preview.render(grid, bad, {cache: tmpDir + "/missing.pc2"}), "InputError", "option 'cache'",
              "missing.pc2", "no such file");
 expectThrows(() => preview.render(refined, bad, {cache: pc2}), "ArgumentError", "grid.pc2", "16 points",
