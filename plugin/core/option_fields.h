@@ -69,12 +69,7 @@ class Fields {
   /// An integer in [minimum, maximum]: the maximum keeps one call's work
   /// within what a progress report and Ctrl-C can interrupt.
   int integerBetween(const QString& name, int fallback, int minimum, int maximum) const {
-    if (!has(name)) return fallback;
-    const int value = script::toIntAtLeast(required(name), label(name), minimum);
-    if (value > maximum)
-      fail(QStringLiteral("%1 must be an integer from %2 to %3, got %4")
-               .arg(label(name)).arg(minimum).arg(maximum).arg(script::describeValue(required(name))));
-    return value;
+    return has(name) ? script::toIntBetween(required(name), label(name), minimum, maximum) : fallback;
   }
   bool boolean(const QString& name, bool fallback) const {
     return has(name) ? script::toBool(required(name), label(name)) : fallback;

@@ -106,10 +106,22 @@ int toInt(const QVariant& value, const QString& what) {
 }
 
 int toIntAtLeast(const QVariant& value, const QString& what, int minimum) {
+  if (isNumber(value) && value.toDouble() > std::numeric_limits<int>::max())
+    return toIntBetween(value, what, minimum, std::numeric_limits<int>::max());
   const int number = toInt(value, what);
   if (number < minimum)
     fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(number));
   return number;
+}
+
+int toIntBetween(const QVariant& value, const QString& what, int minimum, int maximum) {
+  if (!isNumber(value)) failType(what, QStringLiteral("an integer"), value);
+  const double number = value.toDouble();
+  if (!std::isfinite(number) || number != std::floor(number)) failType(what, QStringLiteral("an integer"), value);
+  if (number < minimum || number > maximum)
+    fail(QStringLiteral("%1 must be an integer from %2 to %3, got %4")
+             .arg(what).arg(minimum).arg(maximum).arg(describeValue(value)));
+  return static_cast<int>(number);
 }
 
 double toNumber(const QVariant& value, const QString& what) {

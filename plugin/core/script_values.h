@@ -24,6 +24,9 @@ bool isNumber(const QVariant& value);
 int toInt(const QVariant& value, const QString& what);
 /// toInt, and at least `minimum`.
 int toIntAtLeast(const QVariant& value, const QString& what, int minimum);
+/// toInt, from `minimum` to `maximum`: a number outside (however large) is
+/// refused with that range.
+int toIntBetween(const QVariant& value, const QString& what, int minimum, int maximum);
 /// A finite number.
 double toNumber(const QVariant& value, const QString& what);
 /// true or false (numbers and strings are not accepted).

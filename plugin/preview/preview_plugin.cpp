@@ -66,10 +66,8 @@ QStringList presetNames() {
 
 RenderRequest parseRenderOptions(const Fields& fields) {
   RenderRequest request;
-  request.width = fields.integerAtLeast(QStringLiteral("width"), request.width, 16);
-  request.height = fields.integerAtLeast(QStringLiteral("height"), request.height, 16);
-  if (request.width > 8192 || request.height > 8192)
-    options::fail(QStringLiteral("option 'width' and 'height' must be at most 8192 pixels"));
+  request.width = fields.integerBetween(QStringLiteral("width"), request.width, 16, 8192);
+  request.height = fields.integerBetween(QStringLiteral("height"), request.height, 16, 8192);
   request.camera = render::parse_preset(
       fields.choice(QStringLiteral("camera"), QStringLiteral("front"), presetNames()).toStdString());
   request.projection = fields.choice(QStringLiteral("projection"), QStringLiteral("perspective"),

@@ -37,6 +37,14 @@ TEST(ScriptValues, IntegersAcceptIntegralNumbersOnly) {
             "frame must be an integer from -2147483648 to 2147483647, got the number -1e+10");
   EXPECT_EQ(errorOf([] { toIntAtLeast(QVariant(-1), "levels", 0); }), "levels must be an integer >= 0, got -1");
   EXPECT_EQ(toIntAtLeast(QVariant(0), "levels", 0), 0);
+  // Beyond int, a bounded integer names its own bounds, not int's.
+  EXPECT_EQ(errorOf([] { toIntAtLeast(QVariant(1e10), "option 'frames'", 1); }),
+            "option 'frames' must be an integer from 1 to 2147483647, got the number 1e+10");
+  EXPECT_EQ(errorOf([] { toIntBetween(QVariant(1e10), "mode", 0, 1000); }),
+            "mode must be an integer from 0 to 1000, got the number 1e+10");
+  EXPECT_EQ(errorOf([] { toIntBetween(QVariant(-1), "mode", 0, 1000); }), "mode must be an integer from 0 to 1000, got the number -1");
+  EXPECT_EQ(errorOf([] { toIntBetween(QVariant(0.5), "mode", 0, 1000); }), "mode must be an integer, got the number 0.5");
+  EXPECT_EQ(toIntBetween(QVariant(1000), "mode", 0, 1000), 1000);
 }
 
 TEST(ScriptValues, NumbersMustBeFinite) {

@@ -150,7 +150,7 @@ try {
     throw new Error("body without cache: " + error.name + ": " + error.message);
 }
 expectThrows(() => preview.render(grid, bad, {width: 8}), "ArgumentError", "option 'width'");
-expectThrows(() => preview.render(grid, bad, {height: 9000}), "ArgumentError", "at most 8192");
+expectThrows(() => preview.render(grid, bad, {height: 9000}), "ArgumentError", "option 'height' must be an integer from 16 to 8192, got the number 9000");
 expectThrows(() => preview.render(grid, bad, {supersample: 5}), "ArgumentError", "option 'supersample'");
 expectThrows(() => preview.render(grid, bad, {margin: 0.5}), "ArgumentError", "option 'margin'");
 expectThrows(() => preview.render(grid, bad, {fit: "body"}), "ArgumentError", "option 'fit'");

@@ -24,8 +24,8 @@ expectThrows(sim({frames: 0}), "ArgumentError", "option 'frames' must be an inte
 expectThrows(sim({frames: 2.5}), "ArgumentError", "option 'frames' must be an integer, got the number 2.5");
 expectThrows(sim({fps: 0}), "ArgumentError", "option 'fps' must be a number > 0, got the number 0");
 expectThrows(sim({fps: "30"}), "ArgumentError", "option 'fps' must be a finite number");
-expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer >= 1");
-expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer >= 1");
+expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 0");
+expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number -1");
 expectThrows(sim({bendModel: "hinge"}), "ArgumentError", "option 'bendModel'");
 expectThrows(sim({newtonCg: -1}), "ArgumentError", "option 'newtonCg' must be an integer >= 0");
 expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
@@ -130,6 +130,8 @@ expectThrows(sim({output: tmpDir + "/no_such_folder/cache.pc2"}), "OutputError",
              "option 'output': folder", "no_such_folder", "does not exist");
 expectThrows(sim({objSequence: tmpDir + "/no_such_folder/frame"}), "OutputError", "option 'objSequence': folder");
 expectThrows(sim({output: tmpDir}), "OutputError", "option 'output': ", "is a folder");
+core.writeTextFile(tmpDir + "/plain.obj", "not a folder\n");
+expectThrows(sim({output: tmpDir + "/plain.obj/cache.pc2"}), "OutputError", "option 'output': ", "plain.obj' is a file, not a folder");
 expectThrows(sim({output: ""}), "ArgumentError", "option 'output' must be a non-empty string");
 const cache = tmpDir + "/never.pc2";
 expectThrows(sim({output: cache, frames: 2, colliders: [{type: "sphere", center: [0, 0, 0], radius: 0}]}),
