@@ -169,7 +169,7 @@ int MultiresClothPlugin::setModes(QVariant id, QVariant vertexIds, QVariant mode
   return guarded("setModes", [&] {
     QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
     const std::vector<int> vertices = script::toIntList(vertexIds, QStringLiteral("vertexIds"));
-    set_modes(mesh, vertices, script::toInt(mode, QStringLiteral("mode")));
+    set_modes(mesh, vertices, script::toIntBetween(mode, QStringLiteral("mode"), 0, kLargestMode));
     return static_cast<int>(vertices.size());
   });
 }
