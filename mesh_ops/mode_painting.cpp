@@ -11,6 +11,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -66,16 +67,41 @@ std::string csv_number(double value) {
   return error == std::errc() ? std::string(buffer, end) : std::string("nan");
 }
 
-std::vector<std::string> split_csv(const std::string& line) {
+/// One CSV line's fields as RFC 4180 has them (what spreadsheets export):
+/// a field in double quotes may hold commas and doubled quotes; blanks and
+/// a line's carriage return around a field are dropped. `closed` says
+/// whether every quote opened was closed.
+std::vector<std::string> split_csv(const std::string& line, bool& closed) {
   std::vector<std::string> fields;
   std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) {
-    while (!field.empty() && (field.back() == '\r' || field.back() == ' ')) field.pop_back();
-    while (!field.empty() && field.front() == ' ') field.erase(field.begin());
+  bool quoted = false;     // inside a quoted part
+  bool was_quoted = false;  // this field had one (its blanks inside stay)
+  const auto finish = [&] {
+    if (!was_quoted) {
+      field.erase(0, field.find_first_not_of(" \t"));
+      field.erase(field.find_last_not_of(" \t\r") + 1);
+    }
     fields.push_back(field);
+    field.clear();
+    was_quoted = false;
+  };
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c != '"') field += c;
+      else if (i + 1 < line.size() && line[i + 1] == '"') field += line[++i];
+      else quoted = false;
+    } else if (c == '"' && field.find_first_not_of(" \t") == std::string::npos) {
+      field.clear();
+      quoted = was_quoted = true;
+    } else if (c == ',') {
+      finish();
+    } else if (!(was_quoted && (c == ' ' || c == '\t' || c == '\r'))) {
+      field += c;
+    }
   }
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  finish();
+  closed = !quoted;
   return fields;
 }
 
@@ -270,6 +296,9 @@ void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path) {
 }
 
 std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored))
+    throw InputError(path + ": is a folder; expected a CSV file of vertex modes");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file for reading; expected a CSV file of vertex modes");
   const auto fail = [&](int line, const std::string& problem, const std::string& expected) {
@@ -281,7 +310,9 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
   ++line;
   // A spreadsheet's export: a byte-order mark, "Vertex", " mode\r".
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
-  const std::vector<std::string> header = split_csv(text);
+  bool closed = true;
+  const std::vector<std::string> header = split_csv(text, closed);
+  if (!closed) fail(1, "a quote in the header is not closed", "quoted fields to end in a quote");
   const auto named = [](std::string field) {
     field.erase(0, field.find_first_not_of(" \t"));
     field.erase(field.find_last_not_of(" \t\r") + 1);
@@ -300,7 +331,9 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
     int value = 0;
     const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
     if (error == std::errc::result_out_of_range)
-      fail(line, std::string(what) + " " + field + " is out of range", std::string("a ") + what + " the mesh has");
+      fail(line, std::string(what) + " " + field + " is out of range",
+           what == std::string("mode") ? "a mode from 0 to " + std::to_string(kLargestMode)
+                                       : "a vertex below " + std::to_string(mesh.n_vertices()));
     if (error != std::errc() || end != field.data() + field.size() || field.empty())
       fail(line, std::string(what) + " \"" + field + "\" is not an integer", std::string("an integer ") + what);
     return value;
@@ -308,8 +341,14 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
   while (std::getline(in, text)) {
     ++line;
     if (text.empty() || text == "\r") continue;
-    const std::vector<std::string> fields = split_csv(text);
-    if (static_cast<int>(fields.size()) <= std::max(vertex_column, mode_column))
+    const std::vector<std::string> fields = split_csv(text, closed);
+    if (!closed) fail(line, "a quote is not closed", "quoted fields to end in a quote");
+    // More fields than the header names would be a misplaced comma
+    // (a decimal comma, an unquoted name): the columns would shift. Empty
+    // ones after the last (a spreadsheet's trailing commas) are no data.
+    std::size_t given = fields.size();
+    while (given > header.size() && fields[given - 1].empty()) --given;
+    if (given != header.size())
       fail(line, std::to_string(fields.size()) + " fields", std::to_string(header.size()) + " as in the header");
     const int vertex = integer(fields[static_cast<std::size_t>(vertex_column)], "vertex");
     const int mode = integer(fields[static_cast<std::size_t>(mode_column)], "mode");

@@ -220,7 +220,22 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   expect_error("vertex,mode\n1.5,2\n", ":2: vertex \"1.5\" is not an integer");
   expect_error("vertex,mode\n0,99999999999\n", ":2: mode 99999999999 is out of range");
   expect_error("vertex,mode\n4,2\n0,1\n4,3\n", ":4: vertex 4 is given again (first at line 2); expected one row per vertex");
+  expect_error("vertex,mode\n0,1\n1,2,3\n", ":3: 3 fields; expected 2 as in the header");
+  expect_error("vertex,mode,note\n0,1,size 1,5\n", ":2: 4 fields; expected 3 as in the header");
+  expect_error("vertex,mode\n0,\"1\n", ":2: a quote is not closed");
   EXPECT_THROW(read_modes_csv(mesh, (dir / "missing.csv").string()), InputError);
+  try {
+    read_modes_csv(mesh, dir.string());
+    ADD_FAILURE() << "a folder was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(": is a folder; expected a CSV file"), std::string::npos) << e.what();
+  }
+  // Quoted fields as spreadsheets write them (a quoted comma, doubled quotes), and trailing commas.
+  std::ofstream(dir / "quoted.csv") << "\"vertex\",\"mode\",\"note\"\n\"2\",\"4\",\"a, \"\"b\"\"\"\n3 , 6 ,,\n";
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "quoted.csv").string()), 2u);
+  EXPECT_EQ(get_modes(mesh)[2], 4);
+  EXPECT_EQ(get_modes(mesh)[3], 6);
+  set_modes(mesh, {2, 3}, kDefaultMode);
   // Extra columns and a header in any order are fine; unlisted vertices keep their modes.
   std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";
   EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()), 2u);
