@@ -324,8 +324,10 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
              .arg(fields.label(QStringLiteral("preroll"))).arg(request.setup.preroll_seconds));
   request.setup.step_rate = fields.numberFrom(QStringLiteral("stepRate"), request.setup.step_rate, 0.0, true);
   if (request.setup.step_rate < fps)
-    fail(QStringLiteral("%1 must be at least option 'fps' (%2 frames per second), got %3")
-             .arg(fields.label(QStringLiteral("stepRate"))).arg(fps).arg(request.setup.step_rate));
+    fail(QStringLiteral("%1 must be at least option 'fps' (%2 frames per second), got %3%4")
+             .arg(fields.label(QStringLiteral("stepRate"))).arg(fps).arg(request.setup.step_rate)
+             .arg(fields.has(QStringLiteral("stepRate")) ? QString()
+                                                         : QStringLiteral(" (its default: give a step rate of at least %1)").arg(fps)));
   return request;
 }
 

@@ -264,6 +264,11 @@ QString checkedOutputPath(const Fields& fields, const QString& key) {
   const QString path = fields.string(key);
   if (path.isEmpty()) return path;
   const QFileInfo info(path);
+  const QFileInfo folder(info.absolutePath());
+  if (folder.exists() && !folder.isDir())
+    throw OutputError(QStringLiteral("%1: '%2' is a file, not a folder")
+                          .arg(fields.label(key), QDir::toNativeSeparators(info.absolutePath()))
+                          .toStdString());
   if (!info.absoluteDir().exists())
     throw OutputError(QStringLiteral("%1: folder '%2' does not exist")
                           .arg(fields.label(key), QDir::toNativeSeparators(info.absolutePath()))

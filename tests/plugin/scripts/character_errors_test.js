@@ -100,6 +100,8 @@ expectThrows(sim({motion: walk, place: "origin"}), "ArgumentError",
              "option 'place' must be one of \"none\", \"makehuman\", \"firstFrame\"");
 expectThrows(sim({motion: walk, preroll: -0.5}), "ArgumentError", "option 'preroll' must be a number >= 0");
 expectThrows(sim({motion: walk, stepRate: 20}), "ArgumentError", "option 'stepRate' must be at least option 'fps'");
+expectThrows(sim({motion: walk, fps: 200}), "ArgumentError", "option 'stepRate' must be at least option 'fps' (200",
+             "got 120 (its default: give a step rate of at least 200)");
 expectThrows(sim({motion: walk, substeps: 4}), "ArgumentError", "option 'substeps' does not apply with option 'motion'",
              "stepRate");
 
