@@ -848,7 +848,7 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   std::size_t active = 0;
   const auto corrupt = [&](std::size_t r, const std::string& what) {
     throw InputError(with_path(path, "the stored refinement hierarchy is damaged (record " + std::to_string(r) + " " +
-                                         what + "); expected a .om file as save_mesh writes it, whole"));
+                                         what + "); expected a .om file as mrcloth writes it, whole"));
   };
   for (std::size_t r = 0; r < forest.size(); ++r) {
     const QuadRecord& record = forest[r];
@@ -869,13 +869,13 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
   if (active != mesh.n_faces())
     throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + std::to_string(active) +
                                          " active records for " + std::to_string(mesh.n_faces()) +
-                                         " faces); expected a .om file as save_mesh writes it, whole"));
+                                         " faces); expected a .om file as mrcloth writes it, whole"));
   const Layers layers = get_layers(mesh);
   for (const auto f : mesh.faces()) {
     const int r = mesh.property(layers.quad, f);
     if (r < 0 || r >= n || !forest[static_cast<std::size_t>(r)].active)
       throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + face_label(f.idx()) +
-                                           " names no active record); expected a .om file as save_mesh writes it, "
+                                           " names no active record); expected a .om file as mrcloth writes it, "
                                            "whole"));
   }
   // The vertex layers later steps index by (a file saved before the
@@ -890,7 +890,7 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
                                            (none || valid ? " has mode " + std::to_string(mode)
                                                           : " names edge ends " + std::to_string(ends[0]) + ", " +
                                                                 std::to_string(ends[1])) +
-                                           "); expected a .om file as save_mesh writes it, whole"));
+                                           "); expected a .om file as mrcloth writes it, whole"));
   }
 }
 
@@ -938,8 +938,8 @@ void check_om_checksum(const std::string& path, const std::string& bytes) {
     for (std::size_t k = 0; k < 8; ++k)
       stored |= std::uint64_t{static_cast<unsigned char>(bytes[place.offset + k])} << (8 * k);
   if (place.damaged || stored != file_checksum(bytes, place.offset))
-    throw InputError(with_path(path, "the file is damaged or cut short (its bytes do not match the checksum save_mesh "
-                                     "wrote into it); expected a .om file as save_mesh writes it, whole"));
+    throw InputError(with_path(path, "the file is damaged or cut short (its bytes do not match the checksum mrcloth "
+                                     "wrote into it); expected a .om file as mrcloth writes it, whole"));
 }
 
 /// An OM file cut short in its vertex or face chunks reads fewer elements
@@ -1064,7 +1064,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     // layers but no forest was cut short, and would load as a coarse garment.
     if (quadtree(mesh).empty() && bytes.find("mrcloth:") != std::string::npos)
       throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but not the refinement "
-                                       "hierarchy save_mesh writes last); expected a .om file as save_mesh writes "
+                                       "hierarchy mrcloth writes last); expected a .om file as mrcloth writes "
                                        "it, whole"));
     drop_analysis_layers_not_stored(bytes, mesh);
   }

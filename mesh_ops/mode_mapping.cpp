@@ -22,26 +22,26 @@ std::vector<const QuadRecord*> roots_of(const std::vector<QuadRecord>& forest) {
 
 void check_refinement_of(const QuadMesh& refined, const QuadMesh& coarse) {
   if (refined.n_vertices() < coarse.n_vertices()) {
-    throw ArgumentError("map_modes: the refined mesh has " + std::to_string(refined.n_vertices()) +
+    throw ArgumentError("the refined mesh has " + std::to_string(refined.n_vertices()) +
                         " vertices, fewer than the coarse mesh's " + std::to_string(coarse.n_vertices()) +
                         "; expected a refinement of the coarse mesh");
   }
   const std::vector<const QuadRecord*> fine_roots = roots_of(quadtree(refined));
   const std::vector<const QuadRecord*> coarse_roots = roots_of(quadtree(coarse));
   if (fine_roots.size() != coarse_roots.size()) {
-    throw ArgumentError("map_modes: the refined mesh has " + std::to_string(fine_roots.size()) +
+    throw ArgumentError("the refined mesh has " + std::to_string(fine_roots.size()) +
                         " coarse faces, the coarse mesh " + std::to_string(coarse_roots.size()) +
                         "; expected a refinement of the coarse mesh");
   }
   for (std::size_t f = 0; f < fine_roots.size(); ++f) {
     if (fine_roots[f]->corners != coarse_roots[f]->corners)
-      throw ArgumentError("map_modes: coarse face " + std::to_string(f) +
+      throw ArgumentError("coarse face " + std::to_string(f) +
                           " has other corners in the refined mesh; expected a refinement of the coarse mesh");
   }
   for (const auto v : coarse.vertices()) {
     const double gap = (coarse.point(v) - refined.point(refined.vertex_handle(static_cast<unsigned>(v.idx())))).norm();
     if (!(gap <= kSamePosition)) {
-      throw ArgumentError("map_modes: coarse vertex " + std::to_string(v.idx()) + " lies " + std::to_string(gap) +
+      throw ArgumentError("coarse vertex " + std::to_string(v.idx()) + " lies " + std::to_string(gap) +
                           " m from refined vertex " + std::to_string(v.idx()) +
                           "; expected the refined mesh at rest, refined from this coarse mesh");
     }

@@ -522,7 +522,9 @@ void add_leg_bridges(CapsuleRig& rig, const Skeleton& skeleton, double reach) {
     const double at = half % 2 ? 0.5 : 1.0;
     const double radius = std::min(radius_at(left[k], at), radius_at(right[k], at));
     if (!(radius > 0.0))
-      throw ArgumentError("add_leg_bridges: the rig has no capsule on both legs' " + std::string(k ? "shins" : "thighs"));
+      throw ArgumentError("leg bridges need a capsule on both " + std::string(k ? "shins" : "thighs") +
+                          ", and the rig has none on one of them (a radius of 0 leaves a bone without one); expected "
+                          "capsules on both legs, or no leg bridges");
     rig.bridges.push_back({left[k].first, left[k].second, right[k].first, right[k].second, at, radius});
   }
 }

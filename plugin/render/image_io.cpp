@@ -41,12 +41,12 @@ QImage over_white(const QImage& image) {
 }  // namespace
 
 void save_image(const QImage& image, const std::string& path) {
-  auto fail = [&](const std::string& why) { throw std::runtime_error("save_image: cannot write " + path + ": " + why); };
+  auto fail = [&](const std::string& why) { throw std::runtime_error("cannot write " + path + ": " + why); };
   if (image.isNull()) fail("the image is empty");
   const QString target = QString::fromStdString(path);
   const QByteArray format = format_for(target);
   if (format.isEmpty())
-    throw std::invalid_argument("save_image: cannot write " + path + ": '." + QFileInfo(target).suffix().toStdString() +
+    throw std::invalid_argument("cannot write " + path + ": '." + QFileInfo(target).suffix().toStdString() +
                                 "' is not an image format written here; expected .png, .jpg, .jpeg, .bmp or .ppm");
   // Encoded in memory, then written as every other output is: QSaveFile
   // reported success on a full disk and left an empty or cut file.
