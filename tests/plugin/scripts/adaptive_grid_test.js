@@ -22,6 +22,8 @@ expectEqual(reportCounts(), [16, 9, 0, [0, 9], [], 0], "default modes: nothing t
 // All modes 2: every face sums to 8 once, then R drops to 1 -> uniform x1.
 grid = freshGrid();
 expectEqual(multirescloth.setModes(grid, allVertices, 2), 16, "setModes count");
+expectThrows(() => multirescloth.setModes(grid, [0], 1e10), "ArgumentError", "mode must be an integer from 0 to 1000, got the number 1e+10");
+expectThrows(() => multirescloth.setModes(grid, [0], 1001), "ArgumentError", "mode must be an integer from 0 to 1000");
 refined = multirescloth.refineAdaptive(grid, {delta: 8, maxLevel: 3, balance: true});
 expectEqual(reportCounts(), [49, 36, 0, [0, 0, 36], [9], 0], "all modes 2");
 
