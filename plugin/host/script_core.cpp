@@ -20,6 +20,8 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QJSEngine>
+#include <QJsonDocument>
+#include <QJsonParseError>
 #include <QLockFile>
 #include <QUrl>
 
@@ -272,6 +274,28 @@ QString ScriptCore::readTextFile(QVariant path) {
   });
 }
 
+QVariant ScriptCore::parseJson(QVariant text, QVariant source) {
+  return guarded("parseJson", [&] {
+    const QString name = script::toString(source, QStringLiteral("source"));
+    // An empty text is JSON's error (an empty file), not a missing argument.
+    const QByteArray bytes = (text.typeId() == QMetaType::QString ? text.toString()
+                                                                  : script::toString(text, QStringLiteral("text")))
+                                 .toUtf8();
+    QJsonParseError error;
+    const QJsonDocument document = QJsonDocument::fromJson(bytes, &error);
+    if (error.error != QJsonParseError::NoError) {
+      // JSON.parse says only "Parse error": a hand-edited file wants the place.
+      // Qt's offset is just past the character that failed.
+      const QByteArray before = bytes.left(std::max<qsizetype>(0, error.offset - 1));
+      const qsizetype line = before.count('\n') + 1;
+      const qsizetype column = QString::fromUtf8(before.mid(before.lastIndexOf('\n') + 1)).size() + 1;
+      throw InputError(QStringLiteral("%1:%2:%3: %4; expected JSON")
+                           .arg(name).arg(line).arg(column).arg(error.errorString()).toStdString());
+    }
+    return document.toVariant();
+  });
+}
+
 bool ScriptCore::fileReadable(QVariant path) {
   return guarded("fileReadable", [&] {
     const QFileInfo info(script::toString(path, QStringLiteral("path")));
@@ -512,6 +536,11 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "unreadable)."),
        {QStringLiteral("path")},
        {QStringLiteral("file to read")}},
+      {QStringLiteral("parseJson(string text, string source) -> object"),
+       QStringLiteral("Parses JSON text (an object or an array); unlike JSON.parse, an error names the source, line "
+                      "and column (InputError \"source:line:column: what\")."),
+       {QStringLiteral("text"), QStringLiteral("source")},
+       {QStringLiteral("the JSON, e.g. core.readTextFile(path)"), QStringLiteral("what to call it in an error, e.g. the path")}},
       {QStringLiteral("fileReadable(string path) -> bool"),
        QStringLiteral("Returns whether the path is a file this process can open for reading."),
        {QStringLiteral("path")},

@@ -72,6 +72,7 @@ class ScriptCore : public QObject, public ScriptInterface {
   bool unlockFile(QVariant path = QVariant());
   void writeTextFile(QVariant path = QVariant(), QVariant text = QVariant());
   QString readTextFile(QVariant path = QVariant());
+  QVariant parseJson(QVariant text = QVariant(), QVariant source = QVariant());
   bool fileReadable(QVariant path = QVariant());
   bool include(QVariant path = QVariant());
 

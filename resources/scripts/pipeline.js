@@ -270,6 +270,12 @@ function parseOptions(args) {
   });
   checkRates(options);
   if (options.jointMap) options.joints = readJointMap(options.jointMap);
+  // The dm default is MakeHuman's, for a garment exported with the body;
+  // the embedded skirt is the mannequin's, in metres, and not placed for it.
+  if (options.makehuman && options.garment === DEFAULTS.garment && options.units === null)
+    throw pipelineError("option --makehuman needs --garment FILE, a garment modelled on the MakeHuman body (read " +
+                        "in dm, as MakeHuman exports); the embedded default skirt is made for the mannequin (give " +
+                        "--units m --place firstFrame to put it on the MakeHuman body anyway)");
   if (options.units === null) options.units = options.makehuman ? "dm" : "m";
   if (options.place === null) options.place = options.makehuman ? "makehuman" : "firstFrame";
   if (options.body === "mesh" && !options.makehuman)
@@ -304,10 +310,10 @@ function readJointMap(path) {
   if (!core.fileReadable(path)) throw pipelineError("option --joint-map: cannot read " + path);
   let map;
   try {
-    map = JSON.parse(fileText(path));  // read once: the fingerprint reads it too
+    map = core.parseJson(fileText(path), path);  // read once: the fingerprint reads it too
   } catch (error) {
-    throw pipelineError("option --joint-map: " + path + " is not JSON (" + error.message +
-                        "); expected {\"name in the clip\": \"CMU name\", ...}");
+    throw pipelineError("option --joint-map: " + error.message.replace(/^core\.parseJson: /, "") +
+                        " (a joint map: {\"name in the clip\": \"CMU name\", ...})");
   }
   if (map === null || typeof map !== "object" || Array.isArray(map))
     throw pipelineError("option --joint-map: " + path + " holds " + (Array.isArray(map) ? "an array" : typeof map) +
@@ -444,9 +450,9 @@ function checkMakehumanRig(folder) {
 function checkJsonSections(path, sections, what) {
   let json;
   try {
-    json = JSON.parse(fileText(path));
+    json = core.parseJson(fileText(path), path);
   } catch (error) {
-    throw pipelineError("option --makehuman: " + path + " is not JSON (" + error.message + "); expected " + what,
+    throw pipelineError("option --makehuman: " + error.message.replace(/^core\.parseJson: /, "") + " (" + what + ")",
                         "InputError");
   }
   for (const section of sections)

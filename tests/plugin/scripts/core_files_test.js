@@ -6,6 +6,13 @@ const [, , tmpDir] = core.scriptArguments();
 core.include("test_asserts.js");
 core.makePath(tmpDir + "/sub/deeper");
 
+// parseJson: the value, or an error naming the source, line and column.
+expectEqual(JSON.stringify(core.parseJson('{"a": [1, "b", {"c": true}]}', "x.json")), '{"a":[1,"b",{"c":true}]}',
+            "parseJson's value");
+expectThrows(() => core.parseJson('{\n  "a": 1,\n}\n', "map.json"), "InputError", "map.json:3:1: ", "expected JSON");
+expectThrows(() => core.parseJson("", "empty.json"), "InputError", "empty.json:1:1: ");
+expectThrows(() => core.parseJson('{"é": 1 x}', "wide.json"), "InputError", "wide.json:1:9: ");
+
 // SHA-256 of the bytes, as sha256sum prints it (FIPS 180-2's "abc" example).
 core.writeTextFile(tmpDir + "/abc.txt", "abc");
 expectEqual(core.fileHash(tmpDir + "/abc.txt"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad",

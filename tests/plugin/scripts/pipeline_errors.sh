@@ -57,7 +57,8 @@ mkdir -p "$tmp/other" && cp "$resources/characters/walk_new.bvh" "$tmp/other/wal
 refused "option --test: .*walk_new.bvh and .*other/walk_new.bvh share the name \"walk_new\"" \
   --test "$resources/characters/walk_new.bvh" --test "$tmp/other/walk_new.bvh"
 refused "option --body mesh needs --makehuman DIR" --body mesh
-refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp"
+refused "option --makehuman: no such file: .*base.obj" --makehuman "$tmp" --units m
+refused "option --makehuman needs --garment FILE, a garment modelled on the MakeHuman body" --makehuman "$tmp/nowhere"
 refused "option --resume takes no value" --resume=yes
 # Values the API would refuse (or take forever on) only once files are
 # written are refused here (the cheap options keep a regression short).
@@ -98,15 +99,15 @@ mkdir -p "$tmp/mh/rigs" "$tmp/mh2/rigs"
 : > "$tmp/mh/base.obj" && : > "$tmp/mh2/base.obj"
 printf '{"bones": {}, "joints": {}}' > "$tmp/mh/rigs/cmu_mb.mhskel"
 printf 'garbage' > "$tmp/mh/rigs/default_weights.mhw"
-refused "InputError: pipeline: option --makehuman: .*mh/rigs/default_weights.mhw is not JSON .*expected MakeHuman skin weights" \
-  $cheap --makehuman "$tmp/mh"
+refused "InputError: pipeline: option --makehuman: .*mh/rigs/default_weights.mhw:1:1: .*; expected JSON \(MakeHuman skin weights" \
+  $cheap --makehuman "$tmp/mh" --units m
 printf '{"bones": {"Hips": {"head": "Hips_he' > "$tmp/mh2/rigs/cmu_mb.mhskel"
 printf '{"weights": {}}' > "$tmp/mh2/rigs/default_weights.mhw"
-refused "InputError: pipeline: option --makehuman: .*mh2/rigs/cmu_mb.mhskel is not JSON .*expected a MakeHuman skeleton" \
-  $cheap --makehuman "$tmp/mh2"
+refused "InputError: pipeline: option --makehuman: .*mh2/rigs/cmu_mb.mhskel:1:[0-9]+: .*; expected JSON \(a MakeHuman skeleton" \
+  $cheap --makehuman "$tmp/mh2" --units m
 printf '{"weights": []}' > "$tmp/mh2/rigs/default_weights.mhw"
 printf '{"bones": {}}' > "$tmp/mh2/rigs/cmu_mb.mhskel"
-refused "option --makehuman: .*mh2/rigs/cmu_mb.mhskel has no \"joints\" object" $cheap --makehuman "$tmp/mh2"
+refused "option --makehuman: .*mh2/rigs/cmu_mb.mhskel has no \"joints\" object" $cheap --makehuman "$tmp/mh2" --units m
 # A clip in the wrong units (the embedded walks are in metres) is refused
 # before any work, with the units that would fit; "auto" is one of the choices.
 refused "InputError: pipeline: option --instance: .*walk_instance.bvh read in units 'cm' \(0.01 m per unit\): the figure's legs are 0.01 m long .* expected 0.4-2 times: check the units; in 'm' they are 0.79 m" \
@@ -131,7 +132,10 @@ sed 's/ROOT Hips/ROOT pelvis/' "$resources/characters/walk_new.bvh" > "$tmp/pelv
 refused "InputError: pipeline: option --test: .*pelvis_walk.bvh has no joint 'Hips' \(after renaming\), which the pinned waist follows; its joints: pelvis, LHipJoint, .*give --joint-map FILE.json" \
   --test "$tmp/pelvis_walk.bvh"
 printf '{"pelvis": "Hips"' > "$tmp/broken_map.json"
-refused "option --joint-map: .*broken_map.json is not JSON" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/broken_map.json"
+refused "option --joint-map: .*broken_map.json:1:1[78]: .*; expected JSON \(a joint map" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/broken_map.json"
+# A hand-edited file's stray comma is named by its line and column.
+printf '{\n  "pelvis": "Hips",\n}\n' > "$tmp/comma_map.json"
+refused "option --joint-map: .*comma_map.json:3:1: " --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/comma_map.json"
 printf '["pelvis", "Hips"]' > "$tmp/array_map.json"
 refused "option --joint-map: .*array_map.json holds an array; expected an object" --joint-map "$tmp/array_map.json"
 printf '{"pelvis": 3}' > "$tmp/number_map.json"
