@@ -9,6 +9,18 @@ void setScript(CommandLine& command, const QString& path) {
   if (!command.scriptPath.isEmpty())
     fail(QStringLiteral("more than one script given ('%1' and '%2')").arg(command.scriptPath, path));
   if (path.isEmpty()) fail(QStringLiteral("empty script path"));
+  // A garment or clip given as the script would fail as a JavaScript
+  // syntax error on its first line, which says nothing of the mistake.
+  const QString suffix = path.section(QLatin1Char('.'), -1).toLower();
+  static const QStringList data_suffixes{QStringLiteral("obj"), QStringLiteral("om"),  QStringLiteral("off"),
+                                         QStringLiteral("ply"), QStringLiteral("bvh"), QStringLiteral("pc2"),
+                                         QStringLiteral("csv"), QStringLiteral("mhw"), QStringLiteral("mhskel"),
+                                         QStringLiteral("png"), QStringLiteral("json")};
+  if (path.contains(QLatin1Char('.')) && data_suffixes.contains(suffix))
+    fail(QStringLiteral("'%1' is a .%2 file, not a script; expected a JavaScript file (.js) to run, or "
+                        "'mrcloth pipeline --garment FILE --instance CLIP.bvh ...' for the main job "
+                        "(mrcloth pipeline --help)")
+             .arg(path, suffix));
   command.scriptPath = path;
 }
 

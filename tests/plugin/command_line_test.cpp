@@ -44,6 +44,12 @@ TEST(CommandLine, ErrorsNameTheArgument) {
   EXPECT_EQ(messageOf({"--quiet=yes"}), "option '--quiet' takes no value");
   EXPECT_EQ(messageOf({"a.js", "b.js"}), "more than one script given ('a.js' and 'b.js')");
   EXPECT_EQ(messageOf({"-b", "a.js", "b.js"}), "more than one script given ('a.js' and 'b.js')");
+  // A garment or clip in the script's place is named as such, not run as JavaScript.
+  EXPECT_EQ(messageOf({"skirt.OBJ"}).rfind("'skirt.OBJ' is a .obj file, not a script; expected a JavaScript file (.js)", 0), 0u)
+      << messageOf({"skirt.OBJ"});
+  EXPECT_NE(messageOf({"-b", "walk.bvh"}).find("is a .bvh file, not a script"), std::string::npos);
+  EXPECT_EQ(messageOf({"job.mrcloth"}), "") << "any other name may be a script";
+  EXPECT_EQ(messageOf({"job"}), "");
 }
 
 }  // namespace
