@@ -2,6 +2,7 @@
 
 #include "mesh_ops/errors.h"
 
+#include <map>
 #include <set>
 #include <tuple>
 
@@ -99,11 +100,17 @@ void rename_joints(Skeleton& skeleton, const JointRenaming& renaming) {
     const auto found = renaming.find(joint.name);
     names[j] = found != renaming.end() ? found->second : joint.name;
   }
-  std::set<std::string> seen;
-  for (std::size_t j = 0; j < names.size(); ++j)
-    if (!seen.insert(names[j]).second)
-      throw ArgumentError("joint renaming: two joints would be named \"" + names[j] + "\" (\"" + skeleton.joints[j].name +
-                          "\" is one); expected names that stay unique");
+  std::map<std::string, std::size_t> seen;  // new name -> the first joint given it
+  const auto told = [&](std::size_t j) {
+    const std::string& name = skeleton.joints[j].name;
+    return names[j] == name ? "\"" + name + "\" (kept)" : "\"" + name + "\" (renamed \"" + name + "\" -> \"" + names[j] + "\")";
+  };
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const auto [first, inserted] = seen.emplace(names[j], j);
+    if (!inserted)
+      throw ArgumentError("joint renaming: two joints would be named \"" + names[j] + "\": " + told(first->second) +
+                          " and " + told(j) + "; expected names that stay unique");
+  }
   for (std::size_t j = 0; j < names.size(); ++j) skeleton.joints[j].name = names[j];
 }
 

@@ -399,8 +399,11 @@ function checkClip(options, name, path) {
   try {
     info = multirescloth.motionInfo(motionOption(options, path));
   } catch (error) {
-    throw pipelineError("option " + name + ": " + error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, ""),
-                        error.name);
+    const message = error.message.replace(/^multirescloth\.motionInfo: option 'motion': /, "");
+    // A renaming that clashes is the map's mistake, not the clip's.
+    if (options.jointMap && /joint renaming/.test(message))
+      throw pipelineError("option --joint-map: " + options.jointMap + " on " + message, error.name);
+    throw pipelineError("option " + name + ": " + message, error.name);
   }
   // The waist follows the pelvis: a clip without it fails only at its run.
   if (!info.joints.includes("Hips")) {

@@ -144,6 +144,10 @@ printf '{"pelvis": "Hips", "pelvsi": "Hips"}' > "$tmp/typo_map.json"
 refused "option --joint-map: .*typo_map.json renames \"pelvsi\", a joint of none of the clips" \
   --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/typo_map.json"
 refused "option --joint-map: no such file" --joint-map "$tmp/no_map.json"
+# A map that makes two joints one name is the map's mistake, named with both joints.
+printf '{"Hips": "Spine"}' > "$tmp/clash_map.json"
+refused "option --joint-map: .*clash_map.json on .*joint renaming: two joints would be named \"Spine\": \"Hips\" \(renamed \"Hips\" -> \"Spine\"\) and \"Spine\" \(kept\)" \
+  --joint-map "$tmp/clash_map.json"
 # With the map it runs; the embedded instance, which has none of its names,
 # is named automatically beside it.
 printf '{"pelvis": "Hips"}' > "$tmp/map.json"
