@@ -149,8 +149,14 @@ int runHost(int argc, char* argv[]) {
     if (qobject_cast<ProcessInterface*>(plugin.object)) interrupt_handler.watchJobs(plugin.object);
   const int code = runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
   // The pipeline records each stage as it completes: say how to go on.
-  if (command.pipeline && interruptFlag().load())
-    log.warn(QStringLiteral("pipeline: the same command with --resume continues from the stages complete"));
+  if (command.pipeline && interruptFlag().load()) {
+    const QJSValue stage = engine.globalObject().property(QStringLiteral("pipelineStage"));
+    const QString where = stage.isObject() ? QStringLiteral(" stopped in %1 with %2 stage(s) complete, which are kept;")
+                                                 .arg(stage.property(QStringLiteral("label")).toString())
+                                                 .arg(stage.property(QStringLiteral("complete")).toInt())
+                                           : QString();
+    log.warn(QStringLiteral("pipeline:%1 the same command with --resume continues from the stages complete").arg(where));
+  }
   return code;
 }
 

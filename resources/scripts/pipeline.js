@@ -697,6 +697,8 @@ class Stages {
       return earlier;
     }
     core.log(label + " ...");
+    // What the host says if the run is interrupted (it cannot ask later).
+    pipelineStage = {label: label.replace(/^pipeline /, ""), complete: this.ran.length + this.skipped.length};
     const started = Date.now();
     const record = work();
     record.stageSeconds = (Date.now() - started) / 1000;
@@ -707,11 +709,16 @@ class Stages {
     record.run = this.runId;
     core.writeTextFile(this.recordPath(name), JSON.stringify(record, null, 1) + "\n");
     this.ran.push(name);
+    pipelineStage.complete += 1;
     return record;
   }
 }
 
 // --- The run ---------------------------------------------------------------------
+
+/// The stage running and how many are complete: the host reads this global
+/// to say where an interrupted run stopped.
+var pipelineStage = null;  // eslint-disable-line no-var
 
 // Users of the command meet its errors as a command's: the message (which
 // names the option, file or line at fault), not this script's stack. Errors

@@ -117,7 +117,7 @@ kill -INT "$pid"
 wait "$pid"
 code=$?
 [ "$code" -eq 130 ] || { fail "interrupted pipeline: exit code $code, expected 130"; tail -5 "$tmp/int.err"; }
-tail -1 "$tmp/int.err" | grep -q "pipeline: the same command with --resume continues from the stages complete" ||
+tail -1 "$tmp/int.err" | grep -Eq "pipeline: stopped in \[[0-9]+/[0-9]+\] [a-z0-9_-]+ with [1-9][0-9]* stage\(s\) complete, which are kept; the same command with --resume continues from the stages complete" ||
   fail "the interrupted pipeline did not say how to go on: $(tail -2 "$tmp/int.err")"
 leftovers=$(find "$tmp/interrupted" -name '.*tmp*')
 [ -z "$leftovers" ] || fail "temporary files left behind: $leftovers"
