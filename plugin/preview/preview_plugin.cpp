@@ -237,6 +237,12 @@ auto PreviewPlugin::guarded(const char* slot, Body&& body) -> decltype(body()) {
                        [&] { return translateRenderErrors(std::forward<Body>(body)); });
 }
 
+void PreviewPlugin::stopCancelled(const char* slot, const std::string& what) {
+  const std::string text = std::string(slot) + ": cancelled; " + what;
+  emit log(LOGWARN, QString::fromStdString(text));
+  throw Error(text);
+}
+
 QString PreviewPlugin::description() const {
   return QStringLiteral("Off-screen previews (PNG, JPEG, BMP or PPM by the file's suffix): renders of meshes and caches, contact sheets, charts");
 }
@@ -252,6 +258,9 @@ QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) 
     if (fields.has(QStringLiteral("frame")) && request.cache.isEmpty())
       options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
     const QImage image = renderFrame(*object.mesh, request, frame);
+    // A large image takes seconds to draw (no check inside): Ctrl-C then
+    // still stops before anything is written.
+    if (cancelRequested()) stopCancelled("render", file.toStdString() + " was not written");
     saveImage(image, file);
     if (request.color_by == ColorBy::curvature && preview::largest_curvature(*object.mesh) <= 0.0)
       emit log(LOGWARN, QStringLiteral("render: %1: the mean_curvature layer is zero everywhere: run "
@@ -314,7 +323,11 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
                  static_cast<int>(frames.size()));
     const int digits = std::max(4, static_cast<int>(std::to_string(count).size()));
     for (std::size_t k = 0; k < frames.size(); ++k) {
-      if (cancelRequested()) throw Error("cancelled");
+      if (cancelRequested())
+        stopCancelled("renderSequence", "stopped after " + std::to_string(k) + " of " + std::to_string(frames.size()) + " frames" +
+                    (k > 0 ? "; the " + std::to_string(k) + " images written (" + files.front().toString().toStdString() +
+                                 " on) are kept, and no animation was made"
+                           : "; nothing was written"));
       const QString file = QStringLiteral("%1_%2.png").arg(stem).arg(frames[k], digits, 10, QLatin1Char('0'));
       saveImage(renderFrame(*object.mesh, request, frames[k], framing), file);
       files << file;
@@ -336,6 +349,7 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
     for (qsizetype k = 0; k < list.size(); ++k) {
       const QString image_path = options::existingInputFile(script::toString(list[k], QStringLiteral("images[%1]").arg(k)),
                                                            QStringLiteral("images[%1]").arg(k));
+      if (cancelRequested()) stopCancelled("contactSheet", file.toStdString() + " was not written");
       QImage image(image_path);
       if (image.isNull()) throw InputError(image_path.toStdString() + ": not an image Qt can read");
       pictures.push_back(image);
@@ -353,6 +367,7 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
     sheet.columns = fields.integerAtLeast(QStringLiteral("columns"), 0, 0);
     sheet.title = fields.string(QStringLiteral("title"));
     const QImage result = render::contact_sheet(pictures, captions, sheet);
+    if (cancelRequested()) stopCancelled("contactSheet", file.toStdString() + " was not written");
     saveImage(result, file);
     return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), result.width()},
                        {QStringLiteral("height"), result.height()}};

@@ -52,6 +52,9 @@ class PreviewPlugin : public QObject,
   void barChart(QVariant path = QVariant(), QVariant chart = QVariant());
 
  private:
+  /// Says (as a warning: an interrupted script's error is not shown) and
+  /// throws that `slot` stopped on Ctrl-C, and what it left.
+  [[noreturn]] void stopCancelled(const char* slot, const std::string& what);
   template <class Body>
   auto guarded(const char* slot, Body&& body) -> decltype(body());
   void writeAnimation(const QVariantList& frames, const QString& path, double fps);
