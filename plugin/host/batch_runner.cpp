@@ -3,6 +3,7 @@
 #include "host_log.h"
 #include "interrupt.h"
 #include "promise_jobs.h"
+#include "script_exposure.h"
 #include "script_core.h"
 
 #include <QFile>
@@ -52,7 +53,9 @@ void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog&
                    reason.property(QStringLiteral("lineNumber")).toString(), reason.toString()));
   QStringList frames = reason.property(QStringLiteral("stack")).toString().split(QLatin1Char('\n'), Qt::SkipEmptyParts);
   frames.erase(std::remove_if(frames.begin(), frames.end(),
-                              [](const QString& frame) { return frame.contains(PromiseJobs::kTrackingFile); }),
+                              [](const QString& frame) {
+                                return frame.contains(PromiseJobs::kTrackingFile) || frame.contains(kSlotGuardFile);
+                              }),
                frames.end());
   if (frames.size() < 2) return;
   for (const QString& frame : frames) {
@@ -79,6 +82,7 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   const PromiseJobs promises(engine);
   QStringList stack;
   const QJSValue result = engine.evaluate(program, path, 1, &stack);
+  stack = withoutSlotGuardFrames(stack);
   // An uncaught `throw 42` is not an Error object, but it leaves a stack.
   const bool threw = result.isError() || !stack.isEmpty();
   if (!threw) promises.drain([&] { return interrupted.load() || core.exitRequested(); });

@@ -11,6 +11,7 @@
 #include "plugin_registry.h"
 #include "script_api.h"
 #include "script_core.h"
+#include "script_exposure.h"
 #include "weak_collections.h"
 
 #include <QGuiApplication>
@@ -54,11 +55,6 @@ void printApi(const ScriptCore& core, const PluginRegistry& plugins, const HostL
 
 /// Makes `object` a global of the script engine. The engine must not delete
 /// it: core lives on main's stack and plugins belong to their loaders.
-void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
-  QJSEngine::setObjectOwnership(object, QJSEngine::CppOwnership);
-  engine.globalObject().setProperty(name, engine.newQObject(object));
-}
-
 /// Started with stdin, stdout or stderr closed (daemons, some schedulers),
 /// the next file the host opened would take that descriptor, and log lines
 /// meant for stderr would be written into it (a PC2 cache was). /dev/null

@@ -1,6 +1,7 @@
 #include "script_core.h"
 
 #include "host_log.h"
+#include "script_exposure.h"
 #include "mesh_ops/atomic_file.h"
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/errors.h"
@@ -441,6 +442,7 @@ bool ScriptCore::include(QVariant path) {
     included_.insert(key);
     QStringList stack;
     const QJSValue result = engine->evaluate(program, file, 1, &stack);
+    stack = withoutSlotGuardFrames(stack);
     // exitApplication or Ctrl-C inside the file: the engine stays interrupted
     // and stops the including script too.
     if (engine->isInterrupted()) return true;

@@ -11,6 +11,19 @@ const grid = core.loadObject(dataDir + "/grid3x3.obj");
 // Unknown ids.
 expectThrows(() => multirescloth.refineUniform(99, 1), "ArgumentError", "multirescloth.refineUniform: ", "no object with id 99");
 expectThrows(() => core.objectInfo(42), "ArgumentError", "core.objectInfo: no object with id 42");
+// An argument too many is refused (Qt's engine would drop it with a warning:
+// saveObject's options were ignored and the garment saved in metres).
+expectThrows(() => core.saveObject(grid, tmpDir + "/extra.obj", {units: "cm"}), "ArgumentError",
+             "core.saveObject: takes at most 2 arguments, got 3 (see mrcloth --api)");
+expectEqual(core.fileExists(tmpDir + "/extra.obj"), false, "a refused call writes nothing");
+expectThrows(() => multirescloth.refineUniform(grid, 1, 2), "ArgumentError", "multirescloth.refineUniform: takes at most 2 arguments, got 3");
+expectThrows(() => preview.render(grid, tmpDir + "/extra.png", {}, 4), "ArgumentError", "preview.render: takes at most 3 arguments, got 4");
+// A slot's own error still names the script's line, not the check's.
+try {
+  core.objectInfo(4242);
+} catch (error) {
+  expectEqual(String(error.fileName).endsWith("script_errors_test.js"), true, "fileName of a slot's error: " + error.fileName);
+}
 // A missing argument is named by the call's own check, not Qt's overload resolution.
 expectThrows(() => core.loadObject(), "ArgumentError", "core.loadObject: path must be a string, got undefined");
 expectThrows(() => multirescloth.refineUniform(1), "ArgumentError", "multirescloth.refineUniform: ",

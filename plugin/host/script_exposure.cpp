@@ -1,0 +1,81 @@
+#include "script_exposure.h"
+
+#include <QJSEngine>
+#include <QJSValue>
+#include <QMetaMethod>
+#include <QMetaObject>
+#include <QObject>
+
+#include <algorithm>
+
+namespace mrcloth {
+
+namespace {
+
+/// Per slot or invokable name of the object's own class (not QObject's),
+/// the most parameters any of its overloads takes (a slot with defaulted
+/// parameters is several overloads to moc).
+QJSValue parameterLimits(QJSEngine& engine, const QObject& object) {
+  QJSValue limits = engine.newObject();
+  const QMetaObject& meta = *object.metaObject();
+  for (int k = QObject::staticMetaObject.methodCount(); k < meta.methodCount(); ++k) {
+    const QMetaMethod method = meta.method(k);
+    if (method.access() != QMetaMethod::Public || method.methodType() == QMetaMethod::Signal) continue;
+    const QString name = QString::fromLatin1(method.name());
+    const QJSValue known = limits.property(name);
+    const int most = known.isNumber() ? std::max(known.toInt(), method.parameterCount()) : method.parameterCount();
+    limits.setProperty(name, most);
+  }
+  return limits;
+}
+
+}  // namespace
+
+void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
+  QJSEngine::setObjectOwnership(object, QJSEngine::CppOwnership);
+  // A proxy, so that everything else (signals, properties) reads through.
+  static const char* const kGuard = R"JS(
+(function (target, limits, objectName, guardFile) {
+  return new Proxy(target, {
+    get(object, key) {
+      const value = object[key];
+      if (typeof value !== "function" || typeof key !== "string" || !(key in limits)) return value;
+      const most = limits[key];
+      return function (...args) {
+        if (args.length > most) {
+          const error = new Error(objectName + "." + key + ": takes at most " + most + " argument" +
+                                  (most === 1 ? "" : "s") + ", got " + args.length + " (see mrcloth --api)");
+          error.name = "ArgumentError";
+          throw error;
+        }
+        try {
+          return value.apply(object, args);
+        } catch (error) {
+          // The slot's error was made in this function: it is the caller's.
+          if (error instanceof Error && typeof error.stack === "string") {
+            const frames = error.stack.split("\n").filter((frame) => frame.indexOf(guardFile) < 0);
+            const caller = /^[^@]*@(.*):(\d+)$/.exec(frames[0] || "");
+            if (caller) {
+              error.fileName = caller[1];
+              error.lineNumber = Number(caller[2]);
+            }
+            // (Its stack keeps this frame: V4's is fixed; the host's reports leave it out.)
+          }
+          throw error;
+        }
+      };
+    }
+  });
+}))JS";
+  const QJSValue guard = engine.evaluate(QString::fromLatin1(kGuard), QString::fromLatin1(kSlotGuardFile));
+  const QJSValue proxy = guard.call({engine.newQObject(object), parameterLimits(engine, *object), name,
+                                     QString::fromLatin1(kSlotGuardFile)});
+  engine.globalObject().setProperty(name, proxy.isError() ? engine.newQObject(object) : proxy);
+}
+
+QStringList withoutSlotGuardFrames(QStringList stack) {
+  stack.removeIf([](const QString& frame) { return frame.contains(QLatin1String(kSlotGuardFile)); });
+  return stack;
+}
+
+}  // namespace mrcloth
