@@ -31,7 +31,7 @@ void set_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids, int mode) {
 std::size_t paint_modes_sphere(QuadMesh& mesh, const OpenMesh::Vec3d& center, double radius, int mode) {
   check_mode(mode);
   if (!(radius >= 0.0) || !std::isfinite(radius))
-    throw ArgumentError("brush radius must be a finite number >= 0 metres");
+    throw ArgumentError("brush radius must be a finite number >= 0 metres (got " + std::to_string(radius) + ")");
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(center[k])) throw ArgumentError("brush centre must be finite");
   const auto layer = get_layers(mesh).mode;

@@ -390,7 +390,12 @@ class BvhParser {
       fail(frames_word.line, quoted(frames_word.text) + " after MOTION", "'Frames: <count>'");
     const Token count_token = next("no frame count", "'Frames: <count>'");
     const auto count = parse_integer(count_token.text);
-    if (!count) fail(count_token.line, "non-numeric frame count " + quoted(count_token.text), "a positive integer");
+    if (!count) {
+      const bool decimal = count_token.text.find_first_not_of("0123456789.+-eE") == std::string::npos;
+      fail(count_token.line, (decimal ? "frame count " : "non-numeric frame count ") + quoted(count_token.text) +
+                                 (decimal ? " is not a whole number" : ""),
+           "a positive integer");
+    }
     if (*count <= 0) fail(count_token.line, "frame count " + std::to_string(*count), "a positive integer");
     const int frames_line = count_token.line;
 

@@ -174,6 +174,18 @@ int MultiresClothPlugin::setModes(QVariant id, QVariant vertexIds, QVariant mode
   });
 }
 
+namespace {
+
+/// A brush's radius, metres: a number >= 0, named in the refusal.
+double radiusOption(const script::Options& options) {
+  const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+  if (radius < 0.0)
+    options::fail(QStringLiteral("option 'radius' must be a number >= 0 (metres), got %1").arg(radius));
+  return radius;
+}
+
+}  // namespace
+
 int MultiresClothPlugin::paintModes(QVariant id, QVariant brush) {
   return guarded("paintModes", [&] {
     const StoredObject& object = store().get(script::toInt(id, QStringLiteral("id")));
@@ -200,11 +212,11 @@ int MultiresClothPlugin::paintModes(QVariant id, QVariant brush) {
     std::size_t painted = 0;
     if (type == QLatin1String("sphere")) {
       const auto center = options.vec3(QStringLiteral("center"));
-      const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+      const double radius = radiusOption(options);
       painted = paint_modes_sphere(*object.mesh, OpenMesh::Vec3d(center[0], center[1], center[2]), radius, mode);
     } else if (type == QLatin1String("geodesic")) {
       const std::vector<int> seeds = script::toIntList(options.required(QStringLiteral("seeds")), QStringLiteral("option 'seeds'"));
-      const double radius = script::toNumber(options.required(QStringLiteral("radius")), QStringLiteral("option 'radius'"));
+      const double radius = radiusOption(options);
       painted = paint_modes_geodesic(*object.mesh, seeds, radius, mode);
     } else {
       const QString layer_name = script::toString(options.required(QStringLiteral("layer")), QStringLiteral("option 'layer'"));

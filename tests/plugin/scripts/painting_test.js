@@ -72,6 +72,8 @@ expectEqual(multirescloth.loadModes(grid, csv), 16, "rows read");
 expectEqual(multirescloth.getModes(grid), saved, "modes back from the CSV");
 
 // Refused brushes name what is wrong.
+expectThrows(() => multirescloth.paintModes(grid, {type: "sphere", center: [0, 0, 0], radius: -1, mode: 2}), "ArgumentError",
+             "option 'radius' must be a number >= 0 (metres), got -1");
 expectThrows(() => multirescloth.paintModes(grid, {type: "geodesic", seeds: [16], radius: 1, mode: 2}), "ArgumentError",
              "seed vertex 16");
 expectThrows(() => multirescloth.paintModes(grid, {type: "geodesic", center: [0, 0, 0], radius: 1, mode: 2}),
