@@ -398,9 +398,21 @@ std::string obj_text_for_reader(const std::string& text) {
   return out;
 }
 
+/// Text that the line scan would read as one line or as no words at all:
+/// refused with what it is (they read as "no vertices" or "no faces").
+void require_line_text(const std::string& path, const std::string& text) {
+  if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
+    throw InputError(with_path(path, "the file is UTF-16 text (it starts with a UTF-16 byte-order mark); expected "
+                                     "UTF-8 or ASCII text (save it as UTF-8)"));
+  if (text.find('\n') == std::string::npos && text.find('\r') != std::string::npos)
+    throw InputError(with_path(path, "the file ends its lines with carriage returns alone (classic Mac OS); expected "
+                                     "line ends LF or CR LF"));
+}
+
 TextScan scan_obj(const std::string& path, std::istream& in) {
   std::ostringstream whole;
   whole << in.rdbuf();
+  require_line_text(path, whole.str());
   std::string reader_text = obj_text_for_reader(whole.str());
   std::istringstream lines(reader_text.empty() ? whole.str() : reader_text);
   TextScan scan = scan_obj_lines(path, lines);
@@ -1006,6 +1018,8 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   const double scale = metres_per_unit(options.units);
   const std::string extension = lower_extension(path);
   const std::optional<Format> format = format_of(extension);
+  // A folder or a missing file is that, whatever its name says.
+  if (std::error_code error; fs::is_directory(path, error)) require_input_file(path);
   if (!format)
     throw InputError(with_path(path, "unknown mesh format (extension " + shown_extension(extension) +
                                          "); expected one of .obj, .off, .ply, .om"));

@@ -459,6 +459,20 @@ TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
                     "face 1 (line 7) runs its edge from vertex 0 (line 1) to vertex 1 (line 2) the way face 0 (line 6) does");
 }
 
+TEST(GarmentLoadErrors, TextThatIsNotLinesOfUtf8IsNamed) {
+  ScratchDir dir;
+  EXPECT_LOAD_ERROR(write_file(dir.file("mac.obj"), "v 0 0 0\rv 1 0 0\rv 1 1 0\rv 0 1 0\rf 1 2 3 4\r"),
+                    "the file ends its lines with carriage returns alone (classic Mac OS); expected line ends LF or CR LF");
+  std::string utf16 = "\xFF\xFE";
+  for (const char c : std::string("v 0 0 0\n")) utf16 += std::string{c, '\0'};
+  EXPECT_LOAD_ERROR(write_file(dir.file("wide.obj"), utf16), "the file is UTF-16 text");
+  // A folder is named as one, whatever its name's suffix.
+  std::filesystem::create_directory(dir.file("folder.obj"));
+  std::filesystem::create_directory(dir.file("folder"));
+  EXPECT_LOAD_ERROR(dir.file("folder.obj"), "cannot open file (it is a folder)");
+  EXPECT_LOAD_ERROR(dir.file("folder"), "cannot open file (it is a folder)");
+}
+
 TEST(GarmentLoadErrors, OpenMeshDiagnosticsStayQuiet) {
   ScratchDir dir;
   const std::string fan = write_file(dir.file("fan.obj"), kThreeQuadsOnOneEdgeObj);
