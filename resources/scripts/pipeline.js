@@ -574,10 +574,16 @@ function resumedRun(options, inputs) {
   const now = resultOptions(options);
   const keys = Object.keys(now).concat(Object.keys(before).filter((key) => !(key in now)))
                    .filter((key) => !["run", "inputs"].includes(key) && !RESUME_FREE.includes(key));
-  const differing = keys.filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key])).map(optionName);
+  // Each option named once, with the run's value and this command's.
+  const shown = (value) => value === undefined ? "not given" : JSON.stringify(value);
+  const differing = [];
+  for (const key of keys.filter((key) => JSON.stringify(before[key]) !== JSON.stringify(now[key]))) {
+    const name = optionName(key);
+    if (differing.some((text) => text.startsWith(name + " "))) continue;
+    differing.push(name + " " + shown(before[key]) + " there, " + shown(now[key]) + " now");
+  }
   if (differing.length > 0)
-    throw pipelineError("--resume: " + out + " holds a run with other options (" +
-                        differing.filter((name, k) => differing.indexOf(name) === k).join(", ") + ")" + again);
+    throw pipelineError("--resume: " + out + " holds a run with other options (" + differing.join("; ") + ")" + again);
   for (const input of inputs) checkInputUnchanged(out, before.inputs, input, again);
   return before.run;
 }
