@@ -5,6 +5,7 @@
 #
 # render_sequence_interrupt.sh <mrcloth> <tests/data> <tmp folder>
 set -u
+. "$(dirname "$0")/wait_helpers.sh"
 host=$1 data=$2 tmp=$3
 rm -rf "$tmp" && mkdir -p "$tmp/frames" || exit 1
 script="$tmp/long_sequence.js"
@@ -19,14 +20,7 @@ print("not reached: the sequence finished");
 JS
 env --default-signal=INT "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
 pid=$!
-tries=0
-until grep -q '^\[job\] renderSequence' "$tmp/stderr" 2>/dev/null; do
-  tries=$((tries + 1))
-  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
-    echo "the sequence did not start"; cat "$tmp/stderr"; kill "$pid" 2>/dev/null; exit 1
-  fi
-  sleep 0.1
-done
+wait_for_line "$tmp/stderr" '^\[job\] renderSequence' "$pid" "the sequence"
 sleep 1
 kill -INT "$pid"
 wait "$pid"

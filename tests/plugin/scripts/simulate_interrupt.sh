@@ -13,6 +13,7 @@
 #
 # simulate_interrupt.sh <mrcloth> <tests/data> <tmp folder> [<resources>]
 set -u
+. "$(dirname "$0")/wait_helpers.sh"
 host=$1 data=$2 tmp=$3 resources=${4:-}
 signal=${SIGNAL:-INT}
 case "$signal" in
@@ -57,14 +58,7 @@ else
 fi
 pid=$!
 # Wait until the simulation is running (its job line), at most 60 s.
-tries=0
-until grep -q '^\[job\] simulate: simulation of' "$tmp/stderr" 2>/dev/null; do
-  tries=$((tries + 1))
-  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
-    echo "the simulation did not start"; cat "$tmp/stderr"; kill "$pid" 2>/dev/null; exit 1
-  fi
-  sleep 0.1
-done
+wait_for_line "$tmp/stderr" '^\[job\] simulate: simulation of' "$pid" "the simulation"
 sleep 0.5
 if [ "$signal" = IGNORED_INT ]; then
   kill -INT "$pid"
