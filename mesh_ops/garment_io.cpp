@@ -296,7 +296,7 @@ OpenMesh::Vec3d parse_point(const std::string& path, const std::vector<std::stri
 
 /// One OBJ face line checked the way CheckingImporter checks faces, but with
 /// the file's own 1-based (or negative, relative) indices in the message.
-std::string obj_face_issue(const std::vector<std::string>& words, long n_defined) {
+std::string obj_face_issue(const std::vector<std::string>& words, long n_defined, const ElementLines& lines) {
   std::vector<long> corners;
   for (std::size_t k = 1; k < words.size(); ++k) {
     const std::string& word = words[k];
@@ -315,8 +315,7 @@ std::string obj_face_issue(const std::vector<std::string>& words, long n_defined
   for (std::size_t i = 0; i < corners.size(); ++i) {
     for (std::size_t j = i + 1; j < corners.size(); ++j) {
       if (corners[i] == corners[j])
-        return " uses vertex " + std::to_string(corners[i]) + " (written " +
-               words[i + 1].substr(0, words[i + 1].find('/')) + ") more than once; expected distinct corners";
+        return " uses " + lines.vertex_name(corners[i]) + " more than once; expected distinct corners";
     }
   }
   return {};
@@ -361,7 +360,7 @@ TextScan scan_obj_lines(const std::string& path, std::istream& in) {
       scan.face_corners.push_back(obj_face_corners(words, static_cast<long>(scan.points.size()),
                                                    static_cast<long>(scan.texcoords.size()), scan.uv_readable));
       if (scan.face_problem.found()) continue;
-      if (std::string issue = obj_face_issue(words, static_cast<long>(scan.points.size())); !issue.empty())
+      if (std::string issue = obj_face_issue(words, static_cast<long>(scan.points.size()), scan.lines); !issue.empty())
         scan.face_problem = {face, face_label(face) + at_line(line_number) + issue};
     }
   }
@@ -576,6 +575,14 @@ TextScan scan_ply(const std::string& path, std::istream& in) {
 TextScan scan_text(const std::string& path, Format format) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
+  if (format == Format::off) {
+    // The OFF scan reads lines as OBJ's does; a binary OFF's header is a line too.
+    std::ostringstream whole;
+    whole << in.rdbuf();
+    require_line_text(path, whole.str());
+    in.clear();
+    in.seekg(0);
+  }
   switch (format) {
     case Format::obj: return scan_obj(path, in);
     case Format::off: return scan_off(path, in);

@@ -340,16 +340,17 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
   };
   while (std::getline(in, text)) {
     ++line;
-    if (text.empty() || text == "\r") continue;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::vector<std::string> fields = split_csv(text, closed);
-    if (!closed) fail(line, "a quote is not closed", "quoted fields to end in a quote");
+    if (!closed) fail(line, "a quote is not closed on this line", "quoted fields to end on their line (a field across lines is not read)");
     // More fields than the header names would be a misplaced comma
     // (a decimal comma, an unquoted name): the columns would shift. Empty
-    // ones after the last (a spreadsheet's trailing commas) are no data.
+    // ones after the last (a spreadsheet's trailing commas) are no data,
+    // and a short row is fine if it reaches the vertex and mode columns.
     std::size_t given = fields.size();
-    while (given > header.size() && fields[given - 1].empty()) --given;
-    if (given != header.size())
-      fail(line, std::to_string(fields.size()) + " fields", std::to_string(header.size()) + " as in the header");
+    while (given > 0 && fields[given - 1].empty()) --given;
+    if (given > header.size() || static_cast<int>(fields.size()) <= std::max(vertex_column, mode_column))
+      fail(line, std::to_string(given) + " fields", std::to_string(header.size()) + " as in the header");
     const int vertex = integer(fields[static_cast<std::size_t>(vertex_column)], "vertex");
     const int mode = integer(fields[static_cast<std::size_t>(mode_column)], "mode");
     if (vertex < 0 || vertex >= n)

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -391,9 +392,13 @@ class BvhParser {
     const Token count_token = next("no frame count", "'Frames: <count>'");
     const auto count = parse_integer(count_token.text);
     if (!count) {
-      const bool decimal = count_token.text.find_first_not_of("0123456789.+-eE") == std::string::npos;
-      fail(count_token.line, (decimal ? "frame count " : "non-numeric frame count ") + quoted(count_token.text) +
-                                 (decimal ? " is not a whole number" : ""),
+      // A number written otherwise ("40.0", "1e3") is named as one.
+      const std::string text(count_token.text);
+      char* end = nullptr;
+      std::strtod(text.c_str(), &end);
+      const bool number = !text.empty() && end == text.c_str() + text.size();
+      fail(count_token.line, (number ? "frame count " : "non-numeric frame count ") + quoted(count_token.text) +
+                                 (number ? " is not written as a whole number" : ""),
            "a positive integer");
     }
     if (*count <= 0) fail(count_token.line, "frame count " + std::to_string(*count), "a positive integer");

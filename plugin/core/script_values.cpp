@@ -108,6 +108,9 @@ int toInt(const QVariant& value, const QString& what) {
 int toIntAtLeast(const QVariant& value, const QString& what, int minimum) {
   if (isNumber(value) && value.toDouble() > std::numeric_limits<int>::max())
     return toIntBetween(value, what, minimum, std::numeric_limits<int>::max());
+  // Below int too: below the minimum, which is what to say.
+  if (isNumber(value) && value.toDouble() < std::numeric_limits<int>::min() && value.toDouble() == std::floor(value.toDouble()))
+    fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(describeValue(value)));
   const int number = toInt(value, what);
   if (number < minimum)
     fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(number));

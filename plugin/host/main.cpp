@@ -145,8 +145,8 @@ int runHost(int argc, char* argv[]) {
     if (qobject_cast<ProcessInterface*>(plugin.object)) interrupt_handler.watchJobs(plugin.object);
   const int code = runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
   // The pipeline records each stage as it completes: say how to go on.
-  if (command.pipeline && interruptFlag().load()) {
-    const QJSValue stage = engine.globalObject().property(QStringLiteral("pipelineStage"));
+  const QJSValue stage = engine.globalObject().property(QStringLiteral("pipelineStage"));
+  if ((command.pipeline || stage.isObject()) && interruptFlag().load()) {
     const QString where = stage.isObject() ? QStringLiteral(" stopped in %1 with %2 stage(s) complete, which are kept;")
                                                  .arg(stage.property(QStringLiteral("label")).toString())
                                                  .arg(stage.property(QStringLiteral("complete")).toInt())

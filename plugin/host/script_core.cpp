@@ -13,6 +13,7 @@
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
+#include "solver/json_lite.h"
 #include "solver/material.h"
 
 #include <QCryptographicHash>
@@ -21,8 +22,6 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QJSEngine>
-#include <QJsonDocument>
-#include <QJsonParseError>
 #include <QLockFile>
 #include <QUrl>
 
@@ -275,25 +274,39 @@ QString ScriptCore::readTextFile(QVariant path) {
   });
 }
 
+namespace {
+
+/// A JSON value as scripts get it (objects keep their members' order).
+QVariant toVariant(const JsonValue& value) {
+  switch (value.kind()) {
+    case JsonValue::Kind::null: return QVariant::fromValue(nullptr);
+    case JsonValue::Kind::boolean: return value.as_bool();
+    case JsonValue::Kind::number: return value.as_number();
+    case JsonValue::Kind::string: return QString::fromStdString(value.as_string());
+    case JsonValue::Kind::array: {
+      QVariantList list;
+      for (const JsonValue& item : value.as_array()) list << toVariant(item);
+      return list;
+    }
+    case JsonValue::Kind::object: {
+      QVariantMap map;
+      for (const auto& [key, member] : value.as_object()) map.insert(QString::fromStdString(key), toVariant(member));
+      return map;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 QVariant ScriptCore::parseJson(QVariant text, QVariant source) {
   return guarded("parseJson", [&] {
     const QString name = script::toString(source, QStringLiteral("source"));
     // An empty text is JSON's error (an empty file), not a missing argument.
-    const QByteArray bytes = (text.typeId() == QMetaType::QString ? text.toString()
-                                                                  : script::toString(text, QStringLiteral("text")))
-                                 .toUtf8();
-    QJsonParseError error;
-    const QJsonDocument document = QJsonDocument::fromJson(bytes, &error);
-    if (error.error != QJsonParseError::NoError) {
-      // JSON.parse says only "Parse error": a hand-edited file wants the place.
-      // Qt's offset is just past the character that failed.
-      const QByteArray before = bytes.left(std::max<qsizetype>(0, error.offset - 1));
-      const qsizetype line = before.count('\n') + 1;
-      const qsizetype column = QString::fromUtf8(before.mid(before.lastIndexOf('\n') + 1)).size() + 1;
-      throw InputError(QStringLiteral("%1:%2:%3: %4; expected JSON")
-                           .arg(name).arg(line).arg(column).arg(error.errorString()).toStdString());
-    }
-    return document.toVariant();
+    const QString json = text.typeId() == QMetaType::QString ? text.toString() : script::toString(text, QStringLiteral("text"));
+    // The project's strict reader: JSON.parse says only "Parse error", and a
+    // hand-edited file wants the line.
+    return toVariant(parse_json(json.toStdString(), name.toStdString()));
   });
 }
 
@@ -538,9 +551,9 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "unreadable)."),
        {QStringLiteral("path")},
        {QStringLiteral("file to read")}},
-      {QStringLiteral("parseJson(string text, string source) -> object"),
-       QStringLiteral("Parses JSON text (an object or an array); unlike JSON.parse, an error names the source, line "
-                      "and column (InputError \"source:line:column: what\")."),
+      {QStringLiteral("parseJson(string text, string source) -> value"),
+       QStringLiteral("Parses JSON text (RFC 8259, strictly: no comments, trailing commas or repeated keys); unlike "
+                      "JSON.parse, an error names the source and line (InputError \"source:line: what; expected ...\")."),
        {QStringLiteral("text"), QStringLiteral("source")},
        {QStringLiteral("the JSON, e.g. core.readTextFile(path)"), QStringLiteral("what to call it in an error, e.g. the path")}},
       {QStringLiteral("fileReadable(string path) -> bool"),

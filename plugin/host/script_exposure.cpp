@@ -36,6 +36,20 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   // A proxy, so that everything else (signals, properties) reads through.
   static const char* const kGuard = R"JS(
 (function (target, limits, objectName, guardFile) {
+  // An error made in this file (by the check, or by the slot it calls) is
+  // the caller's: its file and line become the caller's. (Its stack keeps
+  // this frame: V4's is fixed; the host's reports leave it out.)
+  function atCaller(error) {
+    if (error instanceof Error && typeof error.stack === "string") {
+      const frames = error.stack.split("\n").filter((frame) => frame.indexOf(guardFile) < 0);
+      const caller = /^[^@]*@(.*):(\d+)$/.exec(frames[0] || "");
+      if (caller) {
+        error.fileName = caller[1];
+        error.lineNumber = Number(caller[2]);
+      }
+    }
+    return error;
+  }
   return new Proxy(target, {
     get(object, key) {
       const value = object[key];
@@ -46,22 +60,12 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
           const error = new Error(objectName + "." + key + ": takes at most " + most + " argument" +
                                   (most === 1 ? "" : "s") + ", got " + args.length + " (see mrcloth --api)");
           error.name = "ArgumentError";
-          throw error;
+          throw atCaller(error);
         }
         try {
           return value.apply(object, args);
         } catch (error) {
-          // The slot's error was made in this function: it is the caller's.
-          if (error instanceof Error && typeof error.stack === "string") {
-            const frames = error.stack.split("\n").filter((frame) => frame.indexOf(guardFile) < 0);
-            const caller = /^[^@]*@(.*):(\d+)$/.exec(frames[0] || "");
-            if (caller) {
-              error.fileName = caller[1];
-              error.lineNumber = Number(caller[2]);
-            }
-            // (Its stack keeps this frame: V4's is fixed; the host's reports leave it out.)
-          }
-          throw error;
+          throw atCaller(error);
         }
       };
     }

@@ -313,7 +313,7 @@ function readJointMap(path) {
     map = core.parseJson(fileText(path), path);  // read once: the fingerprint reads it too
   } catch (error) {
     throw pipelineError("option --joint-map: " + error.message.replace(/^core\.parseJson: /, "") +
-                        " (a joint map: {\"name in the clip\": \"CMU name\", ...})");
+                        ", in a file that should hold a joint map {\"name in the clip\": \"CMU name\", ...}");
   }
   if (map === null || typeof map !== "object" || Array.isArray(map))
     throw pipelineError("option --joint-map: " + path + " holds " + (Array.isArray(map) ? "an array" : typeof map) +
@@ -455,8 +455,8 @@ function checkJsonSections(path, sections, what) {
   try {
     json = core.parseJson(fileText(path), path);
   } catch (error) {
-    throw pipelineError("option --makehuman: " + error.message.replace(/^core\.parseJson: /, "") + " (" + what + ")",
-                        "InputError");
+    throw pipelineError("option --makehuman: " + error.message.replace(/^core\.parseJson: /, "") +
+                        ", in a file that should hold " + what, "InputError");
   }
   for (const section of sections)
     if (json === null || typeof json !== "object" || json[section] === null || typeof json[section] !== "object" ||

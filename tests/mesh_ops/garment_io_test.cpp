@@ -425,7 +425,7 @@ TEST(GarmentLoadErrors, RepeatedVertexInFace) {
   ScratchDir dir;
   const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n";
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.obj"), vertices + "f 1 2 3 4\nf 2 5 5 6\n"),
-                    "face 1 (line 8) uses vertex 4 (written 5) more than once");
+                    "face 1 (line 8) uses vertex 4 (line 5) more than once");
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 1 3\n"),
                     "face 0 (line 7) uses vertex 1 (line 4) more than once");
   EXPECT_LOAD_ERROR(write_file(dir.file("repeat.ply"), ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 3 2 3\n"),
@@ -451,7 +451,7 @@ TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
   // Face 1 repeats a vertex (seen by the OBJ scan), face 2 is out of range.
   EXPECT_LOAD_ERROR(write_file(dir.file("two.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 1 2 3\nf 1 2 3 7\n"),
-                    "face 1 (line 6) uses vertex 0 (written 1) more than once");
+                    "face 1 (line 6) uses vertex 0 (line 1) more than once");
   // Face 1 cannot join face 0 (found by the importer) before face 2 repeats a vertex.
   EXPECT_LOAD_ERROR(write_file(dir.file("order.obj"),
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 -1 0\n"
@@ -466,6 +466,9 @@ TEST(GarmentLoadErrors, TextThatIsNotLinesOfUtf8IsNamed) {
   std::string utf16 = "\xFF\xFE";
   for (const char c : std::string("v 0 0 0\n")) utf16 += std::string{c, '\0'};
   EXPECT_LOAD_ERROR(write_file(dir.file("wide.obj"), utf16), "the file is UTF-16 text");
+  EXPECT_LOAD_ERROR(write_file(dir.file("wide.off"), utf16), "the file is UTF-16 text");
+  EXPECT_LOAD_ERROR(write_file(dir.file("mac.off"), "OFF\r4 1 0\r0 0 0\r1 0 0\r1 1 0\r0 1 0\r4 0 1 2 3\r"),
+                    "the file ends its lines with carriage returns alone");
   // A folder is named as one, whatever its name's suffix.
   std::filesystem::create_directory(dir.file("folder.obj"));
   std::filesystem::create_directory(dir.file("folder"));

@@ -222,7 +222,8 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   expect_error("vertex,mode\n4,2\n0,1\n4,3\n", ":4: vertex 4 is given again (first at line 2); expected one row per vertex");
   expect_error("vertex,mode\n0,1\n1,2,3\n", ":3: 3 fields; expected 2 as in the header");
   expect_error("vertex,mode,note\n0,1,size 1,5\n", ":2: 4 fields; expected 3 as in the header");
-  expect_error("vertex,mode\n0,\"1\n", ":2: a quote is not closed");
+  expect_error("vertex,mode\n0,\"1\n", ":2: a quote is not closed on this line");
+  expect_error("vertex,mode\n0,1\n1,2,3,,\n", ":3: 3 fields; expected 2 as in the header");
   EXPECT_THROW(read_modes_csv(mesh, (dir / "missing.csv").string()), InputError);
   try {
     read_modes_csv(mesh, dir.string());
@@ -235,6 +236,10 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   EXPECT_EQ(read_modes_csv(mesh, (dir / "quoted.csv").string()), 2u);
   EXPECT_EQ(get_modes(mesh)[2], 4);
   EXPECT_EQ(get_modes(mesh)[3], 6);
+  // Rows shorter than the header that reach the vertex and mode columns, and blank lines.
+  std::ofstream(dir / "short.csv") << "vertex,mode,comment\n2,7\n   \n3,8,ok\n";
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "short.csv").string()), 2u);
+  EXPECT_EQ(get_modes(mesh)[2], 7);
   set_modes(mesh, {2, 3}, kDefaultMode);
   // Extra columns and a header in any order are fine; unlisted vertices keep their modes.
   std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";

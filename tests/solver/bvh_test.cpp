@@ -307,8 +307,10 @@ std::vector<Malformed> malformed_variants() {
   cases.push_back({"non_numeric_frame_time", edit(18, "Frame Time: fast"), 18, "'fast'"});
   cases.push_back({"zero_frames", edit(17, "Frames: 0"), 17, "frame count"});
   cases.push_back({"negative_frames", edit(17, "Frames: -3"), 17, "frame count"});
-  cases.push_back({"fractional_frames", edit(17, "Frames: 2.5"), 17, "frame count '2.5' is not a whole number"});
-  cases.push_back({"decimal_frames", edit(17, "Frames: 40.0"), 17, "frame count '40.0' is not a whole number"});
+  cases.push_back({"fractional_frames", edit(17, "Frames: 2.5"), 17, "frame count '2.5' is not written as a whole number"});
+  cases.push_back({"decimal_frames", edit(17, "Frames: 40.0"), 17, "frame count '40.0' is not written as a whole number"});
+  cases.push_back({"exponent_frames", edit(17, "Frames: 1e3"), 17, "frame count '1e3' is not written as a whole number"});
+  cases.push_back({"letter_frames", edit(17, "Frames: E"), 17, "non-numeric frame count 'E'"});
   cases.push_back({"word_frames", edit(17, "Frames: many"), 17, "non-numeric frame count 'many'"});
   cases.push_back({"huge_frames", edit(17, "Frames: 99999999999"), 17, "frame count"});
   cases.push_back({"missing_frame_time", erase(18), 18, "Frame Time"});

@@ -99,11 +99,11 @@ mkdir -p "$tmp/mh/rigs" "$tmp/mh2/rigs"
 : > "$tmp/mh/base.obj" && : > "$tmp/mh2/base.obj"
 printf '{"bones": {}, "joints": {}}' > "$tmp/mh/rigs/cmu_mb.mhskel"
 printf 'garbage' > "$tmp/mh/rigs/default_weights.mhw"
-refused "InputError: pipeline: option --makehuman: .*mh/rigs/default_weights.mhw:1:1: .*; expected JSON \(MakeHuman skin weights" \
+refused "InputError: pipeline: option --makehuman: .*mh/rigs/default_weights.mhw:1: unexpected .g.; expected a value .*, in a file that should hold MakeHuman skin weights" \
   $cheap --makehuman "$tmp/mh" --units m
 printf '{"bones": {"Hips": {"head": "Hips_he' > "$tmp/mh2/rigs/cmu_mb.mhskel"
 printf '{"weights": {}}' > "$tmp/mh2/rigs/default_weights.mhw"
-refused "InputError: pipeline: option --makehuman: .*mh2/rigs/cmu_mb.mhskel:1:[0-9]+: .*; expected JSON \(a MakeHuman skeleton" \
+refused "InputError: pipeline: option --makehuman: .*mh2/rigs/cmu_mb.mhskel:1: the text ends inside a string.*, in a file that should hold a MakeHuman skeleton" \
   $cheap --makehuman "$tmp/mh2" --units m
 printf '{"weights": []}' > "$tmp/mh2/rigs/default_weights.mhw"
 printf '{"bones": {}}' > "$tmp/mh2/rigs/cmu_mb.mhskel"
@@ -132,10 +132,10 @@ sed 's/ROOT Hips/ROOT pelvis/' "$resources/characters/walk_new.bvh" > "$tmp/pelv
 refused "InputError: pipeline: option --test: .*pelvis_walk.bvh has no joint 'Hips' \(after renaming\), which the pinned waist follows; its joints: pelvis, LHipJoint, .*give --joint-map FILE.json" \
   --test "$tmp/pelvis_walk.bvh"
 printf '{"pelvis": "Hips"' > "$tmp/broken_map.json"
-refused "option --joint-map: .*broken_map.json:1:1[78]: .*; expected JSON \(a joint map" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/broken_map.json"
+refused "option --joint-map: .*broken_map.json:1: the text ends inside an object; expected .*, in a file that should hold a joint map" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/broken_map.json"
 # A hand-edited file's stray comma is named by its line and column.
 printf '{\n  "pelvis": "Hips",\n}\n' > "$tmp/comma_map.json"
-refused "option --joint-map: .*comma_map.json:3:1: " --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/comma_map.json"
+refused "option --joint-map: .*comma_map.json:3: a trailing comma" --test "$tmp/pelvis_walk.bvh" --joint-map "$tmp/comma_map.json"
 printf '["pelvis", "Hips"]' > "$tmp/array_map.json"
 refused "option --joint-map: .*array_map.json holds an array; expected an object" --joint-map "$tmp/array_map.json"
 printf '{"pelvis": 3}' > "$tmp/number_map.json"

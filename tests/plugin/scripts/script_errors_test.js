@@ -24,6 +24,16 @@ try {
 } catch (error) {
   expectEqual(String(error.fileName).endsWith("script_errors_test.js"), true, "fileName of a slot's error: " + error.fileName);
 }
+// And so does the check's own: the line of the call.
+let callLine = 0, thrownLine = -1;
+try {
+  callLine = new Error().lineNumber + 1;
+  core.fileExists("/tmp", 2);
+} catch (error) {
+  thrownLine = error.lineNumber;
+  expectEqual(String(error.fileName).endsWith("script_errors_test.js"), true, "fileName of the check's error: " + error.fileName);
+}
+expectEqual(thrownLine, callLine, "the line of an argument too many");
 // A missing argument is named by the call's own check, not Qt's overload resolution.
 expectThrows(() => core.loadObject(), "ArgumentError", "core.loadObject: path must be a string, got undefined");
 expectThrows(() => multirescloth.refineUniform(1), "ArgumentError", "multirescloth.refineUniform: ",
