@@ -38,7 +38,7 @@ FeatureNormalization normalization_from_name(const std::string& name) {
 }
 
 ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation,
-                             const ModeOptions& options) {
+                             const ModeOptions& options, const KMeansProgress& progress) {
   if (mean_curvature.size() != deviation.size()) {
     throw ArgumentError("deformation_modes: " + std::to_string(mean_curvature.size()) + " mean curvatures but " +
                         std::to_string(deviation.size()) + " deviations; expected one of each per vertex");
@@ -68,7 +68,9 @@ ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen:
   k.restarts = options.restarts;
   k.max_iterations = options.max_iterations;
   k.seed = options.seed;
-  const KMeansResult clusters = kmeans(normalized, k);
+  const KMeansResult clusters = kmeans(normalized, k, progress);
+  report.restarts_done = clusters.restarts_done;
+  report.cancelled = clusters.cancelled;
   report.inertia = clusters.inertia;
   report.restart = clusters.restart;
   report.iterations = clusters.iterations;

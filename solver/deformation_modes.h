@@ -43,14 +43,18 @@ struct ModeReport {
   std::uint64_t seed = 1;
   int restart = 0;                       ///< the k-means restart kept
   int iterations = 0;                    ///< its Lloyd iterations
+  int restarts_done = 0;                 ///< k-means restarts run (options.restarts unless cancelled)
+  bool cancelled = false;                ///< the progress callback stopped the clustering (modes of the restarts done)
 };
 
 /// Modes of the vertices whose features are mean_curvature[v] and
 /// deviation[v] (1/m, same length, finite). Modes are numbered by their
 /// centroid's mean curvature, ties by deviation. Throws ArgumentError for
 /// mismatched or non-finite features and bad options (from kmeans, e.g.
-/// more modes than distinct feature points).
+/// more modes than distinct feature points). `progress` is k-means' (called
+/// after every restart, false stops; see kmeans): the modes of a run it lets
+/// finish are the same with it as without.
 ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation,
-                             const ModeOptions& options = {});
+                             const ModeOptions& options = {}, const KMeansProgress& progress = {});
 
 }  // namespace mrcloth

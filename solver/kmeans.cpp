@@ -406,7 +406,7 @@ KMeansResult to_result(Run run, int restart, int k, int d) {
 
 }  // namespace
 
-KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options) {
+KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options, const KMeansProgress& progress) {
   validate(points, options);
   const int k = options.clusters;
   const Rows p = row_major(points);
@@ -415,8 +415,9 @@ KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options)
     throw ArgumentError("kmeans: " + std::to_string(k) + " clusters requested but only " + std::to_string(distinct) +
                         (distinct == 1 ? " distinct point" : " distinct points"));
   Run best;
-  int best_restart = -1;
-  for (int r = 0; r < options.restarts; ++r) {
+  int best_restart = -1, done = 0;
+  bool cancelled = false;
+  for (int r = 0; r < options.restarts && !cancelled; ++r) {
     std::vector<double> centres;
     if (r == 0 && options.initial_centroids.size() > 0) {
       centres = initial_rows(options.initial_centroids);
@@ -431,8 +432,13 @@ KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options)
       best = std::move(run);
       best_restart = r;
     }
+    done = r + 1;
+    cancelled = progress && !progress(done, options.restarts);
   }
-  return to_result(std::move(best), best_restart, k, p.d);
+  KMeansResult result = to_result(std::move(best), best_restart, k, p.d);
+  result.restarts_done = done;
+  result.cancelled = cancelled;
+  return result;
 }
 
 }  // namespace mrcloth

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace mrcloth {
@@ -32,7 +33,13 @@ struct KMeansResult {
   int iterations = 0;         ///< Lloyd iterations (assign + update) of the kept restart
   int restart = 0;            ///< index of the kept restart
   bool converged = false;     ///< the kept restart stopped because no label changed (false: max_iterations ran out)
+  int restarts_done = 0;      ///< restarts run: options.restarts, fewer when the progress callback stopped them
+  bool cancelled = false;     ///< the progress callback returned false (the result is the best of the restarts done)
 };
+
+/// Called after each restart with the restarts done (1..total) and the total
+/// (options.restarts); return false to stop before the next one.
+using KMeansProgress = std::function<bool(int restarts_done, int restarts_total)>;
 
 /// Clusters the rows of `points` (n x d, finite; row i is point i's feature
 /// vector) into options.clusters groups, minimising the inertia locally by
@@ -44,7 +51,11 @@ struct KMeansResult {
 /// nothing but the data and the options. Throws ArgumentError (from
 /// "mesh_ops/errors.h") for bad options, an empty or non-finite input (naming
 /// the row and column), initial centroids of the wrong shape or not finite, or
-/// fewer distinct points than clusters.
-KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options = {});
+/// fewer distinct points than clusters. `progress`, if given, is called after
+/// every restart; it does not change the result of the restarts it lets run,
+/// and when it returns false the best of those done is returned with
+/// `cancelled` set.
+KMeansResult kmeans(const Eigen::MatrixXd& points, const KMeansOptions& options = {},
+                    const KMeansProgress& progress = {});
 
 }  // namespace mrcloth

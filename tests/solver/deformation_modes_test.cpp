@@ -112,6 +112,31 @@ TEST(DeformationModes, SameSeedSameModes) {
   for (int m = 0; m + 1 < 5; ++m) EXPECT_LE(a.centroids(m, 0), a.centroids(m + 1, 0));
 }
 
+TEST(DeformationModes, ClusteringReportsProgressPerRestartAndCanBeStopped) {
+  const Planted p = planted(60, 9);
+  ModeOptions options;
+  options.restarts = 6;
+  std::vector<int> done_seen;
+  const ModeReport watched = deformation_modes(p.mean, p.deviation, options, [&](int done, int total) {
+    EXPECT_EQ(total, 6);
+    done_seen.push_back(done);
+    return true;
+  });
+  EXPECT_EQ(done_seen, (std::vector<int>{1, 2, 3, 4, 5, 6}));
+  const ModeReport plain = deformation_modes(p.mean, p.deviation, options);
+  EXPECT_EQ(watched.modes, plain.modes);
+  EXPECT_EQ(watched.centroids, plain.centroids);
+  EXPECT_EQ(watched.inertia, plain.inertia);
+  EXPECT_FALSE(watched.cancelled);
+  EXPECT_EQ(watched.restarts_done, 6);
+
+  int calls = 0;
+  const ModeReport stopped = deformation_modes(p.mean, p.deviation, options, [&](int, int) { return ++calls < 2; });
+  EXPECT_EQ(calls, 2);
+  EXPECT_TRUE(stopped.cancelled);
+  EXPECT_EQ(stopped.restarts_done, 2);
+}
+
 TEST(DeformationModes, TiesInMeanCurvatureGoByDeviation) {
   // Two groups with the same mean curvature: the steadier one is the lower mode.
   Eigen::VectorXd mean(30), deviation(30);

@@ -11,6 +11,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrcloth {
@@ -357,6 +358,44 @@ TEST(KMeans, TheSeedDrivesTheSeeding) {
   std::sort(inertias.begin(), inertias.end());
   EXPECT_GT(std::unique(inertias.begin(), inertias.end()) - inertias.begin(), 1)
       << "ten seeds with one restart each all found the same local optimum";
+}
+
+TEST(KMeans, ProgressIsCalledAfterEveryRestartAndChangesNothing) {
+  const Eigen::MatrixXd p = uniform_points(300, 2, 21);
+  const KMeansOptions options = with(6, 7, 3);
+  std::vector<std::pair<int, int>> calls;
+  const KMeansResult r = kmeans(p, options, [&](int done, int total) {
+    calls.emplace_back(done, total);
+    return true;
+  });
+  std::vector<std::pair<int, int>> expected;
+  for (int done = 1; done <= 7; ++done) expected.emplace_back(done, 7);
+  EXPECT_EQ(calls, expected) << "once per restart, with restarts done and the total";
+  EXPECT_FALSE(r.cancelled);
+  EXPECT_EQ(r.restarts_done, 7);
+  const KMeansResult plain = kmeans(p, options);
+  expect_identical(r, plain);
+  EXPECT_FALSE(plain.cancelled);
+  EXPECT_EQ(plain.restarts_done, 7);
+}
+
+TEST(KMeans, AProgressCallbackReturningFalseStopsAfterThatRestart) {
+  const Eigen::MatrixXd p = uniform_points(300, 2, 21);
+  int calls = 0;
+  const KMeansResult r = kmeans(p, with(6, 50, 3), [&](int done, int total) {
+    ++calls;
+    EXPECT_EQ(total, 50);
+    return done < 3;
+  });
+  EXPECT_EQ(calls, 3) << "no restart runs after the callback says stop";
+  EXPECT_TRUE(r.cancelled);
+  EXPECT_EQ(r.restarts_done, 3);
+  // The result is the best of the restarts done: what three restarts give.
+  expect_identical(r, kmeans(p, with(6, 3, 3)));
+  // Stopping at the last restart still says so (the caller asked to stop).
+  const KMeansResult last = kmeans(p, with(6, 2, 3), [](int done, int) { return done < 2; });
+  EXPECT_TRUE(last.cancelled);
+  EXPECT_EQ(last.restarts_done, 2);
 }
 
 TEST(KMeans, SameSeedGivesBitwiseTheSameResultWhateverRanBefore) {
