@@ -480,7 +480,11 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   // alike (a pre-roll of whole output frames): about a second at 49k vertices.
   const auto factorise_start = std::chrono::steady_clock::now();
   ImplicitIntegrator prepared;
-  prepared.precompute(model, integrator_options(sim));
+  const auto keep_going = [&] { return !progress || progress(0, total_frames); };
+  if (!keep_going() || !prepared.precompute(model, integrator_options(sim), keep_going)) {
+    report.motion.cancelled = true;  // in the set-up: no frame done
+    return report;
+  }
   const double factorise_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - factorise_start).count();
   if (preroll_frames > 0) {

@@ -291,7 +291,9 @@ int steps_per_frame(const CharacterRunOptions& options);
 /// The cache (options.simulation.cache_path) holds the motion frames only.
 /// `progress` is called after every pre-roll frame and every motion frame,
 /// with frames done and preroll_frame_count(options) + options.frames;
-/// returning false cancels either phase (report.motion.cancelled).
+/// returning false cancels either phase (report.motion.cancelled). It is
+/// also called with 0 frames done between the phases of the set-up (the
+/// factorisation), where false stops the run before its first frame.
 CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
                                          PosedBody& body, const CharacterRunOptions& options,
                                          const SimulationProgress& progress = {},

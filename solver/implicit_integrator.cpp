@@ -301,7 +301,9 @@ ClothState rest_state(const DynamicsModel& model) {
   return state;
 }
 
-void ImplicitIntegrator::precompute(const DynamicsModel& model, const IntegratorOptions& options) {
+bool ImplicitIntegrator::precompute(const DynamicsModel& model, const IntegratorOptions& options,
+                                    const KeepGoing& keep_going) {
+  const auto stopped = [&] { return keep_going && !keep_going(); };
   check(options);
   model_ = &model;
   options_ = options;
@@ -313,13 +315,15 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
   for (int f = 0; f < Q.rows(); ++f) diag.emplace_back(f, f, model.free_mass[f] / (h * h));
   M.setFromTriplets(diag.begin(), diag.end());
   Q += M;
-  solver_.factorize(Q);
+  if (stopped()) return false;
+  if (!solver_.factorize(Q, keep_going) || stopped()) return false;
   pool_ = options.threads > 1 ? std::make_shared<WorkerPool>(options.threads) : nullptr;
   part_largest_.assign(static_cast<std::size_t>(options.threads), 0.0);
   part_checked_.assign(static_cast<std::size_t>(options.threads), 0);
   full_.resize(model.num_vertices, 3);
   force_.resize(model.num_vertices, 3);
   self_contact_.precompute(model, options.self_contact);
+  if (stopped()) return false;
   std::vector<char> has_pinned_part(model.num_vertices, 0);
   for (int col = 0; col < model.P.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(model.P, col); it; ++it) has_pinned_part[it.row()] = 1;
@@ -448,6 +452,7 @@ void ImplicitIntegrator::precompute(const DynamicsModel& model, const Integrator
     dependent_start_.push_back(static_cast<int>(dependent_slots_.size()));
   }
   due_.assign((sweep_.size() + 63) / 64, 0);
+  return true;
 }
 
 Eigen::Vector3d ImplicitIntegrator::position_of(int vertex, const Positions& q) const {

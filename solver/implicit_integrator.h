@@ -63,6 +63,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -148,9 +149,16 @@ struct StepReport {
 
 class ImplicitIntegrator {
  public:
+  /// Consulted between precompute's phases (after assembling the system,
+  /// after ordering it, after factorising it, after the contact set-up);
+  /// returns false to stop.
+  using KeepGoing = std::function<bool()>;
+
   /// Assembles and factorises Q for `model` (kept by reference: it must
-  /// outlive the integrator) and the options. Throws ArgumentError for bad options.
-  void precompute(const DynamicsModel& model, const IntegratorOptions& options);
+  /// outlive the integrator) and the options. Throws ArgumentError for bad
+  /// options. Returns false when `keep_going` stopped it: the integrator is
+  /// then not ready and must not step. The callback changes nothing else.
+  bool precompute(const DynamicsModel& model, const IntegratorOptions& options, const KeepGoing& keep_going = {});
 
   /// The Chebyshev estimate the limiter uses: the options', raised to the
   /// chain's with acceleration_from_chain (valid after precompute).

@@ -183,10 +183,16 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
     throw std::logic_error("simulate: the prepared integrator steps " + std::to_string(prepared->options().time_step) +
                            " s, this run " + std::to_string(io.time_step));
   ImplicitIntegrator integrator;
-  if (prepared)
+  if (prepared) {
     integrator = *prepared;
-  else
-    integrator.precompute(model, io);
+  } else {
+    // The set-up is no frame, but can be stopped between its phases.
+    const auto keep_going = [&] { return !progress || progress(0, options.frames); };
+    if (!keep_going() || !integrator.precompute(model, io, keep_going)) {
+      report.cancelled = true;
+      return report;
+    }
+  }
   report.limiter_acceleration = integrator.limiter_acceleration();
   report.precompute_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

@@ -43,6 +43,9 @@ struct SimulationOptions {
 using PinTrajectory = std::function<void(double time, Positions& pinned)>;
 
 /// Called after every output frame with frames done and total; return false to cancel.
+/// Also called with 0 frames done before and between the phases of the set-up
+/// (assembly, factorisation: seconds on a large mesh) where a run does its own:
+/// false there stops it before its first frame (cancelled, 0 frames, no cache).
 using SimulationProgress = std::function<bool(int frames_done, int frames_total)>;
 
 /// Moving bodies: `pose(time)` is called before every step with the time

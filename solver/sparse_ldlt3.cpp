@@ -6,8 +6,13 @@
 
 namespace mrcloth {
 
-void SparseLdlt3::factorize(const Eigen::SparseMatrix<double>& matrix) {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
+bool SparseLdlt3::factorize(const Eigen::SparseMatrix<double>& matrix, const std::function<bool()>& keep_going) {
+  // What compute() does, in its two halves (the same permutation and the
+  // same permuted matrix, so the same factor).
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  ldlt.analyzePattern(matrix);
+  if (keep_going && !keep_going()) return false;
+  ldlt.factorize(matrix);
   if (ldlt.info() != Eigen::Success) throw Error("the solver's system matrix could not be factorised (not positive definite)");
   n_ = static_cast<int>(matrix.rows());
   const auto& L = ldlt.matrixL().nestedExpression();  // unit lower triangular, CSC
@@ -28,6 +33,7 @@ void SparseLdlt3::factorize(const Eigen::SparseMatrix<double>& matrix) {
   const auto& p = ldlt.permutationP().indices();
   perm_.assign(p.data(), p.data() + n_);
   work_.assign(3 * static_cast<std::size_t>(n_), 0.0);
+  return true;
 }
 
 void SparseLdlt3::solve_in_place(Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> rhs) const {

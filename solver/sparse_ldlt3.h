@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <functional>
 #include <vector>
 
 namespace mrcloth {
@@ -14,7 +15,10 @@ class SparseLdlt3 {
  public:
   /// Factorises a symmetric positive definite matrix (lower triangle used).
   /// Throws Error if the factorisation fails (not positive definite).
-  void factorize(const Eigen::SparseMatrix<double>& matrix);
+  /// `keep_going`, if given, is consulted between the ordering (AMD and the
+  /// symbolic analysis) and the numeric factorisation; false stops there and
+  /// returns false, leaving this unusable. It changes no bit of the factor.
+  bool factorize(const Eigen::SparseMatrix<double>& matrix, const std::function<bool()>& keep_going = {});
 
   /// Solves A X = B in place for B with 3 columns (row-major, n x 3).
   void solve_in_place(Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> rhs) const;

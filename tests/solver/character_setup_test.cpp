@@ -174,11 +174,18 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
 
   std::vector<std::pair<int, int>> calls;
   ClothState state = rest_state(model);
+  int setup_calls = 0;  // 0 frames done: between the phases of the set-up (the factorisation), first
   const CharacterRunReport whole = simulate_on_character(model, state, *character.motion, *character.body, run,
                                                          [&](int done, int total) {
-                                                           calls.emplace_back(done, total);
+                                                           if (done == 0 && calls.empty()) {
+                                                             EXPECT_EQ(total, 9);
+                                                             ++setup_calls;
+                                                           } else {
+                                                             calls.emplace_back(done, total);
+                                                           }
                                                            return true;
                                                          });
+  EXPECT_GE(setup_calls, 2);
   ASSERT_EQ(calls.size(), 9u);
   for (std::size_t k = 0; k < calls.size(); ++k)
     EXPECT_EQ(calls[k], std::make_pair(static_cast<int>(k) + 1, 9)) << "call " << k;
@@ -197,6 +204,17 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
   EXPECT_TRUE(cancelled.preroll.cancelled);
   EXPECT_TRUE(cancelled.motion.cancelled);
   EXPECT_EQ(cancelled.motion.frames, 0);
+
+  // Stopped in the set-up: no frame of either phase runs.
+  ClothState unset = rest_state(model);
+  const CharacterRunReport in_setup = simulate_on_character(model, unset, *character.motion, *character.body, run,
+                                                            [&](int done, int) {
+                                                              EXPECT_EQ(done, 0) << "a frame ran";
+                                                              return false;
+                                                            });
+  EXPECT_TRUE(in_setup.motion.cancelled);
+  EXPECT_EQ(in_setup.preroll.frames, 0);
+  EXPECT_EQ(in_setup.motion.frames, 0);
 }
 
 // A pre-roll of no whole number of output frames (0.216 s at 30 fps: 6.48)
