@@ -117,6 +117,8 @@ void QuadRefiner::inherit_from_fathers(int vertex, std::initializer_list<int> fa
   mesh_.property(computed_, vh) = all ? rounded_mean(computed_sum) : 0;
 }
 
-void QuadRefiner::finish() { rebuild_active_faces(mesh_); }
+bool QuadRefiner::finish(const std::function<bool(int faces_added)>& progress) {
+  return rebuild_active_faces(mesh_, progress);
+}
 
 }  // namespace mrcloth

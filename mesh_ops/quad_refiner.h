@@ -2,6 +2,7 @@
 // Algorithm 1 of the paper: split one active quad 1 -> 4.
 #include "quad_mesh.h"
 
+#include <functional>
 #include <initializer_list>
 #include <unordered_map>
 
@@ -44,8 +45,9 @@ class QuadRefiner {
   /// Midpoint vertex of the edge (a, b) or -1 if that edge was never split.
   int midpoint(int a, int b) const;
 
-  /// Rebuilds faces and hanging flags (see rebuild_active_faces).
-  void finish();
+  /// Rebuilds faces and hanging flags (see rebuild_active_faces, which
+  /// `progress` and the result are).
+  bool finish(const std::function<bool(int faces_added)>& progress = {});
 
  private:
   int midpoint_or_new(int a, int b, bool& created);

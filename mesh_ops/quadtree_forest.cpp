@@ -114,7 +114,7 @@ std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& rec
   return polygon_of(midpoints_from_parents(mesh, l), record);
 }
 
-void rebuild_active_faces(QuadMesh& mesh) {
+bool rebuild_active_faces(QuadMesh& mesh, const std::function<bool(int faces_added)>& progress, int every) {
   const Layers l = get_layers(mesh);
   const auto mids = midpoints_from_parents(mesh, l);
 
@@ -123,9 +123,12 @@ void rebuild_active_faces(QuadMesh& mesh) {
 
   const auto& forest = mesh.property(l.quadtree);
   std::vector<QuadMesh::VertexHandle> handles;
+  int added = 0;
   for (std::size_t i = 0; i < forest.size(); ++i) {
     const QuadRecord& q = forest[i];
     if (!q.active) continue;
+    if (progress && added > 0 && added % every == 0 && !progress(added)) return false;
+    ++added;
     handles.clear();
     for (int v : polygon_of(mids, q)) handles.push_back(mesh.vertex_handle(v));
     const auto f = mesh.add_face(handles);
@@ -136,6 +139,7 @@ void rebuild_active_faces(QuadMesh& mesh) {
     mesh.property(l.quad, f) = static_cast<int>(i);
   }
   update_hanging_nodes(mesh);
+  return true;
 }
 
 void update_hanging_nodes(QuadMesh& mesh) {

@@ -3,6 +3,8 @@
 // mesh's faces and T-node flags from the forest after refinement.
 #include "quad_mesh.h"
 
+#include <functional>
+
 namespace mrcloth {
 
 /// Makes `mesh` refinable: one level-1 active root record per face (corners in
@@ -22,8 +24,12 @@ std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& rec
 
 /// Replaces all faces of `mesh` by the active records' polygons (in record
 /// order), sets the level and quad face layers, and recomputes hanging flags.
-/// Vertices and their indices are untouched.
-void rebuild_active_faces(QuadMesh& mesh);
+/// Vertices and their indices are untouched. `progress`, if given, is
+/// called with the faces added so far every `every` faces (none after the
+/// last); when it returns false the rebuild stops there, false is returned
+/// and the mesh (part of its faces) must be discarded.
+bool rebuild_active_faces(QuadMesh& mesh, const std::function<bool(int faces_added)>& progress = {},
+                          int every = 65536);
 
 /// Recomputes the hanging flag of every vertex from the forest: a vertex is
 /// hanging iff it lies strictly inside a corner-to-corner edge of an active record.

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 namespace mrcloth {
 namespace {
@@ -40,6 +42,58 @@ TEST(UniformRefine, MoreFacesThanMemoryHoldsAreRefusedBeforeAnyWork) {
   }
   EXPECT_THROW(uniform_refine(mesh, 1000000000), ArgumentError);
   EXPECT_EQ(mesh.n_faces(), 9u) << "untouched";
+}
+
+TEST(UniformRefine, ProgressCountsSplitsPerLevelThenTheFacesBuiltAndChangesNothing) {
+  // 9 faces, 3 levels: 9 + 36 + 144 = 189 splits, reported after each
+  // level, then the 576 faces of the result built.
+  QuadMesh watched = test::make_grid(3, 3);
+  EXPECT_EQ(uniform_refine_steps(watched, 3), 189.0 + 576.0);
+  EXPECT_EQ(uniform_refine_steps(watched, 0), 0.0);
+  std::vector<std::pair<int, int>> calls;
+  EXPECT_TRUE(uniform_refine(watched, 3, [&](int done, int total) {
+    calls.emplace_back(done, total);
+    return true;
+  }));
+  EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{9, 765}, {45, 765}, {189, 765}, {765, 765}}));
+  QuadMesh plain = test::make_grid(3, 3);
+  uniform_refine(plain, 3);
+  ASSERT_EQ(watched.n_vertices(), plain.n_vertices());
+  ASSERT_EQ(watched.n_faces(), plain.n_faces());
+  for (auto v : plain.vertices()) EXPECT_EQ(watched.point(v), plain.point(v)) << "vertex " << v.idx();
+  for (auto f : plain.faces()) {
+    std::vector<int> a, b;
+    for (auto v : plain.fv_range(f)) a.push_back(v.idx());
+    for (auto v : watched.fv_range(watched.face_handle(f.idx()))) b.push_back(v.idx());
+    EXPECT_EQ(a, b) << "face " << f.idx();
+  }
+}
+
+TEST(UniformRefine, ProgressComesWithinALongLevelAndTheBuildToo) {
+  // 8 levels: the last splits 9 * 4^7 = 147,456 faces and 589,824 are
+  // built, reported every 65,536 steps.
+  QuadMesh mesh = test::make_grid(3, 3);
+  const int total = static_cast<int>(uniform_refine_steps(mesh, 8));
+  const int splits = 196605;
+  EXPECT_EQ(total, splits + 589824);
+  std::vector<int> done;
+  EXPECT_TRUE(uniform_refine(mesh, 8, [&](int steps, int) {
+    done.push_back(steps);
+    return true;
+  }));
+  const int before_last = splits - 147456;
+  std::vector<int> expected{9, 45, 189, 765, 3069, 12285, before_last, before_last + 65536, before_last + 131072, splits};
+  for (int k = 1; k <= 8; ++k) expected.push_back(splits + 65536 * k);
+  expected.push_back(total);
+  EXPECT_EQ(done, expected);
+  EXPECT_EQ(mesh.n_faces(), 589824u);
+}
+
+TEST(UniformRefine, AProgressCallbackReturningFalseStopsTheRefinement) {
+  QuadMesh mesh = test::make_grid(3, 3);
+  int calls = 0;
+  EXPECT_FALSE(uniform_refine(mesh, 3, [&](int, int) { return ++calls < 2; }));
+  EXPECT_EQ(calls, 2) << "no level after the one whose report said stop";
 }
 
 TEST(UniformRefine, RefiningInStepsEqualsRefiningAtOnce) {
