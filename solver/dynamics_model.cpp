@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <unordered_map>
+#include <utility>
 
 namespace mrcloth {
 namespace {
@@ -41,7 +42,10 @@ class SpringSet {
   std::vector<Spring> springs_;
 };
 
-std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, const DynamicsOptions& o) {
+// None when `stopped` says so, between the stretch and shear springs, the
+// bend pairs (the longest part on a large mesh) and the bend springs.
+std::optional<std::vector<Spring>> build_springs(const QuadMesh& mesh, const Positions& rest, const DynamicsOptions& o,
+                                                 const std::function<bool()>& stopped) {
   const Material& m = o.material;
   SpringSet set(rest);
   const auto& forest = quadtree(mesh);
@@ -59,7 +63,10 @@ std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, c
     set.add(q.corners[0], q.corners[2], k, SpringKind::shear, q.level);
     set.add(q.corners[1], q.corners[3], k, SpringKind::shear, q.level);
   }
-  for (const BendPair& b : bend_pairs(mesh))
+  if (stopped()) return std::nullopt;
+  const std::vector<BendPair> bends = bend_pairs(mesh);
+  if (stopped()) return std::nullopt;
+  for (const BendPair& b : bends)
     set.add(b.i, b.j, m.bend_stiffness * level_scale(o.alpha_bend, b.level), SpringKind::bend, b.level);
   std::vector<Spring> springs = set.take();
   if (o.bend_model == BendModel::second_difference) {
@@ -72,7 +79,7 @@ std::vector<Spring> build_springs(const QuadMesh& mesh, const Positions& rest, c
       s.rest = (rest.row(s.i) - 2.0 * rest.row(s.via) + rest.row(s.j)).norm();
     }
   }
-  return springs;
+  return std::optional<std::vector<Spring>>(std::move(springs));
 }
 
 void check_options(const QuadMesh& mesh, const DynamicsOptions& o, const std::vector<char>& hanging) {
@@ -98,6 +105,12 @@ void check_options(const QuadMesh& mesh, const DynamicsOptions& o, const std::ve
 }  // namespace
 
 DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options) {
+  return std::move(*build_dynamics(mesh, options, {}));
+}
+
+std::optional<DynamicsModel> build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options,
+                                            const std::function<bool()>& keep_going) {
+  const auto stopped = [&] { return keep_going && !keep_going(); };
   const Layers layers = get_layers(mesh);
   const int n = static_cast<int>(mesh.n_vertices());
   std::vector<char> hanging(n, 0);
@@ -115,7 +128,9 @@ DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& option
     for (int c = 0; c < 3; ++c) model.rest(v.idx(), c) = mesh.point(v)[c];
   const std::vector<double> mass = lumped_mass(mesh, options.material.areal_density);
   model.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), n);
-  model.springs = build_springs(mesh, model.rest, options);
+  std::optional<std::vector<Spring>> springs = build_springs(mesh, model.rest, options, stopped);
+  if (!springs || stopped()) return std::nullopt;
+  model.springs = std::move(*springs);
   for (const QuadRecord& q : quadtree(mesh))
     if (q.active) model.corners.push_back(q.corners);
 
@@ -152,6 +167,7 @@ DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& option
       }
     }
   }
+  if (stopped()) return std::nullopt;
   std::vector<Eigen::Triplet<double>> s_entries, p_entries;
   model.stencil.resize(n);
   for (int v = 0; v < n; ++v) {
@@ -172,7 +188,7 @@ DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& option
     if (!(model.free_mass[f] > 0.0))
       throw ArgumentError("free vertex " + std::to_string(model.free_vertices[f]) +
                           " has no mass (an isolated vertex?); every simulated vertex needs a face");
-  return model;
+  return std::optional<DynamicsModel>(std::move(model));
 }
 
 Positions full_positions(const DynamicsModel& model, const Positions& free, const Positions& pinned) {

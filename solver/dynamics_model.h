@@ -35,6 +35,8 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 namespace mrcloth {
@@ -100,6 +102,13 @@ struct DynamicsModel {
 /// Throws ArgumentError for a pinned id out of range or hanging, or a
 /// non-positive stiffness or density.
 DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options);
+
+/// The same, consulting `keep_going` between its phases (the stretch and
+/// shear springs, the bend pairs, the bend springs, the interpolation rows:
+/// 1.4 s at 148k vertices): none when it returned false. The model built
+/// is the same.
+std::optional<DynamicsModel> build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options,
+                                            const std::function<bool()>& keep_going);
 
 /// Full positions x = S q + P p.
 Positions full_positions(const DynamicsModel& model, const Positions& free, const Positions& pinned);

@@ -39,6 +39,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace mrcloth {
 namespace {
@@ -426,8 +427,9 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                     .arg(settings.substeps).arg(QString::fromStdString(request.dynamics.material.name))
                     .arg(request.pinsText).arg(settings.colliders.size()),
                 settings.frames);
-    const DynamicsModel model = build_dynamics(*input.mesh, request.dynamics);
-    if (cancelRequested()) throw setupCancelled(QStringLiteral("simulate"), settings.frames);
+    std::optional<DynamicsModel> built = build_dynamics(*input.mesh, request.dynamics, [&] { return !cancelRequested(); });
+    if (!built || cancelRequested()) throw setupCancelled(QStringLiteral("simulate"), settings.frames);
+    const DynamicsModel model = std::move(*built);
     emit log(LOGINFO, QStringLiteral("simulate: setting up: factorising the system of %1 unknowns (free vertices)")
                           .arg(model.free_mass.size()));
     ClothState state = rest_state(model);
@@ -968,8 +970,9 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     emit log(LOGINFO, QStringLiteral("%1: %2 garment vertices started inside the body or within its thickness; moved "
                                      "out (at most %3 mm) before the run")
                           .arg(slot).arg(placed.clearance.moved).arg(1000.0 * placed.clearance.largest_move, 0, 'f', 1));
-  const DynamicsModel model = build_dynamics(*garment, request.dynamics);
-  stop_if_cancelled();
+  std::optional<DynamicsModel> built = build_dynamics(*garment, request.dynamics, [&] { return !cancelRequested(); });
+  if (!built || cancelRequested()) throw setupCancelled(slot, preroll_frames + run_frames);
+  const DynamicsModel model = std::move(*built);
   ClothState state = rest_state(model);
   const CharacterRunOptions run = character_run_options(character, wanted.setup, model, request.simulation);
   assert(preroll_frame_count(run) == preroll_frames && run.frames == run_frames && "the job's length is the run's");

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 namespace mrcloth {
@@ -40,6 +41,26 @@ TEST(Material, TheDefaultIsTheCottonPreset) {
   EXPECT_EQ(fallback.stretch_limit, cotton.stretch_limit);
   EXPECT_LT(material_preset("silk").stretch_stiffness, cotton.stretch_stiffness);
   EXPECT_GT(material_preset("denim").stretch_stiffness, cotton.stretch_stiffness);
+}
+
+TEST(DynamicsModel, BuildingConsultsItsCallbackBetweenPhasesAndStopsWhenAsked) {
+  const QuadMesh mesh = test::make_sheet(9, 0.4);
+  DynamicsOptions options;
+  options.pinned = {0, 8};
+  int calls = 0;
+  const std::optional<DynamicsModel> watched = build_dynamics(mesh, options, [&] { return ++calls > 0; });
+  ASSERT_TRUE(watched.has_value());
+  EXPECT_EQ(calls, 4) << "after the stretch and shear springs, the bend pairs, the bend springs, the rows";
+  const DynamicsModel plain = build_dynamics(mesh, options);
+  EXPECT_EQ(watched->springs.size(), plain.springs.size());
+  EXPECT_EQ(watched->free_vertices, plain.free_vertices);
+  EXPECT_EQ(watched->free_mass, plain.free_mass);
+  EXPECT_EQ(Eigen::MatrixXd(watched->S), Eigen::MatrixXd(plain.S));
+  for (int stop_at = 1; stop_at <= 4; ++stop_at) {
+    int seen = 0;
+    EXPECT_FALSE(build_dynamics(mesh, options, [&] { return ++seen < stop_at; }).has_value()) << stop_at;
+    EXPECT_EQ(seen, stop_at);
+  }
 }
 
 TEST(DynamicsModel, SpringCountsOnARegularGrid) {
