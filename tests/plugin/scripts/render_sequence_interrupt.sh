@@ -22,9 +22,7 @@ env --default-signal=INT "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 
 pid=$!
 wait_for_line "$tmp/stderr" '^\[job\] renderSequence' "$pid" "the sequence"
 sleep 1
-kill -INT "$pid"
-wait "$pid"
-code=$?
+interrupt_and_wait "$pid"
 echo "--- stderr"; cat "$tmp/stderr"; echo "---"
 failed=0
 [ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }

@@ -7,6 +7,7 @@
 #
 # simulate_setup_interrupt.sh <mrcloth> <tests/data> <tmp folder>
 set -u
+. "$(dirname "$0")/wait_helpers.sh"
 host=$1 data=$2 tmp=$3
 rm -rf "$tmp" && mkdir -p "$tmp" || exit 1
 script="$tmp/large_simulation.js"
@@ -20,20 +21,9 @@ JS
 env --default-signal=INT "$host" -b "$script" -- "$data" "$tmp" > "$tmp/stdout" 2> "$tmp/stderr" &
 pid=$!
 # Wait until the simulation's job has started (its first line), at most 60 s.
-tries=0
-until grep -q '^\[job\] simulate: simulation of .*; setting up first' "$tmp/stderr" 2>/dev/null; do
-  tries=$((tries + 1))
-  if [ "$tries" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then
-    echo "the simulation did not start"; cat "$tmp/stderr"; kill "$pid" 2>/dev/null; exit 1
-  fi
-  sleep 0.1
-done
+wait_for_line "$tmp/stderr" '^\[job\] simulate: simulation of .*; setting up first' "$pid" "the simulation"
 sleep 0.3
-start=$(date +%s%N)
-kill -INT "$pid"
-wait "$pid"
-code=$?
-elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+interrupt_and_wait "$pid"
 echo "--- stderr"; cat "$tmp/stderr"; echo "--- stdout"; cat "$tmp/stdout"; echo "---"
 failed=0
 [ "$code" -eq 130 ] || { echo "exit code $code, expected 130"; failed=1; }

@@ -13,3 +13,13 @@ wait_for_line() {
     sleep 0.1
   done
 }
+
+# interrupt_and_wait <pid>: sends SIGINT and waits; sets `code` (the exit
+# status) and `elapsed_ms` (from the signal to the exit).
+interrupt_and_wait() {
+  start=$(date +%s%N)
+  kill -INT "$1"
+  wait "$1"
+  code=$?
+  elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+}
