@@ -123,14 +123,15 @@ QString selfContactWarning(const QString& slot, const QuadMesh& mesh, const Self
       .arg(slot).arg(1000.0 * mean_edge, 0, 'f', 1).arg(1000.0 * reach, 0, 'f', 1);
 }
 
-/// A run stopped before its first frame, in its set-up (building the
-/// model, factorising its system: 5.5 s at 175k vertices, 45 s at 700k).
-Error setupCancelled(const QString& slot, int frames) {
-  return Error(QStringLiteral("%1: cancelled while setting up, before the first of %2 frames; nothing was written")
-                   .arg(slot).arg(frames).toStdString());
-}
-
 }  // namespace
+
+void MultiresClothPlugin::stopInSetUp(const QString& slot, int frames) {
+  // Said as a warning too: an interrupted script's error is not shown.
+  const QString text = QStringLiteral("%1: cancelled while setting up, before the first of %2 frames; nothing was written")
+                           .arg(slot).arg(frames);
+  warn(text);
+  throw Error(text.toStdString());
+}
 
 template <class Body>
 auto MultiresClothPlugin::guarded(const char* slot, Body&& body) -> decltype(body()) {
@@ -170,10 +171,13 @@ int MultiresClothPlugin::refineUniform(QVariant id, QVariant levels) {
       job.progress(done);
       return !cancelRequested();
     });
-    if (!complete)
-      throw Error(QStringLiteral("refineUniform: cancelled after %1 of %2 steps; %3 is unchanged and no object "
-                                 "was added")
-                      .arg(steps_done).arg(steps).arg(describeObject(input)).toStdString());
+    if (!complete) {
+      const QString text = QStringLiteral("refineUniform: cancelled after %1 of %2 steps; %3 is unchanged and no object "
+                                          "was added")
+                               .arg(steps_done).arg(steps).arg(describeObject(input));
+      emit log(LOGWARN, text);  // an interrupted script's error is not shown
+      throw Error(text.toStdString());
+    }
     const double milliseconds = millisecondsSince(timer);
     if (steps_done < steps) job.done();  // (levels 0: no step; the callback reported the last otherwise)
 
@@ -428,7 +432,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                     .arg(request.pinsText).arg(settings.colliders.size()),
                 settings.frames);
     std::optional<DynamicsModel> built = build_dynamics(*input.mesh, request.dynamics, [&] { return !cancelRequested(); });
-    if (!built || cancelRequested()) throw setupCancelled(QStringLiteral("simulate"), settings.frames);
+    if (!built || cancelRequested()) stopInSetUp(QStringLiteral("simulate"), settings.frames);
     const DynamicsModel model = std::move(*built);
     emit log(LOGINFO, QStringLiteral("simulate: setting up: factorising the system of %1 unknowns (free vertices)")
                           .arg(model.free_mass.size()));
@@ -444,7 +448,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     const SimulationReport report = mrcloth::simulate(model, state, settings, {}, progress,
                                                       request.objSequence.isEmpty() ? nullptr : &frames);
     job.reset();
-    if (report.cancelled && report.frames == 0) throw setupCancelled(QStringLiteral("simulate"), settings.frames);
+    if (report.cancelled && report.frames == 0) stopInSetUp(QStringLiteral("simulate"), settings.frames);
     const bool complete = !report.cancelled && !report.non_finite;
 
     // Like the PC2 cache, the other outputs exist only for a complete run.
@@ -572,9 +576,13 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
                           "than the " + std::to_string(modes.modes) + " clusters asked for (a cache with no bending, "
                           "or of a still garment?); expected clusters at most that many (" + error.what() + ")");
     }
-    if (report.cancelled)
-      throw Error("extractModes: cancelled during clustering, after " + std::to_string(report.restarts_done) + " of " +
-                  std::to_string(modes.restarts) + " restarts; the modes are unchanged");
+    if (report.cancelled) {
+      const QString text = QStringLiteral("extractModes: cancelled during clustering, after %1 of %2 restarts; the modes "
+                                          "are unchanged")
+                               .arg(report.restarts_done).arg(modes.restarts);
+      emit log(LOGWARN, text);  // an interrupted script's error is not shown
+      throw Error(text.toStdString());
+    }
     // The computed modes become the mesh's mode layer (what refineAdaptive
     // reads) and its computed layer (what eraseModes goes back to); the
     // features stay as layers for threshold brushes and exports.
@@ -958,7 +966,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                   .arg(QString::fromStdString(request.dynamics.material.name), request.pinsText),
               preroll_frames + run_frames);
   const auto stop_if_cancelled = [&] {
-    if (cancelRequested()) throw setupCancelled(slot, preroll_frames + run_frames);
+    if (cancelRequested()) stopInSetUp(slot, preroll_frames + run_frames);
   };
 
   // The garment in the skeleton's rest space (on the skinned body, moved
@@ -971,7 +979,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                      "out (at most %3 mm) before the run")
                           .arg(slot).arg(placed.clearance.moved).arg(1000.0 * placed.clearance.largest_move, 0, 'f', 1));
   std::optional<DynamicsModel> built = build_dynamics(*garment, request.dynamics, [&] { return !cancelRequested(); });
-  if (!built || cancelRequested()) throw setupCancelled(slot, preroll_frames + run_frames);
+  if (!built || cancelRequested()) stopInSetUp(slot, preroll_frames + run_frames);
   const DynamicsModel model = std::move(*built);
   ClothState state = rest_state(model);
   const CharacterRunOptions run = character_run_options(character, wanted.setup, model, request.simulation);
@@ -998,7 +1006,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
                                                           request.objSequence.isEmpty() ? nullptr : &frames);
   job.reset();
   if (report.motion.cancelled && report.preroll.frames == 0 && report.motion.frames == 0)
-    throw setupCancelled(slot, preroll_frames + run_frames);
+    stopInSetUp(slot, preroll_frames + run_frames);
   const SimulationReport& motion_report = report.motion;
   const bool complete = !motion_report.cancelled && !motion_report.non_finite;
 

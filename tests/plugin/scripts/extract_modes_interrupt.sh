@@ -34,6 +34,7 @@ failed=0
 # Generous for a loaded machine: it took 34 s before the restarts were the job's steps.
 [ "$elapsed_ms" -le 5000 ] || { echo "the host took $elapsed_ms ms to stop, expected at most 5000"; failed=1; }
 grep -q '^\[job\] extractModes: stopped at [0-9]*/10000' "$tmp/stderr" || { echo "no 'stopped at' job line"; failed=1; }
+grep -q '^\[warn\] extractModes: cancelled during clustering, after [0-9]* of 10000 restarts; the modes are unchanged' "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
 grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
 grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }
 [ "$failed" -eq 0 ] && echo "extract modes interrupt: ok ($elapsed_ms ms)"

@@ -30,6 +30,7 @@ failed=0
 # Generous: the longest phase (the bend pairs) takes 0.8 s here.
 [ "$elapsed_ms" -le 5000 ] || { echo "the host took $elapsed_ms ms to stop, expected at most 5000"; failed=1; }
 grep -q '^\[job\] simulate: stopped at 0/1000' "$tmp/stderr" || { echo "not stopped before the first frame"; failed=1; }
+grep -q '^\[warn\] simulate: cancelled while setting up, before the first of 1000 frames; nothing was written' "$tmp/stderr" || { echo "no cancel warning"; failed=1; }
 grep -q 'interrupted (SIGINT)' "$tmp/stderr" || { echo "no interrupt error"; failed=1; }
 grep -q 'not reached' "$tmp/stdout" && { echo "the script went on after Ctrl-C"; failed=1; }
 leftovers=$(ls -A "$tmp" | grep -v -e '^stdout$' -e '^stderr$' -e '^large_simulation\.js$')
