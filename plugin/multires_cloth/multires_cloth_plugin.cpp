@@ -478,7 +478,7 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
                                        "it is pushed out on the first step, which stretches it: move the "
                                        "colliders or the garment so they start apart")
                             .arg(1000.0 * report.initial_penetration, 0, 'f', 1));
-    const QString pinned_warning = pinnedDepthWarning(QStringLiteral("simulate"), report);
+    const QString pinned_warning = pinnedDepthWarning(QStringLiteral("simulate"), report, request);
     if (!pinned_warning.isEmpty()) warn(pinned_warning);
     if (report.cancelled)
       warn(QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
@@ -852,10 +852,12 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
   // 90, silently (the report's stepRate said so, after the run).
   const int substeps = steps_per_frame(run);
   if (std::abs(substeps * run.fps - run.step_rate) > 1e-9 * run.step_rate)
-    lines.push_back({LOGWARN, QStringLiteral("%1: option 'stepRate' %2 is no whole number of steps per output frame at "
-                                             "%3 fps: the run takes %4 a frame, %5 steps per second (a stepRate that "
-                                             "is a multiple of fps keeps the rate asked for)")
-                                  .arg(slot).arg(run.step_rate).arg(run.fps).arg(substeps).arg(substeps * run.fps)});
+    lines.push_back({LOGWARN, QStringLiteral("%1: %2 %3 is no whole number of steps per output frame at %4 fps: the "
+                                             "run takes %5 a frame, %6 steps per second (a step rate that is a "
+                                             "multiple of %7 keeps the rate asked for)")
+                                  .arg(slot, optionCalled(request, QStringLiteral("stepRate"))).arg(run.step_rate)
+                                  .arg(run.fps).arg(substeps).arg(substeps * run.fps)
+                                  .arg(optionCalled(request, QStringLiteral("fps")))});
   // A pre-roll too short for the way from the rest pose to the first frame
   // moves the legs faster than any stride: cloth on them tears.
   if (const double speed = preroll_leg_speed(motion, run); speed > kPrerollLegSpeedWarning) {
@@ -864,10 +866,11 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
     const double enough = preroll_leg_speed(motion, one_second) / kPrerollLegSpeedWarning;  // seconds (speed ~ 1 / pre-roll)
     lines.push_back({LOGWARN, QStringLiteral("%1: the pre-roll of %2 s moves the legs from the rest pose to the motion's "
                                      "first frame %3 (a walk's feet: about 4 m/s): cloth on them may tear; "
-                                     "option 'preroll' %4 s or more keeps them under %5 m/s")
+                                     "%4 %5 s or more keeps them under %6 m/s")
                           .arg(slot).arg(run.preroll_seconds)
                           .arg(std::isfinite(speed) ? QStringLiteral("at up to %1 m/s").arg(speed, 0, 'f', 1)
                                                     : QStringLiteral("in one step"))
+                          .arg(optionCalled(request, QStringLiteral("preroll")))
                           .arg(std::ceil(100.0 * enough) / 100.0, 0, 'f', 2).arg(kPrerollLegSpeedWarning, 0, 'f', 0)});
   }
   // A glitch or jitter in the capture, within the frames the run plays.
@@ -1050,7 +1053,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
 
   // Like the fit, where the pins go is the garment's and the motion's, the
   // same for every refinement of one garment (the pipeline says it once).
-  const QString pinned_warning = pinnedDepthWarning(slot, motion_report);
+  const QString pinned_warning = pinnedDepthWarning(slot, motion_report, request);
   if (!pinned_warning.isEmpty() && request.character->fitWarning) warn(pinned_warning);
   // Where the garment starts is its own and the body's, the same for every
   // refinement of it, so it is said with the fit (the pipeline: once per
@@ -1240,6 +1243,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "pinsYield: bool = true (a pin whose target lies below a body's surface is moved out onto it for the step, "
             "as a thigh pushes a waistband; false: pins exactly at their targets, inside a body or not), "
             "collisionRounds: int >= 1 = 8 (rounds of strain limiting and collision checks per step, at most), "
+            "optionNames: {option: string} (how the run's warnings name these options, for a tool that takes them "
+            "under names of its own, e.g. {stepRate: \"--step-rate\"}; \"\": one the tool does not offer, whose "
+            "advice is left out), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
             "before the point is checked against the body again), selfContact: false | thickness m in [0, 0.02] | "
             "{thickness, neighbourhood: m in [0, 0.1] = 2 (thickness + 0.01)} = false (cloth-cloth contact: layers kept "

@@ -293,7 +293,7 @@ QStringList simulationOptionKeys() {
                      QStringLiteral("alphaBend"), QStringLiteral("bendModel"), QStringLiteral("gravity"),     QStringLiteral("pins"),
                      QStringLiteral("colliders"), QStringLiteral("output"),      QStringLiteral("objSequence"),
                      QStringLiteral("updateObject"), QStringLiteral("selfContact"), QStringLiteral("threads")} +
-         characterOptionKeys();
+         characterOptionKeys() + QStringList{QStringLiteral("optionNames")};
 }
 
 SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh, SimulationCall call) {
@@ -426,7 +426,21 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   }
   requireDistinctOutputs(output, request.character ? request.character->bodyOutput : QString(), request.objSequence,
                          sim.frames);
+  if (fields.has(QStringLiteral("optionNames"))) {
+    const QStringList known = simulationOptionKeys();
+    const Fields names(fields.required(QStringLiteral("optionNames")), QStringLiteral("optionNames"), known);
+    for (const QString& key : known)
+      if (names.has(key)) {
+        const QVariant name = names.required(key);
+        if (name.typeId() != QMetaType::QString) script::toString(name, names.label(key));  // refused with its type
+        request.optionNames.insert(key, name.toString());
+      }
+  }
   return request;
+}
+
+QString optionCalled(const SimulationRequest& request, const QString& key) {
+  return request.optionNames.contains(key) ? request.optionNames.value(key) : QStringLiteral("option '%1'").arg(key);
 }
 
 QString stretchSummary(const SimulationReport& report) {
@@ -446,18 +460,23 @@ QString penetrationSummary(const SimulationReport& report) {
   return text;
 }
 
-QString pinnedDepthWarning(const QString& slot, const SimulationReport& report) {
+QString pinnedDepthWarning(const QString& slot, const SimulationReport& report, const SimulationRequest& request) {
+  const QString pins_yield = optionCalled(request, QStringLiteral("pinsYield"));
   if (report.max_pinned_depth > 1e-3)
     return QStringLiteral("%1: pinned vertices went %2 mm below the body's surface (deepest at output frame %3): with "
-                          "pinsYield false pins stay on their targets, so the body overlaps the pinned rim there (the "
-                          "cloth's own deepest: %4 mm below)")
+                          "%4 false pins stay on their targets, so the body overlaps the pinned rim there (the "
+                          "cloth's own deepest: %5 mm below)")
         .arg(slot).arg(1000.0 * report.max_pinned_depth, 0, 'f', 1).arg(report.pinned_depth_frame)
+        .arg(pins_yield.isEmpty() ? QStringLiteral("pins that do not yield") : pins_yield)
         .arg(1000.0 * report.max_cloth_depth, 0, 'f', 1);
   if (report.max_pin_yield > 1e-3)
     return QStringLiteral("%1: the body overlapped the pins' targets by up to %2 mm (output frame %3): those pins were "
-                          "moved out onto its surface, off the targets what drives them gave (pinsYield: false keeps "
-                          "them there, inside the body)")
-        .arg(slot).arg(1000.0 * report.max_pin_yield, 0, 'f', 1).arg(report.pin_yield_frame);
+                          "moved out onto its surface, off the targets what drives them gave%4")
+        .arg(slot).arg(1000.0 * report.max_pin_yield, 0, 'f', 1).arg(report.pin_yield_frame)
+        .arg(pins_yield.isEmpty() ? QString()
+             : request.optionNames.contains(QStringLiteral("pinsYield"))
+                 ? QStringLiteral(" (%1 false keeps them there, inside the body)").arg(pins_yield)
+                 : QStringLiteral(" (pinsYield: false keeps them there, inside the body)"));
   return {};
 }
 

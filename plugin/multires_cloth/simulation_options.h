@@ -9,6 +9,7 @@
 #include "solver/dynamics_model.h"
 #include "solver/simulate.h"
 
+#include <QHash>
 #include <QString>
 #include <QStringList>
 #include <QVariant>
@@ -30,7 +31,15 @@ struct SimulationRequest {
   QString objSequence;           ///< OBJ sequence prefix; empty: none
   bool updateObject = false;     ///< store the last frame as a new object
   std::optional<CharacterRequest> character;  ///< set when `motion` is given: a run on a character
+  /// optionNames: how the run's warnings name its options, for a tool that
+  /// takes them under names of its own (the pipeline's flags); "" for one
+  /// the tool does not offer (advice to set it is left out).
+  QHash<QString, QString> optionNames;
 };
+
+/// How `request`'s warnings name option `key`: "option 'key'", or the name
+/// optionNames gives it ("" when the caller offers no such option).
+QString optionCalled(const SimulationRequest& request, const QString& key);
 
 /// The keys simulate's options object accepts, in the order the errors list
 /// them: the plain simulation's, then the character's (characterOptionKeys).
@@ -79,6 +88,6 @@ QString penetrationSummary(const SimulationReport& report);
 /// The warning for pins a collider overlapped by more than a millimetre:
 /// below its surface (pinsYield false) or moved out onto it, off their
 /// targets; or an empty string. `slot` starts the message.
-QString pinnedDepthWarning(const QString& slot, const SimulationReport& report);
+QString pinnedDepthWarning(const QString& slot, const SimulationReport& report, const SimulationRequest& request);
 
 }  // namespace mrcloth

@@ -848,7 +848,9 @@ function runPipeline(options, inputs) {
                                                    : {preset: options.material, bendStiffness: options.bendStiffness};
   const characterSettings = (frames) => Object.assign(
       {body: body, place: options.place, frames: frames, fps: options.fps, preroll: options.preroll,
-       material: material, tNodeSag: options.tNodeSag, threads: options.threads},
+       material: material, tNodeSag: options.tNodeSag, threads: options.threads,
+       // The runs' warnings name this command's flags, not simulate's options.
+       optionNames: {stepRate: "--step-rate", fps: "--fps", preroll: "--preroll", pinsYield: ""}},
       options.stepRate === null ? {} : {stepRate: options.stepRate},
       options.newtonCg === 0 ? {} : {newtonCg: options.newtonCg},
       options.bendModel === "distance" ? {} : {bendModel: options.bendModel},

@@ -117,6 +117,15 @@ expectThrows(sim({motion: walk, substeps: 4}), "ArgumentError", "option 'substep
   const whole = multirescloth.simulate(skirt, {motion: walk, body: "capsules", place: "firstFrame", fps: 30,
                                                stepRate: 120, preroll: 0.1, frames: 1});
   expectEqual(whole.warnings.some(w => w.includes("stepRate")), false, "no warning at a multiple of fps");
+  // A tool that takes the options under its own names has its warnings use them.
+  const named = multirescloth.simulate(skirt, {motion: walk, body: "capsules", place: "firstFrame", fps: 90,
+                                               stepRate: 120, preroll: 0.1, frames: 1,
+                                               optionNames: {stepRate: "--step-rate", fps: "--fps"}});
+  expectEqual(named.warnings.some(w => w.includes("simulate: --step-rate 120 is no whole number of steps per output " +
+                                                  "frame at 90 fps") && w.includes("a multiple of --fps keeps")),
+              true, "the warning in the tool's names: " + JSON.stringify(named.warnings));
+  expectThrows(sim({optionNames: {stepRat: "--step-rate"}}), "ArgumentError", "unknown option 'stepRat' in option 'optionNames'");
+  expectThrows(sim({optionNames: {stepRate: 3}}), "ArgumentError", "optionNames.stepRate");
 }
 
 // Character options without a motion.

@@ -35,6 +35,11 @@ grep -q "; 5 of its 5 simulations warned (its Warnings section)" "$tmp/warned.ou
   fail "warned run's summary: $(cat "$tmp/warned.out")"
 grep -q "^- multires_d5 on walk_new: simulate: the pre-roll of 0.02 s moves the legs" "$tmp/warned/report.md" ||
   fail "warned run's report.md has no such warning"
+# The warnings give this command's flags, not simulate's option names.
+grep -q "cloth on them may tear; --preroll 0.0[0-9] s or more keeps them under" "$tmp/warned.err" ||
+  fail "the pre-roll warning does not name --preroll: $(cat "$tmp/warned.err")"
+grep -q "option 'preroll'\|option 'stepRate'\|pinsYield" "$tmp/warned.err" "$tmp/warned/report.md" &&
+  fail "a warning names simulate's options: $(grep "option 'preroll'\|option 'stepRate'\|pinsYield" "$tmp/warned.err")"
 
 # 1c. A motion named with a space, "|", "]", "<!--" and "*": report.md
 # escapes it in tables, headings and alt text (a "<!--" hid the rest of
