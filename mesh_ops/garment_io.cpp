@@ -408,12 +408,9 @@ void require_line_text(const std::string& path, const std::string& text) {
                                      "line ends LF or CR LF"));
 }
 
-TextScan scan_obj(const std::string& path, std::istream& in) {
-  std::ostringstream whole;
-  whole << in.rdbuf();
-  require_line_text(path, whole.str());
-  std::string reader_text = obj_text_for_reader(whole.str());
-  std::istringstream lines(reader_text.empty() ? whole.str() : reader_text);
+TextScan scan_obj(const std::string& path, const std::string& text) {
+  std::string reader_text = obj_text_for_reader(text);
+  std::istringstream lines(reader_text.empty() ? text : reader_text);
   TextScan scan = scan_obj_lines(path, lines);
   scan.text_for_reader = std::move(reader_text);
   return scan;
@@ -575,21 +572,17 @@ TextScan scan_ply(const std::string& path, std::istream& in) {
 TextScan scan_text(const std::string& path, Format format) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
-  if (format == Format::off) {
-    // The OFF scan reads lines as OBJ's does; a binary OFF's header is a line too.
-    std::ostringstream whole;
-    whole << in.rdbuf();
-    require_line_text(path, whole.str());
-    in.clear();
-    in.seekg(0);
-  }
-  switch (format) {
-    case Format::obj: return scan_obj(path, in);
-    case Format::off: return scan_off(path, in);
-    case Format::ply: return scan_ply(path, in);
-    case Format::om: break;
-  }
-  return {};
+  if (format == Format::ply) return scan_ply(path, in);
+  if (format != Format::obj && format != Format::off) return {};
+  // Both scans read lines (a binary OFF's header is a line too): the text
+  // is read once and checked to be lines first.
+  std::ostringstream whole;
+  whole << in.rdbuf();
+  const std::string text = whole.str();
+  require_line_text(path, text);
+  if (format == Format::obj) return scan_obj(path, text);
+  std::istringstream lines(text);
+  return scan_off(path, lines);
 }
 
 /// True when the scan read the same vertices OpenMesh did, up to float rounding.
@@ -1025,12 +1018,11 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   const double scale = metres_per_unit(options.units);
   const std::string extension = lower_extension(path);
   const std::optional<Format> format = format_of(extension);
-  // A folder or a missing file is that, whatever its name says.
-  if (std::error_code error; fs::is_directory(path, error)) require_input_file(path);
+  // A folder, a missing or an empty file is that, whatever its name says.
+  require_input_file(path);
   if (!format)
     throw InputError(with_path(path, "unknown mesh format (extension " + shown_extension(extension) +
                                          "); expected one of .obj, .off, .ply, .om"));
-  require_input_file(path);
 
   const TextScan scan = *format == Format::om ? TextScan{} : scan_text(path, *format);
 
