@@ -51,11 +51,10 @@ void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog&
   log.raw(QStringLiteral("%1:%2: uncaught (in promise) %3")
               .arg(withoutFileScheme(reason.property(QStringLiteral("fileName")).toString()),
                    reason.property(QStringLiteral("lineNumber")).toString(), reason.toString()));
-  QStringList frames = reason.property(QStringLiteral("stack")).toString().split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+  QStringList frames = withoutSlotGuardFrames(
+      reason.property(QStringLiteral("stack")).toString().split(QLatin1Char('\n'), Qt::SkipEmptyParts));
   frames.erase(std::remove_if(frames.begin(), frames.end(),
-                              [](const QString& frame) {
-                                return frame.contains(PromiseJobs::kTrackingFile) || frame.contains(kSlotGuardFile);
-                              }),
+                              [](const QString& frame) { return frame.contains(PromiseJobs::kTrackingFile); }),
                frames.end());
   if (frames.size() < 2) return;
   for (const QString& frame : frames) {

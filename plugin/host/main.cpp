@@ -53,8 +53,6 @@ void printApi(const ScriptCore& core, const PluginRegistry& plugins, const HostL
   for (const QString& problem : problems) log.warn(problem);
 }
 
-/// Makes `object` a global of the script engine. The engine must not delete
-/// it: core lives on main's stack and plugins belong to their loaders.
 /// Started with stdin, stdout or stderr closed (daemons, some schedulers),
 /// the next file the host opened would take that descriptor, and log lines
 /// meant for stderr would be written into it (a PC2 cache was). /dev/null

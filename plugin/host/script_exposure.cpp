@@ -32,6 +32,8 @@ QJSValue parameterLimits(QJSEngine& engine, const QObject& object) {
 }  // namespace
 
 void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
+  // The engine must not delete it: core lives on main's stack and plugins
+  // belong to their loaders.
   QJSEngine::setObjectOwnership(object, QJSEngine::CppOwnership);
   // A proxy, so that everything else (signals, properties) reads through.
   static const char* const kGuard = R"JS(
