@@ -91,36 +91,33 @@ QString describeValue(const QVariant& value) {
   return QStringLiteral("a value of type %1").arg(QString::fromLatin1(value.metaType().name()));
 }
 
-int toInt(const QVariant& value, const QString& what) {
+namespace {
+
+/// The value as a whole number (a double: it may be beyond int), or the
+/// type error every integer option gives.
+double wholeNumber(const QVariant& value, const QString& what) {
   if (!isNumber(value)) failType(what, QStringLiteral("an integer"), value);
   const double number = value.toDouble();
   if (!std::isfinite(number) || number != std::floor(number)) failType(what, QStringLiteral("an integer"), value);
-  // A whole number beyond 32 bits is an integer, just too large to be one here.
-  if (number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
-    fail(QStringLiteral("%1 must be an integer from %2 to %3, got %4")
-             .arg(what)
-             .arg(std::numeric_limits<int>::min())
-             .arg(std::numeric_limits<int>::max())
-             .arg(describeValue(value)));
-  return static_cast<int>(number);
-}
-
-int toIntAtLeast(const QVariant& value, const QString& what, int minimum) {
-  if (isNumber(value) && value.toDouble() > std::numeric_limits<int>::max())
-    return toIntBetween(value, what, minimum, std::numeric_limits<int>::max());
-  // Below int too: below the minimum, which is what to say.
-  if (isNumber(value) && value.toDouble() < std::numeric_limits<int>::min() && value.toDouble() == std::floor(value.toDouble()))
-    fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(describeValue(value)));
-  const int number = toInt(value, what);
-  if (number < minimum)
-    fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(number));
   return number;
 }
 
+}  // namespace
+
+int toInt(const QVariant& value, const QString& what) {
+  // A whole number beyond 32 bits is an integer, just too large to be one here.
+  return toIntBetween(value, what, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+}
+
+int toIntAtLeast(const QVariant& value, const QString& what, int minimum) {
+  const double number = wholeNumber(value, what);
+  if (number < minimum)
+    fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(number, 0, 'f', 0));
+  return toIntBetween(value, what, minimum, std::numeric_limits<int>::max());
+}
+
 int toIntBetween(const QVariant& value, const QString& what, int minimum, int maximum) {
-  if (!isNumber(value)) failType(what, QStringLiteral("an integer"), value);
-  const double number = value.toDouble();
-  if (!std::isfinite(number) || number != std::floor(number)) failType(what, QStringLiteral("an integer"), value);
+  const double number = wholeNumber(value, what);
   if (number < minimum || number > maximum)
     fail(QStringLiteral("%1 must be an integer from %2 to %3, got %4")
              .arg(what).arg(minimum).arg(maximum).arg(describeValue(value)));
