@@ -125,12 +125,17 @@ QString selfContactWarning(const QString& slot, const QuadMesh& mesh, const Self
 
 }  // namespace
 
-void MultiresClothPlugin::stopInSetUp(const QString& slot, int frames) {
+void MultiresClothPlugin::stopCancelled(const QString& text) {
   // Said as a warning too: an interrupted script's error is not shown.
+  emit log(LOGWARN, text);
+  throw Error(text.toStdString());
+}
+
+void MultiresClothPlugin::stopInSetUp(const QString& slot, int frames) {
   const QString text = QStringLiteral("%1: cancelled while setting up, before the first of %2 frames; nothing was written")
                            .arg(slot).arg(frames);
-  warn(text);
-  throw Error(text.toStdString());
+  run_warnings_ << text;  // kept with the run's warnings, as warn() keeps them
+  stopCancelled(text);
 }
 
 template <class Body>
@@ -171,13 +176,9 @@ int MultiresClothPlugin::refineUniform(QVariant id, QVariant levels) {
       job.progress(done);
       return !cancelRequested();
     });
-    if (!complete) {
-      const QString text = QStringLiteral("refineUniform: cancelled after %1 of %2 steps; %3 is unchanged and no object "
-                                          "was added")
-                               .arg(steps_done).arg(steps).arg(describeObject(input));
-      emit log(LOGWARN, text);  // an interrupted script's error is not shown
-      throw Error(text.toStdString());
-    }
+    if (!complete)
+      stopCancelled(QStringLiteral("refineUniform: cancelled after %1 of %2 steps; %3 is unchanged and no object was added")
+                        .arg(steps_done).arg(steps).arg(describeObject(input)));
     const double milliseconds = millisecondsSince(timer);
     if (steps_done < steps) job.done();  // (levels 0: no step; the callback reported the last otherwise)
 
@@ -576,13 +577,10 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
                           "than the " + std::to_string(modes.modes) + " clusters asked for (a cache with no bending, "
                           "or of a still garment?); expected clusters at most that many (" + error.what() + ")");
     }
-    if (report.cancelled) {
-      const QString text = QStringLiteral("extractModes: cancelled during clustering, after %1 of %2 restarts; the modes "
-                                          "are unchanged")
-                               .arg(report.restarts_done).arg(modes.restarts);
-      emit log(LOGWARN, text);  // an interrupted script's error is not shown
-      throw Error(text.toStdString());
-    }
+    if (report.cancelled)
+      stopCancelled(QStringLiteral("extractModes: cancelled during clustering, after %1 of %2 restarts; the modes are "
+                                   "unchanged")
+                        .arg(report.restarts_done).arg(modes.restarts));
     // The computed modes become the mesh's mode layer (what refineAdaptive
     // reads) and its computed layer (what eraseModes goes back to); the
     // features stay as layers for threshold brushes and exports.

@@ -87,6 +87,9 @@ class MultiresClothPlugin : public QObject,
   /// model, factorising its system: 5.5 s at 175k vertices, 45 s at 700k):
   /// says so as a warning and throws.
   [[noreturn]] void stopInSetUp(const QString& slot, int frames);
+  /// Logs `text` as a warning (an interrupted script's error is not shown)
+  /// and throws it: a long call stopped by Ctrl-C.
+  [[noreturn]] void stopCancelled(const QString& text);
 
   ObjectStore* store_ = nullptr;
   QVariantMap last_report_;
