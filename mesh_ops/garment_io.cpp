@@ -218,6 +218,11 @@ struct TextScan {
   bool binary = false;                  ///< binary OFF/PLY: OpenMesh's values are all there is
   std::vector<OpenMesh::Vec3d> points;  ///< in file order, unscaled
   FaceProblem face_problem;             ///< OBJ only
+  /// OBJ only: a face has a corner without a vertex index ("/2"), which
+  /// OpenMesh's reader (built with assertions, as Debian's is) aborts the
+  /// process on; face_problem (that face's or an earlier one's) is thrown
+  /// before the reader runs.
+  bool reader_would_abort = false;
   ElementLines lines;                   ///< OBJ and ASCII OFF: each vertex's and face's line
   /// OBJ only: the `vt` lines, and per face its corners' (vertex, texture
   /// coordinate) indices from 0 (-1: the corner names none); `uv_readable`
@@ -359,6 +364,8 @@ TextScan scan_obj_lines(const std::string& path, std::istream& in) {
       scan.lines.face.push_back(line_number);
       scan.face_corners.push_back(obj_face_corners(words, static_cast<long>(scan.points.size()),
                                                    static_cast<long>(scan.texcoords.size()), scan.uv_readable));
+      for (std::size_t k = 1; k < words.size(); ++k)
+        if (words[k].front() == '/') scan.reader_would_abort = true;
       if (scan.face_problem.found()) continue;
       if (std::string issue = obj_face_issue(words, static_cast<long>(scan.points.size()), scan.lines); !issue.empty())
         scan.face_problem = {face, face_label(face) + at_line(line_number) + issue};
@@ -480,10 +487,32 @@ TextScan scan_off(const std::string& path, std::istream& in) {
     scan.points.push_back(parse_point(path, lines[v].second, 0, v, at_line(lines[v].first)));
     scan.lines.vertex.push_back(lines[v].first);
   }
-  for (std::size_t f = 0; f < counts[1]; ++f) scan.lines.face.push_back(lines[counts[0] + f].first);
+  for (std::size_t f = 0; f < counts[1]; ++f) {
+    const auto& [face_line, face_words] = lines[counts[0] + f];
+    scan.lines.face.push_back(face_line);
+    // OpenMesh takes the first number as the corner count and reads that
+    // many indices on, across lines: a huge count reserves memory without
+    // bound, a wrong one reads the faces after it askew.
+    std::size_t corners = 0;
+    const std::string& count = face_words[0];
+    const auto [stop, error] = std::from_chars(count.data(), count.data() + count.size(), corners);
+    if (error != std::errc() || stop != count.data() + count.size() || corners + 1 > face_words.size())
+      throw InputError(with_path(path, face_label(static_cast<long>(f)) + at_line(face_line) + " starts with '" +
+                                           count + "' and lists " + std::to_string(face_words.size() - 1) +
+                                           " numbers after it; expected its corner count, then that many vertex "
+                                           "indices (then, optionally, a colour)"));
+  }
   scan.understood = true;
   scan.text_for_reader = std::move(cleaned);
   return scan;
+}
+
+/// One of the scalar types a PLY header may name.
+bool ply_type(const std::string& word) {
+  static const char* const types[] = {"char",  "uchar",  "short",  "ushort", "int",    "uint",  "float",
+                                      "double", "int8",  "uint8", "int16",  "uint16", "int32", "uint32",
+                                      "float32", "float64"};
+  return std::find(std::begin(types), std::end(types), word) != std::end(types);
 }
 
 /// ASCII PLY: the x, y, z properties of the "vertex" element.
@@ -503,7 +532,9 @@ TextScan scan_ply(const std::string& path, std::istream& in) {
   if (!std::getline(in, line) || split_words(line) != std::vector<std::string>{"ply"}) return scan;
   bool ascii = false;
   bool header_done = false;
+  std::size_t line_number = 1;
   while (std::getline(in, line)) {
+    ++line_number;
     const std::vector<std::string> words = split_words(line);
     if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
     if (words[0] == "end_header") {
@@ -518,8 +549,22 @@ TextScan scan_ply(const std::string& path, std::istream& in) {
       const auto [stop, error] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.count);
       if (error != std::errc() || stop != words[2].data() + words[2].size()) return scan;
       elements.push_back(element);
-    } else if (words[0] == "property" && !elements.empty() && words.size() >= 3) {
-      elements.back().properties.push_back({words.back(), words[1] == "list"});
+    } else if (words[0] == "property" && elements.empty()) {
+      // OpenMesh's PLY reader crashes on it.
+      throw InputError(with_path(path, "the PLY header's property" + at_line(line_number) +
+                                           " comes before any element; expected 'element <name> <count>' first"));
+    } else if (words[0] == "property") {
+      // OpenMesh's PLY reader loops for ever on a type it does not know.
+      const bool list = words.size() > 1 && words[1] == "list";
+      const std::size_t types = list ? 2 : 1, first_type = list ? 2 : 1;
+      bool known = words.size() == first_type + types + 1;
+      for (std::size_t k = first_type; known && k < first_type + types; ++k) known = ply_type(words[k]);
+      if (!known)
+        throw InputError(with_path(path, "the PLY header's property" + at_line(line_number) + " is '" + line +
+                                             "'; expected 'property <type> <name>' or 'property list <count type> "
+                                             "<item type> <name>' with PLY's types (char, uchar, short, ushort, int, "
+                                             "uint, float, double, or int8 ... float64)"));
+      elements.back().properties.push_back({words.back(), list});
     }
   }
   // OpenMesh's PLY reader never returns from a header without its end.
@@ -1044,6 +1089,10 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
     check_om_structure(path, om_bytes);
   }
 
+  // The reader would abort the process on this file: the scan's first face
+  // problem is the message (the importer's manifold checks, which might
+  // have named an earlier face, cannot run).
+  if (scan.reader_would_abort) throw InputError(with_path(path, scan.face_problem.text));
   CheckingImporter importer(mesh, scan.lines);
   OpenMesh::IO::Options io_options;
   bool read = false;

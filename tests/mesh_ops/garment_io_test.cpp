@@ -446,6 +446,19 @@ TEST(GarmentLoadErrors, VertexIndexOutOfRange) {
                     "face 1 refers to vertex 12 (counted from 0), which does not exist (the file has 4 vertices)");
 }
 
+/// OpenMesh's OBJ reader aborts the process (an assertion Debian's build
+/// keeps) on a face whose first corner has no vertex index: refused first.
+TEST(GarmentLoadErrors, ACornerWithoutAVertexIndexIsRefusedBeforeTheReaderAborts) {
+  ScratchDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  for (const std::string face : {"f /1 2 3 4", "f /1/1 2 3 4", "f /1", "f 1 2 3 /4"})
+    EXPECT_LOAD_ERROR(write_file(dir.file("slash.obj"), vertices + "f 1 2 3 4\n" + face + "\n"),
+                      "face 1 (line 6) has a corner that is not a vertex index ('/");
+  // An earlier problem the scan sees is still the one named.
+  EXPECT_LOAD_ERROR(write_file(dir.file("earlier.obj"), vertices + "f 1 2 3 9\nf /1 2 3 4\n"),
+                    "face 0 (line 5) refers to vertex 9");
+}
+
 TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
   ScratchDir dir;
   // Face 1 repeats a vertex (seen by the OBJ scan), face 2 is out of range.
