@@ -1,0 +1,197 @@
+#pragma once
+// Seeded edits of a valid input file, for the readers' robustness tests: a
+// reader given any of them must either read it (and what it returns must
+// hold the reader's own promises) or throw its typed error naming the file.
+// Byte edits find what a damaged download does; token edits put the values a
+// hand-edited or foreign file holds (nan, 1e309, counts beyond int, negative
+// indices) where numbers stood, which random bytes almost never spell.
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+
+namespace mrcloth::test {
+
+/// Caps this process's address space at 4 GiB, so that a reader reserving
+/// memory without bound for a mutated count fails its test (std::bad_alloc
+/// instead of InputError) instead of taking the machine's memory from the
+/// tests beside it. Not under AddressSanitizer, which reserves terabytes
+/// of shadow and reports such allocations itself.
+inline void bound_memory() {
+#if !defined(__SANITIZE_ADDRESS__)
+  const rlimit limit{rlim_t{4} << 30, rlim_t{4} << 30};
+  setrlimit(RLIMIT_AS, &limit);
+#endif
+}
+
+/// Values that are numbers to a lenient reader and trouble to a strict one.
+inline const std::vector<std::string>& hostile_numbers() {
+  static const std::vector<std::string> tokens = {
+      "nan",  "-nan", "NaN",        "inf",        "-inf",       "infinity",    "1e309",   "-1e309", "3.5e38",
+      "1e38", "0",    "-0",         "-1",         "-2",         "2147483647",  "2147483648", "-2147483649",
+      "4294967296", "99999999999999999999", "0x10", "1e-320", "1.5",      "+",           "-",       ".",
+      "1e",   "e5",   "",           "00",         "1,5"};
+  return tokens;
+}
+
+/// One to three edits of `text` drawn from `rng`: a byte replaced by one of
+/// `alphabet`, a span erased, a line deleted, repeated or swapped with
+/// another, a number replaced by or a hostile token inserted, or the text cut.
+class TextMutator {
+ public:
+  TextMutator(std::uint32_t seed, std::string alphabet) : rng_(seed), alphabet_(std::move(alphabet)) {}
+
+  std::string operator()(std::string text) {
+    const int edits = 1 + static_cast<int>(rng_() % 3);
+    for (int e = 0; e < edits && !text.empty(); ++e) edit(text);
+    return text;
+  }
+
+ private:
+  std::size_t below(std::size_t n) { return n == 0 ? 0 : rng_() % n; }
+
+  /// [begin, end) of each line, newline excluded.
+  static std::vector<std::pair<std::size_t, std::size_t>> lines(const std::string& text) {
+    std::vector<std::pair<std::size_t, std::size_t>> spans;
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+      const std::size_t end = std::min(text.find('\n', begin), text.size());
+      spans.emplace_back(begin, end);
+      begin = end + 1;
+    }
+    return spans;
+  }
+
+  /// [begin, end) of each run of characters a number can be made of.
+  static std::vector<std::pair<std::size_t, std::size_t>> numbers(const std::string& text) {
+    std::vector<std::pair<std::size_t, std::size_t>> spans;
+    const auto part = [](char c) { return (c >= '0' && c <= '9') || c == '.' || c == '-' || c == '+' || c == 'e'; };
+    for (std::size_t k = 0; k < text.size();) {
+      if (text[k] >= '0' && text[k] <= '9') {
+        std::size_t begin = k, end = k;
+        while (begin > 0 && part(text[begin - 1]) && text[begin - 1] != 'e') --begin;
+        while (end < text.size() && part(text[end])) ++end;
+        spans.emplace_back(begin, end);
+        k = end;
+      } else {
+        ++k;
+      }
+    }
+    return spans;
+  }
+
+  void edit(std::string& text) {
+    const auto& tokens = hostile_numbers();
+    switch (rng_() % 8) {
+      case 0:
+        text[below(text.size())] = alphabet_[below(alphabet_.size())];
+        break;
+      case 1:
+        text.erase(below(text.size()), 1 + below(8));
+        break;
+      case 2:
+      case 3: {
+        const auto spans = numbers(text);
+        if (spans.empty()) break;
+        const auto [begin, end] = spans[below(spans.size())];
+        text.replace(begin, end - begin, tokens[below(tokens.size())]);
+        break;
+      }
+      case 4:
+        text.insert(below(text.size() + 1), " " + tokens[below(tokens.size())] + " ");
+        break;
+      case 5: {
+        const auto spans = lines(text);
+        if (spans.empty()) break;
+        const auto [begin, end] = spans[below(spans.size())];
+        if (rng_() % 2) text.erase(begin, std::min(end + 1, text.size()) - begin);
+        else text.insert(begin, text.substr(begin, end - begin) + "\n");
+        break;
+      }
+      case 6: {
+        const auto spans = lines(text);
+        if (spans.size() < 2) break;
+        auto a = spans[below(spans.size())], b = spans[below(spans.size())];
+        if (a.first > b.first) std::swap(a, b);
+        if (a.first == b.first) break;
+        const std::string first = text.substr(a.first, a.second - a.first);
+        const std::string second = text.substr(b.first, b.second - b.first);
+        text.replace(b.first, b.second - b.first, first);
+        text.replace(a.first, a.second - a.first, second);
+        break;
+      }
+      default:
+        text.resize(below(text.size()));
+        break;
+    }
+  }
+
+  std::mt19937 rng_;
+  std::string alphabet_;
+};
+
+/// One to three edits of binary `bytes`: a byte flipped, a 32-bit word
+/// replaced by a hostile integer or float (0, -1, INT_MAX, 2^31, NaN,
+/// infinity, FLT_MAX), a span erased or repeated, or the bytes cut.
+class ByteMutator {
+ public:
+  explicit ByteMutator(std::uint32_t seed) : rng_(seed) {}
+
+  std::string operator()(std::string bytes) {
+    const int edits = 1 + static_cast<int>(rng_() % 3);
+    for (int e = 0; e < edits && !bytes.empty(); ++e) edit(bytes);
+    return bytes;
+  }
+
+ private:
+  std::size_t below(std::size_t n) { return n == 0 ? 0 : rng_() % n; }
+
+  static std::uint32_t float_bits(float value) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+  }
+
+  void edit(std::string& bytes) {
+    switch (rng_() % 6) {
+      case 0:
+        bytes[below(bytes.size())] ^= static_cast<char>(1u << below(8));
+        break;
+      case 1:
+      case 2: {
+        if (bytes.size() < 4) break;
+        static const std::uint32_t words[] = {0u,          0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 1u, 2u, 0x10000u,
+                                              float_bits(std::numeric_limits<float>::quiet_NaN()),
+                                              float_bits(std::numeric_limits<float>::infinity()),
+                                              float_bits(std::numeric_limits<float>::max()), float_bits(-1.0f)};
+        // Aligned more often than not: the formats' fields are 4-byte words.
+        std::size_t at = below(bytes.size() - 3);
+        if (rng_() % 4 != 0) at &= ~std::size_t{3};
+        const std::uint32_t word = words[below(std::size(words))];
+        std::memcpy(&bytes[at], &word, 4);
+        break;
+      }
+      case 3:
+        bytes.erase(below(bytes.size()), 1 + below(16));
+        break;
+      case 4: {
+        const std::size_t at = below(bytes.size());
+        bytes.insert(at, bytes.substr(at, 1 + below(16)));
+        break;
+      }
+      default:
+        bytes.resize(below(bytes.size()));
+        break;
+    }
+  }
+
+  std::mt19937 rng_;
+};
+
+}  // namespace mrcloth::test

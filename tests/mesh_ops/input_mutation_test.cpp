@@ -1,0 +1,138 @@
+// The OBJ and ASCII OFF garment readers given thousands of seeded edits of valid
+// files (tests/input_mutations.h): each either reads the file, and what it
+// returns holds the reader's promises (finite coordinates, quads only, a
+// consistent forest), or throws InputError naming the file. Anything else (another exception, a crash, a
+// hang under ctest's timeout) fails, with the offending input kept beside
+// the test's folder for replay.
+#include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
+#include "input_mutations.h"
+#include "mesh_invariants.h"
+#include "test_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+namespace mrcloth {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
+/// What a garment read must hold when it succeeds.
+void expect_sound_garment(const QuadMesh& mesh, const std::string& input) {
+  ASSERT_GT(mesh.n_faces(), 0u) << input;
+  for (const auto v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) << "vertex " << v.idx() << "\n" << input;
+  }
+  for (const auto f : mesh.faces()) ASSERT_EQ(mesh.valence(f), 4u) << "face " << f.idx() << "\n" << input;
+  const auto violations = test::face_forest_violations(mesh);
+  ASSERT_TRUE(violations.empty()) << violations.front() << "\n" << input;
+}
+
+struct Tally {
+  int read = 0;
+  int refused = 0;
+};
+
+/// Loads each of `count` mutations of `valid` from `dir`/mutated`suffix`;
+/// a failure keeps the input as `dir`/failed-<k>`suffix`.
+template <class Mutator>
+Tally load_mutations(const fs::path& dir, const std::string& suffix, const std::string& valid, Mutator mutate,
+                     int count) {
+  Tally tally;
+  const fs::path path = dir / ("mutated" + suffix);
+  for (int k = 0; k < count; ++k) {
+    const std::string input = mutate(valid);
+    write_bytes(path, input);
+    const auto keep = [&] { write_bytes(dir / ("failed-" + std::to_string(k) + suffix), input); };
+    try {
+      const LoadResult loaded = load_garment(path.string());
+      expect_sound_garment(loaded.mesh, suffix == ".om" ? "(binary)" : input);
+      if (::testing::Test::HasFatalFailure()) {
+        keep();
+        return tally;
+      }
+      ++tally.read;
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      if (message.find(path.string()) == std::string::npos) {
+        keep();
+        ADD_FAILURE() << "mutation " << k << ": the message does not name the file: " << message;
+      }
+      ++tally.refused;
+    } catch (const std::exception& error) {
+      keep();
+      ADD_FAILURE() << "mutation " << k << ": " << typeid(error).name() << " instead of InputError: " << error.what();
+    }
+  }
+  return tally;
+}
+
+const std::string kObjAlphabet = "vtfgo/ #\n\t-.0123456789e";
+
+/// A 3 x 2 grid with texture coordinates, a group, a comment and a material.
+std::string grid_obj() {
+  std::string text = "# a 3 x 2 grid\nmtllib none.mtl\no sheet\ng skirt\n";
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) text += "v " + std::to_string(0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) text += "vt " + std::to_string(i / 3.0) + " " + std::to_string(j / 2.0) + "\n";
+  text += "usemtl cotton\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int a = j * 4 + i + 1, b = a + 1, c = a + 5, d = a + 4;
+      text += "f " + std::to_string(a) + "/" + std::to_string(a) + " " + std::to_string(b) + "/" + std::to_string(b) +
+              " " + std::to_string(c) + "/" + std::to_string(c) + " " + std::to_string(d) + "/" + std::to_string(d) +
+              "\n";
+    }
+  return text;
+}
+
+std::string grid_off() {
+  std::string text = "OFF\n12 6 0\n";
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) text += std::to_string(0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int a = j * 4 + i;
+      text += "4 " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 5) + " " +
+              std::to_string(a + 4) + "\n";
+    }
+  return text;
+}
+
+TEST(GarmentMutations, ObjEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "obj");
+  const std::string valid = grid_obj();
+  write_bytes(dir / "valid.obj", valid);
+  expect_sound_garment(load_garment((dir / "valid.obj").string()).mesh, valid);
+  const Tally tally = load_mutations(dir, ".obj", valid, test::TextMutator(11, kObjAlphabet), 1500);
+  EXPECT_GT(tally.read, 100);
+  EXPECT_GT(tally.refused, 100);
+}
+
+TEST(GarmentMutations, OffEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "off");
+  const std::string valid = grid_off();
+  write_bytes(dir / "valid.off", valid);
+  expect_sound_garment(load_garment((dir / "valid.off").string()).mesh, valid);
+  const Tally tally = load_mutations(dir, ".off", valid, test::TextMutator(12, "OFF \n\t-.0123456789e#"), 1500);
+  EXPECT_GT(tally.read, 100);
+  EXPECT_GT(tally.refused, 100);
+}
+
+}  // namespace
+}  // namespace mrcloth
