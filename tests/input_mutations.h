@@ -7,9 +7,6 @@
 // indices) where numbers stood, which random bytes almost never spell.
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
-#include <iterator>
-#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -134,64 +131,6 @@ class TextMutator {
 
   std::mt19937 rng_;
   std::string alphabet_;
-};
-
-/// One to three edits of binary `bytes`: a byte flipped, a 32-bit word
-/// replaced by a hostile integer or float (0, -1, INT_MAX, 2^31, NaN,
-/// infinity, FLT_MAX), a span erased or repeated, or the bytes cut.
-class ByteMutator {
- public:
-  explicit ByteMutator(std::uint32_t seed) : rng_(seed) {}
-
-  std::string operator()(std::string bytes) {
-    const int edits = 1 + static_cast<int>(rng_() % 3);
-    for (int e = 0; e < edits && !bytes.empty(); ++e) edit(bytes);
-    return bytes;
-  }
-
- private:
-  std::size_t below(std::size_t n) { return n == 0 ? 0 : rng_() % n; }
-
-  static std::uint32_t float_bits(float value) {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    return bits;
-  }
-
-  void edit(std::string& bytes) {
-    switch (rng_() % 6) {
-      case 0:
-        bytes[below(bytes.size())] ^= static_cast<char>(1u << below(8));
-        break;
-      case 1:
-      case 2: {
-        if (bytes.size() < 4) break;
-        static const std::uint32_t words[] = {0u,          0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 1u, 2u, 0x10000u,
-                                              float_bits(std::numeric_limits<float>::quiet_NaN()),
-                                              float_bits(std::numeric_limits<float>::infinity()),
-                                              float_bits(std::numeric_limits<float>::max()), float_bits(-1.0f)};
-        // Aligned more often than not: the formats' fields are 4-byte words.
-        std::size_t at = below(bytes.size() - 3);
-        if (rng_() % 4 != 0) at &= ~std::size_t{3};
-        const std::uint32_t word = words[below(std::size(words))];
-        std::memcpy(&bytes[at], &word, 4);
-        break;
-      }
-      case 3:
-        bytes.erase(below(bytes.size()), 1 + below(16));
-        break;
-      case 4: {
-        const std::size_t at = below(bytes.size());
-        bytes.insert(at, bytes.substr(at, 1 + below(16)));
-        break;
-      }
-      default:
-        bytes.resize(below(bytes.size()));
-        break;
-    }
-  }
-
-  std::mt19937 rng_;
 };
 
 }  // namespace mrcloth::test

@@ -459,6 +459,20 @@ TEST(GarmentLoadErrors, ACornerWithoutAVertexIndexIsRefusedBeforeTheReaderAborts
                     "face 0 (line 5) refers to vertex 9");
 }
 
+/// OpenMesh's PLY reader crashes on a property before any element and
+/// loops for ever on a type it does not know: both refused with the line.
+TEST(GarmentLoadErrors, PlyPropertiesOpenMeshCannotReadAreRefusedWithTheirLine) {
+  ScratchDir dir;
+  const std::string body = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  std::string header = ply_header(4, 1);
+  const std::string orphan = "ply\nformat ascii 1.0\nproperty float x\n" + header.substr(header.find("element vertex"));
+  EXPECT_LOAD_ERROR(write_file(dir.file("orphan.ply"), orphan + body),
+                    "the PLY header's property (line 3) comes before any element");
+  std::string unknown = header;
+  unknown.replace(unknown.find("uchar int"), 9, "uchar intx");
+  EXPECT_LOAD_ERROR(write_file(dir.file("unknown.ply"), unknown + body), "is 'property list uchar intx");
+}
+
 TEST(GarmentLoadErrors, FirstProblemInFileOrderIsReported) {
   ScratchDir dir;
   // Face 1 repeats a vertex (seen by the OBJ scan), face 2 is out of range.
