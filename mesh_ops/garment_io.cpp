@@ -8,6 +8,7 @@
 #include "quadtree_forest.h"
 #include "texture_coords.h"
 #include "om_structure.h"
+#include "ply_layout.h"
 #include "units.h"
 
 // MeshIO.hh pulls in the reader and writer modules, which register
@@ -464,10 +465,14 @@ TextScan scan_off(const std::string& path, std::istream& in) {
     cleaned += '\n';
   }
   if (words.empty()) words = next_words();
-  if (words.empty()) return scan;
+  // Without its counts OpenMesh's reader reserves for whatever its
+  // variables held (tens of gigabytes were seen).
+  if (words.size() < 2)
+    throw InputError(with_path(path, "the OFF header has no vertex and face counts" +
+                                         (words.empty() ? std::string() : at_line(line_number)) +
+                                         "; expected 'V F E' after OFF"));
   std::size_t counts[2] = {0, 0};  // vertices, faces
   for (int k = 0; k < 2; ++k) {
-    if (static_cast<std::size_t>(k) >= words.size()) return scan;
     const std::string& word = words[static_cast<std::size_t>(k)];
     const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), counts[k]);
     if (error != std::errc() || stop != word.data() + word.size())
@@ -507,110 +512,21 @@ TextScan scan_off(const std::string& path, std::istream& in) {
   return scan;
 }
 
-/// One of the scalar types a PLY header may name.
-bool ply_type(const std::string& word) {
-  static const char* const types[] = {"char",  "uchar",  "short",  "ushort", "int",    "uint",  "float",
-                                      "double", "int8",  "uint8", "int16",  "uint16", "int32", "uint32",
-                                      "float32", "float64"};
-  return std::find(std::begin(types), std::end(types), word) != std::end(types);
-}
-
-/// ASCII PLY: the x, y, z properties of the "vertex" element.
+/// PLY: checked by scan_ply_layout, whose copy of the file the reader gets.
 TextScan scan_ply(const std::string& path, std::istream& in) {
   TextScan scan;
-  struct Property {
-    std::string name;
-    bool is_list = false;
-  };
-  struct Element {
-    std::string name;
-    std::size_t count = 0;
-    std::vector<Property> properties;
-  };
-  std::vector<Element> elements;
-  std::string line;
-  if (!std::getline(in, line) || split_words(line) != std::vector<std::string>{"ply"}) return scan;
-  bool ascii = false;
-  bool header_done = false;
-  std::size_t line_number = 1;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const std::vector<std::string> words = split_words(line);
-    if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
-    if (words[0] == "end_header") {
-      header_done = true;
-      break;
-    }
-    if (words[0] == "format") {
-      ascii = words.size() > 1 && words[1] == "ascii";
-    } else if (words[0] == "element" && words.size() == 3) {
-      Element element;
-      element.name = words[1];
-      const auto [stop, error] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.count);
-      if (error != std::errc() || stop != words[2].data() + words[2].size()) return scan;
-      elements.push_back(element);
-    } else if (words[0] == "property" && elements.empty()) {
-      // OpenMesh's PLY reader crashes on it.
-      throw InputError(with_path(path, "the PLY header's property" + at_line(line_number) +
-                                           " comes before any element; expected 'element <name> <count>' first"));
-    } else if (words[0] == "property") {
-      // OpenMesh's PLY reader loops for ever on a type it does not know.
-      const bool list = words.size() > 1 && words[1] == "list";
-      const std::size_t types = list ? 2 : 1, first_type = list ? 2 : 1;
-      bool known = words.size() == first_type + types + 1;
-      for (std::size_t k = first_type; known && k < first_type + types; ++k) known = ply_type(words[k]);
-      if (!known)
-        throw InputError(with_path(path, "the PLY header's property" + at_line(line_number) + " is '" + line +
-                                             "'; expected 'property <type> <name>' or 'property list <count type> "
-                                             "<item type> <name>' with PLY's types (char, uchar, short, ushort, int, "
-                                             "uint, float, double, or int8 ... float64)"));
-      elements.back().properties.push_back({words.back(), list});
-    }
+  std::optional<PlyScan> ply = scan_ply_layout(path, in);
+  if (!ply) throw InputError(with_path(path, "the first line is not 'ply'; expected a PLY file"));
+  scan.binary = ply->binary;
+  scan.text_for_reader = std::move(ply->text_for_reader);
+  if (scan.binary) return scan;
+  for (std::size_t v = 0; v < ply->coordinates.size(); ++v) {
+    const auto& xyz = ply->coordinates[v];
+    scan.points.push_back(parse_point(path, {xyz[0], xyz[1], xyz[2]}, 0, v, at_line(ply->vertex_lines[v])));
   }
-  // OpenMesh's PLY reader never returns from a header without its end.
-  if (!header_done)
-    throw InputError(with_path(path, "the PLY header has no 'end_header' line; expected one after the element and "
-                                     "property lines"));
-  scan.binary = !ascii;
-  if (!ascii) return scan;
-  auto next_token = [&](std::string& token) { return static_cast<bool>(in >> token); };
-  for (const Element& element : elements) {
-    const bool is_vertex = element.name == "vertex";
-    int axis_of[3] = {-1, -1, -1};
-    for (std::size_t p = 0; p < element.properties.size(); ++p) {
-      const std::string& name = element.properties[p].name;
-      if (name.size() == 1 && name[0] >= 'x' && name[0] <= 'z' && !element.properties[p].is_list)
-        axis_of[name[0] - 'x'] = static_cast<int>(p);
-    }
-    if (is_vertex && (axis_of[0] < 0 || axis_of[1] < 0 || axis_of[2] < 0)) return scan;
-    for (std::size_t item = 0; item < element.count; ++item) {
-      std::string coordinates[3];
-      for (std::size_t p = 0; p < element.properties.size(); ++p) {
-        std::string token;
-        if (!next_token(token)) return scan;
-        if (element.properties[p].is_list) {
-          std::size_t length = 0;
-          const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), length);
-          if (error != std::errc() || stop != token.data() + token.size()) return scan;
-          for (std::size_t k = 0; k < length; ++k) {
-            if (!next_token(token)) return scan;
-          }
-          continue;
-        }
-        for (int axis = 0; axis < 3; ++axis) {
-          if (axis_of[axis] == static_cast<int>(p)) coordinates[axis] = token;
-        }
-      }
-      if (is_vertex) {
-        scan.points.push_back(
-            parse_point(path, {coordinates[0], coordinates[1], coordinates[2]}, 0, item, std::string()));
-      }
-    }
-    if (is_vertex) {
-      scan.understood = true;
-      return scan;
-    }
-  }
+  scan.lines.vertex = std::move(ply->vertex_lines);
+  scan.lines.face = std::move(ply->face_lines);
+  scan.understood = true;
   return scan;
 }
 
