@@ -6,6 +6,7 @@
 // hand-edited or foreign file holds (nan, 1e309, counts beyond int, negative
 // indices) where numbers stood, which random bytes almost never spell.
 #include <algorithm>
+#include <iterator>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -131,6 +132,54 @@ class TextMutator {
 
   std::mt19937 rng_;
   std::string alphabet_;
+};
+
+/// One to three edits of binary `bytes` drawn from `rng`: a bit flipped, a
+/// 32-bit word overwritten with a value readers trip on (0, -1, INT_MAX,
+/// 2^31, NaN, inf, FLT_MAX as float), a span erased or repeated, or the
+/// bytes cut. `protect` leading bytes (a header kept intact, when the body
+/// is what is swept) are never edited.
+class ByteMutator {
+ public:
+  ByteMutator(std::uint32_t seed, std::size_t protect = 0) : rng_(seed), protect_(protect) {}
+
+  std::string operator()(std::string bytes) {
+    const int edits = 1 + static_cast<int>(rng_() % 3);
+    for (int e = 0; e < edits && bytes.size() > protect_; ++e) edit(bytes);
+    return bytes;
+  }
+
+ private:
+  std::size_t anywhere(const std::string& bytes) { return protect_ + rng_() % (bytes.size() - protect_); }
+
+  void edit(std::string& bytes) {
+    static const std::uint32_t words[] = {0u, 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u,
+                                          0x7FC00000u /* NaN */, 0x7F800000u /* inf */, 0x7F7FFFFFu /* FLT_MAX */};
+    const std::size_t at = anywhere(bytes);
+    switch (rng_() % 5) {
+      case 0:
+        bytes[at] = static_cast<char>(bytes[at] ^ (1 << (rng_() % 8)));
+        break;
+      case 1: {
+        const std::uint32_t word = words[rng_() % std::size(words)];
+        for (std::size_t k = 0; k < 4 && at + k < bytes.size(); ++k)
+          bytes[at + k] = static_cast<char>((word >> (8 * k)) & 0xFF);
+        break;
+      }
+      case 2:
+        bytes.erase(at, 1 + rng_() % 8);
+        break;
+      case 3:
+        bytes.insert(at, bytes.substr(at, 1 + rng_() % 8));
+        break;
+      default:
+        bytes.resize(at);
+        break;
+    }
+  }
+
+  std::mt19937 rng_;
+  std::size_t protect_;
 };
 
 }  // namespace mrcloth::test

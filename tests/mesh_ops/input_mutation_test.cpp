@@ -1,4 +1,4 @@
-// The OBJ and ASCII OFF garment readers given thousands of seeded edits of valid
+// The OBJ, ASCII OFF and PLY (ASCII and binary) garment readers given thousands of seeded edits of valid
 // files (tests/input_mutations.h): each either reads the file, and what it
 // returns holds the reader's promises (finite coordinates, quads only, a
 // consistent forest), or throws InputError naming the file. Anything else (another exception, a crash, a
@@ -12,10 +12,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace mrcloth {
 namespace {
@@ -109,6 +113,83 @@ std::string grid_off() {
               std::to_string(a + 4) + "\n";
     }
   return text;
+}
+
+std::string grid_ply_header(const std::string& format) {
+  return "ply\nformat " + format + " 1.0\ncomment a 3 x 2 grid\nelement vertex 12\nproperty float x\n"
+         "property float y\nproperty float z\nproperty uchar red\nelement face 6\n"
+         "property list uchar int vertex_indices\nobj_info made by hand\nend_header\n";
+}
+
+/// The grid's faces as corner indices.
+std::vector<std::array<int, 4>> grid_faces() {
+  std::vector<std::array<int, 4>> faces;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) faces.push_back({j * 4 + i, j * 4 + i + 1, j * 4 + i + 5, j * 4 + i + 4});
+  return faces;
+}
+
+std::string grid_ply_text() {
+  std::string text = grid_ply_header("ascii");
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) text += std::to_string(0.1 * i) + " " + std::to_string(0.1 * j) + " 0 200\n";
+  for (const auto& f : grid_faces())
+    text += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " +
+            std::to_string(f[3]) + "\n";
+  return text;
+}
+
+/// Little-endian, as x86 holds it in memory.
+template <typename T>
+void append_bytes(std::string& bytes, T value) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  bytes.append(raw, sizeof(T));
+}
+
+std::string grid_ply_binary() {
+  std::string bytes = grid_ply_header("binary_little_endian");
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) {
+      append_bytes(bytes, 0.1f * static_cast<float>(i));
+      append_bytes(bytes, 0.1f * static_cast<float>(j));
+      append_bytes(bytes, 0.0f);
+      append_bytes(bytes, std::uint8_t{200});
+    }
+  for (const auto& f : grid_faces()) {
+    append_bytes(bytes, std::uint8_t{4});
+    for (const int corner : f) append_bytes(bytes, std::int32_t{corner});
+  }
+  return bytes;
+}
+
+TEST(GarmentMutations, PlyTextEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "ply");
+  const std::string valid = grid_ply_text();
+  write_bytes(dir / "valid.ply", valid);
+  expect_sound_garment(load_garment((dir / "valid.ply").string()).mesh, valid);
+  const Tally tally = load_mutations(dir, ".ply", valid,
+                                     test::TextMutator(13, "plyelementvrxfcstuchar \n-.0123456789"), 1500);
+  EXPECT_GT(tally.read, 50);
+  EXPECT_GT(tally.refused, 100);
+}
+
+TEST(GarmentMutations, PlyBinaryEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "ply_binary");
+  const std::string valid = grid_ply_binary();
+  write_bytes(dir / "valid.ply", valid);
+  const LoadResult loaded = load_garment((dir / "valid.ply").string());
+  expect_sound_garment(loaded.mesh, "(binary)");
+  ASSERT_EQ(loaded.mesh.n_vertices(), 12u);
+  EXPECT_EQ(loaded.mesh.point(QuadMesh::VertexHandle(7)), OpenMesh::Vec3d(0.1f * 3, 0.1f, 0.0));
+  // Edits anywhere, and edits of the data alone (most header edits are refused).
+  const std::size_t header = grid_ply_header("binary_little_endian").size();
+  const Tally whole = load_mutations(dir, ".ply", valid, test::ByteMutator(14), 750);
+  const Tally data = load_mutations(dir, ".ply", valid, test::ByteMutator(15, header), 750);
+  EXPECT_GT(whole.read + data.read, 50);
+  EXPECT_GT(whole.refused + data.refused, 100);
 }
 
 TEST(GarmentMutations, ObjEditsLoadSoundOrAreRefusedNamingTheFile) {
