@@ -844,19 +844,22 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
                                          " active records for " + std::to_string(mesh.n_faces()) +
                                          " faces); expected a .om file as mrcloth writes it, whole"));
   const Layers layers = get_layers(mesh);
+  std::vector<char> named(forest.size(), 0);
   for (const auto f : mesh.faces()) {
     const int r = mesh.property(layers.quad, f);
-    if (r < 0 || r >= n || !forest[static_cast<std::size_t>(r)].active)
+    if (r < 0 || r >= n || !forest[static_cast<std::size_t>(r)].active || named[static_cast<std::size_t>(r)]++)
       throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + face_label(f.idx()) +
-                                           " names no active record); expected a .om file as mrcloth writes it, "
-                                           "whole"));
+                                           " names no active record, or one an earlier face names); expected a .om "
+                                           "file as mrcloth writes it, whole"));
   }
   // The vertex layers later steps index by (a file saved before the
   // checksum, damaged inside, crashed objectInfo through them).
   for (const auto v : mesh.vertices()) {
     const OpenMesh::Vec2i ends = mesh.property(layers.parents, v);
     const bool none = ends[0] == -1 && ends[1] == -1;
-    const bool valid = ends[0] >= 0 && ends[0] < n_vertices && ends[1] >= 0 && ends[1] < n_vertices && ends[0] != ends[1];
+    // Refinement appends each midpoint after the ends of its edge: parents
+    // with a larger index would be a cycle, which the polygons recurse along.
+    const bool valid = ends[0] >= 0 && ends[0] < v.idx() && ends[1] >= 0 && ends[1] < v.idx() && ends[0] != ends[1];
     const int mode = mesh.property(layers.mode, v);
     if ((!none && !valid) || mode < 0 || mode > kLargestMode)
       throw InputError(with_path(path, "the stored layers are damaged (vertex " + std::to_string(v.idx()) +
@@ -865,6 +868,10 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
                                                                 std::to_string(ends[1])) +
                                            "); expected a .om file as mrcloth writes it, whole"));
   }
+  if (const int face = first_face_unlike_its_record(mesh); face >= 0)
+    throw InputError(with_path(path, "the stored refinement hierarchy is damaged (" + face_label(face) +
+                                         " is not the polygon or level of its record); expected a .om file as "
+                                         "mrcloth writes it, whole"));
 }
 
 /// Where a .om file's checksum layer keeps its eight bytes: after the

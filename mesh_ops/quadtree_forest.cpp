@@ -109,6 +109,24 @@ std::vector<std::vector<double>> active_face_boundary_params(const QuadMesh& mes
   return all;
 }
 
+int first_face_unlike_its_record(const QuadMesh& mesh) {
+  const Layers l = get_layers(mesh);
+  const auto mids = midpoints_from_parents(mesh, l);
+  const auto& forest = mesh.property(l.quadtree);
+  std::vector<int> loop;
+  for (const auto f : mesh.faces()) {
+    const QuadRecord& record = forest[static_cast<std::size_t>(mesh.property(l.quad, f))];
+    const std::vector<int> polygon = polygon_of(mids, record);
+    loop.clear();
+    for (const auto v : f.vertices()) loop.push_back(v.idx());
+    const auto start = std::find(polygon.begin(), polygon.end(), loop.front());
+    bool same = mesh.property(l.level, f) == record.level && loop.size() == polygon.size() && start != polygon.end();
+    if (same) std::rotate(loop.begin(), loop.begin() + (polygon.end() - start) % static_cast<long>(loop.size()), loop.end());
+    if (!same || loop != polygon) return f.idx();
+  }
+  return -1;
+}
+
 std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record) {
   const Layers l = get_layers(mesh);
   return polygon_of(midpoints_from_parents(mesh, l), record);

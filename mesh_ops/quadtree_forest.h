@@ -18,6 +18,12 @@ void init_forest(QuadMesh& mesh);
 /// corner k is at k and a T-node at the midpoint k + 0.5.
 std::vector<std::vector<double>> active_face_boundary_params(const QuadMesh& mesh);
 
+/// The first face (in face order) whose vertex loop is not its record's
+/// polygon (active_face_polygon, from any start) or whose level layer is
+/// not its record's level; -1 when there is none. Each face's quad layer
+/// must name a record in range, and parent pairs must not form a cycle.
+int first_face_unlike_its_record(const QuadMesh& mesh);
+
 /// Vertex loop of an active record as it appears in the mesh: its four corners
 /// with every vertex lying inside its edges (hanging nodes, recursively) inserted.
 std::vector<int> active_face_polygon(const QuadMesh& mesh, const QuadRecord& record);

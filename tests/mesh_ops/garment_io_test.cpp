@@ -3,6 +3,7 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_painting.h"
+#include "mesh_ops/quad_refiner.h"
 #include "mesh_ops/quadtree_forest.h"
 #include "mesh_ops/units.h"
 
@@ -666,30 +667,21 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
   ScratchDir dir;
   mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()), {"inch"});
   QuadMesh& mesh = loaded.mesh;
+  // A hierarchy of three levels with hanging vertices, as refinement makes
+  // it (the loader checks faces against their records).
+  mrcloth::QuadRefiner refiner(mesh);
+  const mrcloth::QuadSplit split = refiner.split(1);
+  refiner.split(split.children[2]);
+  ASSERT_TRUE(refiner.finish());
   const mrcloth::Layers l = mrcloth::get_layers(mesh);
   for (const auto v : mesh.vertices()) {
     const int i = v.idx();
     mesh.property(l.mode, v) = i % 4 + 1;
     mesh.property(l.r_value, v) = i / 3.0 + 1e-300;
-    mesh.property(l.hanging, v) = i % 3 == 1;
-    // Every vertex a midpoint of two others (the loader refuses pairs out of range).
-    const int n = static_cast<int>(mesh.n_vertices());
-    mesh.property(l.parents, v) = OpenMesh::Vec2i((i + 1) % n, (i + 7) % n);
   }
-  for (const auto f : mesh.faces()) {
-    mesh.property(l.level, f) = f.idx() + 2;
-    mesh.property(l.quad, f) = 5 - f.idx();  // the roots, in reverse: a hierarchy the loader accepts
-  }
-  auto& forest = mesh.property(l.quadtree);
-  forest[1].children = {6, 7, 8, 9};
-  for (int k = 0; k < 4; ++k) {
-    mrcloth::QuadRecord child;
-    child.level = 2;
-    child.active = 0;
-    child.parent = 1;
-    child.corners = {1, 2 + k, 3 + k, 11 - k};
-    forest.push_back(child);
-  }
+  const auto& forest = mesh.property(l.quadtree);
+  ASSERT_GT(mrcloth::count_hanging(mesh), 0u);
+  ASSERT_EQ(mrcloth::faces_per_level(mesh), (std::vector<std::size_t>{0, 5, 3, 4}));
 
   const std::string path = dir.file("saved.om");
   mrcloth::save_mesh(mesh, path);
@@ -711,8 +703,8 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
   }
   for (const auto f : mesh.faces()) {
     const auto g = QuadMesh::FaceHandle(f.idx());
-    EXPECT_EQ(copy.property(c.level, g), f.idx() + 2);
-    EXPECT_EQ(copy.property(c.quad, g), 5 - f.idx());
+    EXPECT_EQ(copy.property(c.level, g), mesh.property(l.level, f));
+    EXPECT_EQ(copy.property(c.quad, g), mesh.property(l.quad, f));
     EXPECT_EQ(canonical_loop(copy, g), canonical_loop(mesh, f));
   }
   const auto& restored = copy.property(c.quadtree);
@@ -724,6 +716,42 @@ TEST(GarmentSave, OmKeepsPointsBitwiseAndEveryLayer) {
     EXPECT_EQ(restored[i].children, forest[i].children) << i;
     EXPECT_EQ(restored[i].corners, forest[i].corners) << i;
   }
+}
+
+/// Layers that disagree with the hierarchy (a file of an older mrcloth,
+/// without the checksum, damaged; or edited by another program) are refused:
+/// a face whose level or polygon is not its record's would simulate with
+/// another level's stiffness, and parents naming a later vertex form a
+/// cycle the polygon walk recursed along without end.
+TEST(GarmentLoadErrors, StoredLayersThatDisagreeWithTheHierarchyAreRefused) {
+  ScratchDir dir;
+  const auto refined = [&dir] {
+    QuadMesh mesh = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj())).mesh;
+    mrcloth::QuadRefiner refiner(mesh);
+    refiner.split(1);
+    EXPECT_TRUE(refiner.finish());
+    return mesh;
+  };
+  QuadMesh level = refined();
+  const mrcloth::Layers l = mrcloth::get_layers(level);
+  level.property(l.level, QuadMesh::FaceHandle(4)) += 1;
+  mrcloth::save_mesh(level, dir.file("level.om"));
+  EXPECT_LOAD_ERROR(dir.file("level.om"), "the stored refinement hierarchy is damaged (face 4 is not the polygon or "
+                                          "level of its record)");
+
+  QuadMesh twice = refined();
+  twice.property(l.quad, QuadMesh::FaceHandle(2)) = twice.property(l.quad, QuadMesh::FaceHandle(3));
+  mrcloth::save_mesh(twice, dir.file("twice.om"));
+  EXPECT_LOAD_ERROR(dir.file("twice.om"), "(face 3 names no active record, or one an earlier face names)");
+
+  QuadMesh cycle = refined();
+  const int last = static_cast<int>(cycle.n_vertices()) - 1;
+  // The last vertex the midpoint of coarse edge 0-1, and 1 that of 0-last.
+  cycle.property(l.parents, QuadMesh::VertexHandle(last)) = OpenMesh::Vec2i(0, 1);
+  cycle.property(l.parents, QuadMesh::VertexHandle(1)) = OpenMesh::Vec2i(0, last);
+  mrcloth::save_mesh(cycle, dir.file("cycle.om"));
+  EXPECT_LOAD_ERROR(dir.file("cycle.om"), "the stored layers are damaged (vertex 1 names edge ends 0, " +
+                                              std::to_string(last) + ")");
 }
 
 TEST(GarmentLoadErrors, WhatNoGarmentCanBeIsRefusedAtLoading) {
