@@ -6,10 +6,15 @@
 // the test's folder for replay.
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
+#include "mesh_ops/mode_layer.h"
+#include "mesh_ops/mode_painting.h"
+#include "mesh_ops/uniform_refine.h"
 #include "input_mutations.h"
 #include "mesh_invariants.h"
 #include "test_meshes.h"
 
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -18,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -190,6 +196,99 @@ TEST(GarmentMutations, PlyBinaryEditsLoadSoundOrAreRefusedNamingTheFile) {
   const Tally data = load_mutations(dir, ".ply", valid, test::ByteMutator(15, header), 750);
   EXPECT_GT(whole.read + data.read, 50);
   EXPECT_GT(whole.refused + data.refused, 100);
+}
+
+/// save_mesh's checksum makes almost every byte edit of its .om a refusal
+/// by checksum; stamping the edited bytes with a fresh one (FNV-1a, 64 bits,
+/// its own eight bytes taken as zero, as save_mesh writes it) lets the edits
+/// reach the chunk, layer and forest checks behind it.
+std::string with_fresh_checksum(std::string bytes) {
+  const std::string name = layer::checksum;
+  const std::size_t at = bytes.find(name);
+  if (at == std::string::npos || at + name.size() >= bytes.size()) return bytes;
+  const std::size_t value_at = at + name.size() + 1 + static_cast<unsigned char>(bytes[at + name.size()]) + 4;
+  if (value_at + 8 > bytes.size()) return bytes;
+  std::uint64_t hash = 14695981039346656037ull;
+  for (std::size_t k = 0; k < bytes.size(); ++k) {
+    const unsigned char byte = (k >= value_at && k < value_at + 8) ? 0 : static_cast<unsigned char>(bytes[k]);
+    hash = (hash ^ byte) * 1099511628211ull;
+  }
+  for (std::size_t k = 0; k < 8; ++k) bytes[value_at + k] = static_cast<char>((hash >> (8 * k)) & 0xFF);
+  return bytes;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(GarmentMutations, OmEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "om");
+  QuadMesh refined = test::make_grid(3, 2, 0.1);
+  uniform_refine(refined, 1);
+  set_modes(refined, {0, 1, 2}, 3);
+  save_mesh(refined, (dir / "valid.om").string());
+  const std::string valid = read_bytes(dir / "valid.om");
+  ASSERT_EQ(with_fresh_checksum(valid), valid) << "the test's checksum is save_mesh's";
+  expect_sound_garment(load_garment((dir / "valid.om").string()).mesh, "(valid .om)");
+
+  const Tally stamped = load_mutations(
+      dir, ".om", valid, [mutate = test::ByteMutator(16)](const std::string& bytes) mutable {
+        return with_fresh_checksum(mutate(bytes));
+      },
+      750);
+  const Tally plain = load_mutations(dir, ".om", valid, test::ByteMutator(17), 750);
+  EXPECT_GT(stamped.read, 20);
+  EXPECT_GT(stamped.refused, 100);
+  EXPECT_GT(plain.refused, 700) << "the checksum refuses nearly every edit";
+}
+
+/// A plain OpenMesh .om (no mrcloth layers, no checksum): OpenMesh's own
+/// reader behind check_om_structure.
+TEST(GarmentMutations, PlainOpenMeshOmEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "plain_om");
+  OpenMesh::PolyMesh_ArrayKernelT<> plain;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) plain.add_vertex({0.1f * static_cast<float>(i), 0.1f * static_cast<float>(j), 0.f});
+  for (const auto& f : grid_faces())
+    plain.add_face({plain.vertex_handle(static_cast<unsigned>(f[0])), plain.vertex_handle(static_cast<unsigned>(f[1])),
+                    plain.vertex_handle(static_cast<unsigned>(f[2])), plain.vertex_handle(static_cast<unsigned>(f[3]))});
+  ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, (dir / "valid.om").string()));
+  const std::string valid = read_bytes(dir / "valid.om");
+  expect_sound_garment(load_garment((dir / "valid.om").string()).mesh, "(valid .om)");
+  const Tally tally = load_mutations(dir, ".om", valid, test::ByteMutator(18), 1500);
+  EXPECT_GT(tally.read, 50);
+  EXPECT_GT(tally.refused, 100);
+}
+
+/// Mode CSV files: a refused file changes no mode; an accepted one sets
+/// modes within 0..kLargestMode.
+TEST(ModeCsvMutations, EditsSetValidModesOrAreRefusedChangingNothing) {
+  const fs::path dir = test::fresh_folder("input_mutation_test", "csv");
+  std::string valid = "vertex,x,y,z,mode\n";
+  for (int v = 0; v < 12; ++v) valid += std::to_string(v) + ",0.1,0.2,0," + std::to_string(1 + v % 4) + "\n";
+  test::TextMutator mutate(19, "vertexmod,\n\t -.0123456789\"");
+  const fs::path path = dir / "modes.csv";
+  int read = 0, refused = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const std::string input = mutate(valid);
+    write_bytes(path, input);
+    QuadMesh mesh = test::make_grid(3, 2, 0.1);
+    const std::vector<int> before = get_modes(mesh);
+    try {
+      read_modes_csv(mesh, path.string());
+      for (const int mode : get_modes(mesh)) ASSERT_TRUE(mode >= 0 && mode <= kLargestMode) << mode << "\n" << input;
+      ++read;
+    } catch (const InputError& error) {
+      ASSERT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
+      ASSERT_EQ(get_modes(mesh), before) << "a refused file changed modes:\n" << input;
+      ++refused;
+    }
+  }
+  EXPECT_GT(read, 100);
+  EXPECT_GT(refused, 100);
 }
 
 TEST(GarmentMutations, ObjEditsLoadSoundOrAreRefusedNamingTheFile) {
