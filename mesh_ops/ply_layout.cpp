@@ -130,7 +130,7 @@ Property read_property(const std::string& path, const std::string& line, const s
                           "'; expected 'property <type> <name>' or 'property list <length type> <item type> <name>' "
                           "with " + kTypeList);
   if (list && !openmesh_reads_list_length(words[2]))
-    throw error(path, "the PLY header's property" + at_line(line_number) + " gives its list length as " + words[2] +
+    throw error(path, "the PLY header's property" + at_line(line_number) + " gives its list length as " + shown(words[2]) +
                           "; expected uchar, uint8, uint16 or int (the types OpenMesh's reader takes)");
   return property;
 }
