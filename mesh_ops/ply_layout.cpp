@@ -299,11 +299,9 @@ InputError cut_short(const std::string& path, const Element& element, std::size_
 
 void walk_text(const std::string& path, const Header& header, const std::string& data, PlyScan& scan) {
   Words words(data, header.end_line + 1);
-  std::size_t vertex_count = 0;
   for (std::size_t e = 0; e < elements_read(header); ++e) {
     const Element& element = header.elements[e];
     const bool is_vertex = element.name == "vertex", is_face = element.name == "face";
-    if (is_vertex) vertex_count = element.count;
     if (element.properties.empty()) continue;
     for (std::size_t item = 0; item < element.count; ++item) {
       std::size_t item_line = 0;
@@ -334,10 +332,6 @@ void walk_text(const std::string& path, const Header& header, const std::string&
           if (!parse_whole(word, index) || index < 0 || !is_number_of(*property.type, word))
             throw error(path, where + " has '" + shown(word) + "' among its vertex indices; expected " +
                                   std::to_string(corners) + " indices from 0 (the first vertex)");
-          if (static_cast<unsigned long long>(index) >= vertex_count)
-            throw error(path, where + " refers to vertex " + std::string(word) +
-                                  " (counted from 0), which does not exist (the file has " +
-                                  std::to_string(vertex_count) + " vertices)");
         }
       }
       if (is_vertex) {

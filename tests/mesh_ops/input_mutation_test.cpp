@@ -90,6 +90,14 @@ Tally load_mutations(const fs::path& dir, const std::string& suffix, const std::
 
 const std::string kObjAlphabet = "vtfgo/ #\n\t-.0123456789e";
 
+/// The grid's faces as corner indices.
+std::vector<std::array<int, 4>> grid_faces() {
+  std::vector<std::array<int, 4>> faces;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) faces.push_back({j * 4 + i, j * 4 + i + 1, j * 4 + i + 5, j * 4 + i + 4});
+  return faces;
+}
+
 /// A 3 x 2 grid with texture coordinates, a group, a comment and a material.
 std::string grid_obj() {
   std::string text = "# a 3 x 2 grid\nmtllib none.mtl\no sheet\ng skirt\n";
@@ -98,13 +106,11 @@ std::string grid_obj() {
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 3; ++i) text += "vt " + std::to_string(i / 3.0) + " " + std::to_string(j / 2.0) + "\n";
   text += "usemtl cotton\n";
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const int a = j * 4 + i + 1, b = a + 1, c = a + 5, d = a + 4;
-      text += "f " + std::to_string(a) + "/" + std::to_string(a) + " " + std::to_string(b) + "/" + std::to_string(b) +
-              " " + std::to_string(c) + "/" + std::to_string(c) + " " + std::to_string(d) + "/" + std::to_string(d) +
-              "\n";
-    }
+  for (const auto& face : grid_faces()) {
+    text += "f";
+    for (const int corner : face) text += " " + std::to_string(corner + 1) + "/" + std::to_string(corner + 1);
+    text += "\n";
+  }
   return text;
 }
 
@@ -112,12 +118,9 @@ std::string grid_off() {
   std::string text = "OFF\n12 6 0\n";
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 3; ++i) text += std::to_string(0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const int a = j * 4 + i;
-      text += "4 " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 5) + " " +
-              std::to_string(a + 4) + "\n";
-    }
+  for (const auto& f : grid_faces())
+    text += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " +
+            std::to_string(f[3]) + "\n";
   return text;
 }
 
@@ -125,14 +128,6 @@ std::string grid_ply_header(const std::string& format) {
   return "ply\nformat " + format + " 1.0\ncomment a 3 x 2 grid\nelement vertex 12\nproperty float x\n"
          "property float y\nproperty float z\nproperty uchar red\nelement face 6\n"
          "property list uchar int vertex_indices\nobj_info made by hand\nend_header\n";
-}
-
-/// The grid's faces as corner indices.
-std::vector<std::array<int, 4>> grid_faces() {
-  std::vector<std::array<int, 4>> faces;
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 3; ++i) faces.push_back({j * 4 + i, j * 4 + i + 1, j * 4 + i + 5, j * 4 + i + 4});
-  return faces;
 }
 
 std::string grid_ply_text() {
