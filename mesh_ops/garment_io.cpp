@@ -15,13 +15,16 @@
 // themselves with the IOManager.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/IO/reader/OFFReader.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -34,6 +37,8 @@
 #include <tuple>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 namespace mrcloth {
 namespace {
@@ -424,12 +429,88 @@ TextScan scan_obj(const std::string& path, const std::string& text) {
   return scan;
 }
 
+/// OpenMesh's OFF reader reads a stream as laid out like the last file it
+/// checked by name (binary, colours, normals: it learns a layout only from
+/// a file's first line, and only when given a file name): an ASCII OFF
+/// handed over as text after a binary one was read as binary. So it checks
+/// a scratch file holding `text`'s first line before it reads `text`.
+void set_off_layout(const std::string& text) {
+  static std::atomic<unsigned> serial{0};
+  const fs::path scratch = fs::temp_directory_path() / ("mrcloth-off-layout-" + std::to_string(::getpid()) + "-" +
+                                                        std::to_string(serial++) + ".off");
+  {
+    std::ofstream out(scratch, std::ios::binary | std::ios::trunc);
+    out << text.substr(0, text.find('\n') + 1);
+  }
+  OpenMesh::IO::OFFReader().can_u_read(scratch.string());
+  std::error_code ignored;
+  fs::remove(scratch, ignored);
+}
+
+/// Binary OFF as OpenMesh reads it: after the "OFF BINARY" line, little-
+/// endian 32-bit vertex, face and edge counts, x y z floats per vertex,
+/// and per face a 32-bit corner count and that many 32-bit vertex indices.
+/// The reader trusts every count (a face count of 2^32 - 1 kept it reading
+/// past the end of the file for minutes; a corner count as large pushes
+/// billions of corners), so the data is walked first and each face's
+/// corners checked against the bytes left and the vertex count. The
+/// variants with normals, colours or texture coordinates (NOFF, COFF, STOFF
+/// BINARY) are refused: their record sizes depend on the reader's options.
+/// The reader gets the data under a header line it cannot misread.
+TextScan scan_binary_off(const std::string& path, const std::string& magic, const std::string& text) {
+  if (magic != "OFF")
+    throw InputError(with_path(path, "binary " + magic + " (with normals, colours or texture coordinates) is not "
+                                     "supported; expected 'OFF BINARY' with positions only, or an ASCII OFF"));
+  const std::size_t data = text.find('\n') + 1;  // the first line held "OFF BINARY"
+  const auto read_u32 = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (int k = 0; k < 4; ++k) value |= std::uint32_t{static_cast<unsigned char>(text[at + k])} << (8 * k);
+    return value;
+  };
+  const std::size_t size = text.size();
+  if (size < data + 12)
+    throw InputError(with_path(path, "the binary OFF ends before its vertex, face and edge counts; expected three "
+                                     "32-bit counts after the 'OFF BINARY' line"));
+  const std::uint64_t vertices = read_u32(data), faces = read_u32(data + 4);
+  // At least 12 bytes per vertex and 4 per face (its corner count).
+  const std::uint64_t least = 12 * vertices + 4 * faces;
+  if (least > size - data - 12)
+    throw InputError(with_path(path, "the binary OFF header declares " + std::to_string(vertices) + " vertices and " +
+                                     std::to_string(faces) + " faces, which need at least " + std::to_string(least) +
+                                     " bytes; " + std::to_string(size - data - 12) +
+                                     " follow (truncated, or counts not little-endian as OpenMesh reads them)"));
+  std::size_t at = data + 12 + 12 * vertices;
+  for (std::uint64_t f = 0; f < faces; ++f) {
+    if (size - at < 4)
+      throw InputError(with_path(path, "the binary OFF ends at " + face_label(static_cast<long>(f)) + " of " +
+                                       std::to_string(faces) + "; expected its corner count"));
+    const std::uint64_t corners = read_u32(at);
+    at += 4;
+    if (corners < 3 || corners > (size - at) / 4)
+      throw InputError(with_path(path, face_label(static_cast<long>(f)) + " (byte " + std::to_string(at - 4) +
+                                       ") has corner count " + std::to_string(corners) + " and " +
+                                       std::to_string((size - at) / 4) +
+                                       " indices' bytes left; expected at least 3 corners and their indices"));
+    for (std::uint64_t c = 0; c < corners; ++c, at += 4)
+      if (read_u32(at) >= vertices)
+        throw InputError(with_path(path, face_label(static_cast<long>(f)) + " names vertex " +
+                                         std::to_string(read_u32(at)) + "; expected an index below " +
+                                         std::to_string(vertices)));
+  }
+  TextScan scan;
+  scan.binary = true;
+  scan.text_for_reader = "OFF BINARY\n" + text.substr(data);
+  return scan;
+}
+
 /// Plain ASCII OFF, optionally with colours/normals/texture coordinates after
-/// x y z (COFF, NOFF, STOFF...). 4OFF, nOFF and binary OFF are left to OpenMesh.
+/// x y z (COFF, NOFF, STOFF...); binary OFF by scan_binary_off; 4OFF and nOFF
+/// are left to OpenMesh (which refuses them).
 /// Refuses a header OpenMesh would misread: a word that is no OFF variant
 /// (it accepted "OFFX"), and counts more than the lines after it hold (it
 /// would allocate for them, or read faces as vertices).
-TextScan scan_off(const std::string& path, std::istream& in) {
+TextScan scan_off(const std::string& path, const std::string& text) {
+  std::istringstream in(text);
   TextScan scan;
   std::size_t line_number = 0;
   std::string cleaned;
@@ -454,8 +535,13 @@ TextScan scan_off(const std::string& path, std::istream& in) {
   if (header != "OFF" && header != "4OFF" && header != "nOFF")
     throw InputError(with_path(path, "the file starts with '" + words[0] +
                                          "'; expected OFF (or COFF, NOFF, STOFF, 4OFF, nOFF)"));
-  scan.binary = words.size() > 1 && words[1] == "BINARY";
-  if (header != "OFF" || scan.binary) return scan;
+  if (words.size() > 1 && words[1] == "BINARY") {
+    if (line_number != 1)
+      throw InputError(with_path(path, "the 'OFF BINARY' line is line " + std::to_string(line_number) +
+                                       "; expected it first (OpenMesh's reader reads binary data after line 1)"));
+    return scan_binary_off(path, words[0], text);
+  }
+  if (header != "OFF") return scan;
   const std::string magic = words[0];
   words.erase(words.begin());
   if (!words.empty()) {
@@ -542,8 +628,7 @@ TextScan scan_text(const std::string& path, Format format) {
   const std::string text = whole.str();
   require_line_text(path, text);
   if (format == Format::obj) return scan_obj(path, text);
-  std::istringstream lines(text);
-  return scan_off(path, lines);
+  return scan_off(path, text);
 }
 
 /// True when the scan read the same vertices OpenMesh did, up to float rounding.
@@ -1026,6 +1111,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
         read = OpenMesh::IO::IOManager().read(path, importer, io_options);
       } else {
         std::istringstream text(scan.text_for_reader);
+        if (*format == Format::off) set_off_layout(scan.text_for_reader);
         read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
       }
     } catch (const std::bad_alloc&) {

@@ -5,11 +5,20 @@
 // Byte edits find what a damaged download does; token edits put the values a
 // hand-edited or foreign file holds (nan, 1e309, counts beyond int, negative
 // indices) where numbers stood, which random bytes almost never spell.
+#include "mesh_ops/errors.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
-#include <iterator>
+#include <cctype>
 #include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include <sys/resource.h>
@@ -181,5 +190,70 @@ class ByteMutator {
   std::mt19937 rng_;
   std::size_t protect_;
 };
+
+/// What a sweep saw: inputs the reader read (and whose result held its
+/// promises) and inputs it refused with InputError.
+struct SweepTally {
+  int read = 0;
+  int refused = 0;
+};
+
+/// What a refusal's message must name: the file, or the file and a line
+/// ("<file>:<line>:", for line-oriented text formats).
+enum class Naming { file, file_and_line };
+
+inline void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
+/// Whether `message` names `path` as `naming` asks.
+inline bool names_input(const std::string& message, const std::string& path, Naming naming) {
+  const std::size_t at = message.find(path);
+  if (at == std::string::npos) return false;
+  if (naming == Naming::file) return true;
+  std::size_t k = at + path.size();
+  if (k >= message.size() || message[k] != ':') return false;
+  const std::size_t digits = ++k;
+  while (k < message.size() && std::isdigit(static_cast<unsigned char>(message[k]))) ++k;
+  return k > digits && k < message.size() && message[k] == ':';
+}
+
+/// Writes each of `count` mutations of `valid` to `dir`/mutated`suffix` and
+/// calls `read(path, input)`, which reads it and asserts what the reader
+/// promises of a result. A refusal must be an InputError whose message
+/// names the input as `naming` asks; any other exception or a failed
+/// assertion fails the test and keeps the input as `dir`/failed-<k>`suffix`
+/// for replay (a fatal failure ends the sweep).
+template <class Mutator, class Read>
+SweepTally sweep_reader(const std::filesystem::path& dir, const std::string& suffix, const std::string& valid,
+                        Mutator mutate, int count, Naming naming, Read read) {
+  SweepTally tally;
+  const std::filesystem::path path = dir / ("mutated" + suffix);
+  for (int k = 0; k < count; ++k) {
+    const std::string input = mutate(valid);
+    write_bytes(path, input);
+    const auto keep = [&] { write_bytes(dir / ("failed-" + std::to_string(k) + suffix), input); };
+    try {
+      read(path.string(), input);
+      if (::testing::Test::HasFatalFailure()) {
+        keep();
+        return tally;
+      }
+      ++tally.read;
+    } catch (const InputError& error) {
+      if (!names_input(error.what(), path.string(), naming)) {
+        keep();
+        ADD_FAILURE() << "mutation " << k << ": the message does not name the "
+                      << (naming == Naming::file ? "file" : "file and line") << ": " << error.what();
+      }
+      ++tally.refused;
+    } catch (const std::exception& error) {
+      keep();
+      ADD_FAILURE() << "mutation " << k << ": " << typeid(error).name() << " instead of InputError: " << error.what();
+    }
+  }
+  return tally;
+}
 
 }  // namespace mrcloth::test

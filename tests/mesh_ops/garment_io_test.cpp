@@ -1141,3 +1141,81 @@ TEST(GarmentRealData, MakeHumanSkirtHelperInDecimetres) {
   EXPECT_NEAR(high, 0.18385, 1e-12);
   EXPECT_EQ(mrcloth::quadtree(mesh).size(), 684u);
 }
+
+namespace {
+
+/// Little-endian bytes of a 32-bit value, as binary OFF stores it.
+template <class T>
+void append_le(std::string& bytes, T value) {
+  static_assert(sizeof(T) == 4);
+  char raw[4];
+  std::memcpy(raw, &value, 4);
+  bytes.append(raw, 4);
+}
+
+/// A unit square in binary OFF: "OFF BINARY", counts, floats, one quad.
+std::string binary_off_square(std::uint32_t vertices = 4, std::uint32_t faces = 1, std::uint32_t corners = 4) {
+  std::string bytes = "OFF BINARY\n";
+  append_le(bytes, vertices);
+  append_le(bytes, faces);
+  append_le(bytes, std::uint32_t{0});
+  const float points[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  for (const auto& p : points)
+    for (const float c : p) append_le(bytes, c);
+  append_le(bytes, corners);
+  for (std::uint32_t k = 0; k < 4; ++k) append_le(bytes, k);
+  return bytes;
+}
+
+}  // namespace
+
+// OpenMesh's OFF reader keeps what the last file it checked by name said
+// of itself (binary, colours, normals) and applies it to text it is handed
+// as a stream: the ASCII OFF read after a binary one was read as binary.
+TEST(GarmentLoad, OffReadsDoNotInheritTheLastFilesLayout) {
+  ScratchDir dir;
+  const mrcloth::LoadResult binary = mrcloth::load_garment(write_file(dir.file("square.off"), binary_off_square()));
+  EXPECT_EQ(binary.mesh.n_faces(), 1u);
+  // A comment makes the loader hand OpenMesh a cleaned copy as a stream.
+  const std::string text = "OFF\n# a comment\n4 1 0\n0 0 0\n2 0 0\n2 2 0\n0 2 0\n4 0 1 2 3\n";
+  const mrcloth::LoadResult ascii = mrcloth::load_garment(write_file(dir.file("commented.off"), text));
+  ASSERT_EQ(ascii.mesh.n_vertices(), 4u);
+  EXPECT_EQ(ascii.mesh.point(mrcloth::QuadMesh::VertexHandle(2)), OpenMesh::Vec3d(2, 2, 0));
+  // And a coloured OFF's layout does not carry over either.
+  const std::string coloured = "COFF\n4 1 0\n0 0 0 255 0 0\n3 0 0 0 255 0\n3 3 0 0 0 255\n0 3 0 9 9 9\n4 0 1 2 3\n";
+  EXPECT_EQ(mrcloth::load_garment(write_file(dir.file("coloured.off"), coloured)).mesh.n_vertices(), 4u);
+  const mrcloth::LoadResult again = mrcloth::load_garment(write_file(dir.file("again.off"), text));
+  EXPECT_EQ(again.mesh.point(mrcloth::QuadMesh::VertexHandle(2)), OpenMesh::Vec3d(2, 2, 0));
+}
+
+// OpenMesh's binary OFF reader trusts its counts: a face count of 2^32 - 1
+// kept it reading past the end of the file for minutes (found by the
+// mutation sweep), a corner count as large pushes billions of corners.
+TEST(GarmentLoadErrors, BinaryOffCountsAreCheckedAgainstTheData) {
+  ScratchDir dir;
+  const mrcloth::LoadResult square = mrcloth::load_garment(write_file(dir.file("square.off"), binary_off_square()));
+  ASSERT_EQ(square.mesh.n_vertices(), 4u);
+  EXPECT_EQ(square.mesh.point(mrcloth::QuadMesh::VertexHandle(2)), OpenMesh::Vec3d(1, 1, 0));
+  EXPECT_LOAD_ERROR(write_file(dir.file("faces.off"), binary_off_square(4, 0xFFFFFFFFu)),
+                    "the binary OFF header declares 4 vertices and 4294967295 faces, which need at least 17179869228 "
+                    "bytes; 68 follow");
+  EXPECT_LOAD_ERROR(write_file(dir.file("vertices.off"), binary_off_square(6)),
+                    "the binary OFF header declares 6 vertices and 1 faces, which need at least 76 bytes; 68 follow");
+  // One vertex more than written: the face's bytes are read from its last corner on.
+  EXPECT_LOAD_ERROR(write_file(dir.file("askew.off"), binary_off_square(5)), "face 0 (byte 83) has corner count 2 and 1 indices' bytes left");
+  EXPECT_LOAD_ERROR(write_file(dir.file("corners.off"), binary_off_square(4, 1, 0x7FFFFFFFu)),
+                    "face 0 (byte 71) has corner count 2147483647 and 4 indices' bytes left");
+  EXPECT_LOAD_ERROR(write_file(dir.file("two.off"), binary_off_square(4, 1, 2)),
+                    "face 0 (byte 71) has corner count 2 and 4 indices' bytes left; expected at least 3 corners");
+  std::string far = binary_off_square();
+  far[far.size() - 4] = 9;  // the last corner names vertex 9
+  EXPECT_LOAD_ERROR(write_file(dir.file("far.off"), far), "face 0 names vertex 9; expected an index below 4");
+  EXPECT_LOAD_ERROR(write_file(dir.file("short.off"), binary_off_square().substr(0, 19)),
+                    "the binary OFF ends before its vertex, face and edge counts");
+  std::string coloured = binary_off_square();
+  coloured.insert(0, "C");
+  EXPECT_LOAD_ERROR(write_file(dir.file("coloured.off"), coloured),
+                    "binary COFF (with normals, colours or texture coordinates) is not supported");
+  EXPECT_LOAD_ERROR(write_file(dir.file("second.off"), "# made by hand\n" + binary_off_square()),
+                    "the 'OFF BINARY' line is line 2; expected it first");
+}

@@ -32,11 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << bytes;
-}
-
 /// What a garment read must hold when it succeeds.
 void expect_sound_garment(const QuadMesh& mesh, const std::string& input) {
   ASSERT_GT(mesh.n_faces(), 0u) << input;
@@ -49,43 +44,17 @@ void expect_sound_garment(const QuadMesh& mesh, const std::string& input) {
   ASSERT_TRUE(violations.empty()) << violations.front() << "\n" << input;
 }
 
-struct Tally {
-  int read = 0;
-  int refused = 0;
-};
+using Tally = test::SweepTally;
+using test::write_bytes;
 
-/// Loads each of `count` mutations of `valid` from `dir`/mutated`suffix`;
-/// a failure keeps the input as `dir`/failed-<k>`suffix`.
+/// Loads each of `count` mutations of `valid` as a garment (test::sweep_reader).
 template <class Mutator>
 Tally load_mutations(const fs::path& dir, const std::string& suffix, const std::string& valid, Mutator mutate,
                      int count) {
-  Tally tally;
-  const fs::path path = dir / ("mutated" + suffix);
-  for (int k = 0; k < count; ++k) {
-    const std::string input = mutate(valid);
-    write_bytes(path, input);
-    const auto keep = [&] { write_bytes(dir / ("failed-" + std::to_string(k) + suffix), input); };
-    try {
-      const LoadResult loaded = load_garment(path.string());
-      expect_sound_garment(loaded.mesh, input);
-      if (::testing::Test::HasFatalFailure()) {
-        keep();
-        return tally;
-      }
-      ++tally.read;
-    } catch (const InputError& error) {
-      const std::string message = error.what();
-      if (message.find(path.string()) == std::string::npos) {
-        keep();
-        ADD_FAILURE() << "mutation " << k << ": the message does not name the file: " << message;
-      }
-      ++tally.refused;
-    } catch (const std::exception& error) {
-      keep();
-      ADD_FAILURE() << "mutation " << k << ": " << typeid(error).name() << " instead of InputError: " << error.what();
-    }
-  }
-  return tally;
+  return test::sweep_reader(dir, suffix, valid, std::move(mutate), count, test::Naming::file,
+                            [](const std::string& path, const std::string& input) {
+                              expect_sound_garment(load_garment(path).mesh, input);
+                            });
 }
 
 const std::string kObjAlphabet = "vtfgo/ #\n\t-.0123456789e";
@@ -306,6 +275,30 @@ TEST(GarmentMutations, OffEditsLoadSoundOrAreRefusedNamingTheFile) {
   const Tally tally = load_mutations(dir, ".off", valid, test::TextMutator(12, "OFF \n\t-.0123456789e#"), 1500);
   EXPECT_GT(tally.read, 100);
   EXPECT_GT(tally.refused, 100);
+}
+
+/// Binary OFF as OpenMesh writes it ("OFF BINARY", then little-endian
+/// counts, float coordinates and int face lists), read by OpenMesh's reader.
+TEST(GarmentMutations, BinaryOffEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "off_binary");
+  OpenMesh::PolyMesh_ArrayKernelT<> plain;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) plain.add_vertex({0.1f * static_cast<float>(i), 0.1f * static_cast<float>(j), 0.f});
+  for (const auto& f : grid_faces())
+    plain.add_face({plain.vertex_handle(static_cast<unsigned>(f[0])), plain.vertex_handle(static_cast<unsigned>(f[1])),
+                    plain.vertex_handle(static_cast<unsigned>(f[2])), plain.vertex_handle(static_cast<unsigned>(f[3]))});
+  ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, (dir / "valid.off").string(), OpenMesh::IO::Options::Binary));
+  const std::string valid = read_bytes(dir / "valid.off");
+  const LoadResult loaded = load_garment((dir / "valid.off").string());
+  expect_sound_garment(loaded.mesh, "(binary OFF)");
+  ASSERT_EQ(loaded.mesh.n_vertices(), 12u);
+  ASSERT_EQ(loaded.mesh.n_faces(), 6u);
+  const std::size_t header = valid.find('\n') + 1;
+  const Tally whole = load_mutations(dir, ".off", valid, test::ByteMutator(31), 750);
+  const Tally data = load_mutations(dir, ".off", valid, test::ByteMutator(32, header), 750);
+  EXPECT_GT(whole.read + data.read, 50);
+  EXPECT_GT(whole.refused + data.refused, 100);
 }
 
 }  // namespace
