@@ -289,10 +289,11 @@ void add_weight(std::vector<std::pair<int, double>>& list, int joint, double wei
 /// gives, per default bone, the joints whose rig bones reference it;
 /// `body_index` maps base-mesh vertices to body vertices (-1: not in the body).
 /// Body vertices without any weight follow `fallback_joint`; `unweighted`
-/// receives them (body vertex indices).
+/// receives them (body vertex indices). `mesh_path` names the base mesh in
+/// messages about vertices it does not have.
 VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std::vector<int>>& joint_of_bone,
                           const std::vector<int>& body_index, int body_count, int fallback_joint,
-                          std::vector<int>& unweighted) {
+                          std::vector<int>& unweighted, const std::string& mesh_path) {
   struct Entry {
     int vertex;
     double weight;
@@ -307,7 +308,9 @@ VertexWeights map_weights(const JsonValue& mhw, const std::map<std::string, std:
       const int v = items[0].as_int(what + " vertex");
       const double w = items[1].as_number(what + " weight");
       if (v < 0 || v >= static_cast<int>(body_index.size()))
-        pair.fail(what + " names vertex " + std::to_string(v) + "; expected an index below " + std::to_string(body_index.size()));
+        pair.fail(what + " names vertex " + std::to_string(v) + "; expected an index below " +
+                  std::to_string(body_index.size()) + ", the vertex count of " + mesh_path +
+                  " (weights of another mesh, or a mesh with vertices added or removed?)");
       if (!(w >= 0.0) || !std::isfinite(w)) pair.fail(what + " has a negative or non-finite weight; expected a weight >= 0");
       const int b = body_index[static_cast<std::size_t>(v)];
       if (b >= 0 && w > 0.0) entries.push_back({b, w});
@@ -633,7 +636,8 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   }
   const int hips = skeleton.find("Hips");
   std::vector<int> unweighted;
-  body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root, unweighted);
+  body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root, unweighted,
+                             files.base_obj);
   // MakeHuman weighs every body vertex (the shared body: all 13,380); one
   // without weight would stand still in its A-pose while the clip walks.
   if (!unweighted.empty()) {
