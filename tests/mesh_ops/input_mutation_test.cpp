@@ -208,17 +208,23 @@ TEST(GarmentMutations, OmEditsLoadSoundOrAreRefusedNamingTheFile) {
   EXPECT_GT(plain.refused, 700) << "the checksum refuses nearly every edit";
 }
 
-/// A plain OpenMesh .om (no mrcloth layers, no checksum): OpenMesh's own
-/// reader behind check_om_structure.
-TEST(GarmentMutations, PlainOpenMeshOmEditsLoadSoundOrAreRefusedNamingTheFile) {
-  test::bound_memory();
-  const fs::path dir = test::fresh_folder("input_mutation_test", "plain_om");
+/// The grid as a plain OpenMesh mesh, for OpenMesh's own writers.
+OpenMesh::PolyMesh_ArrayKernelT<> plain_grid() {
   OpenMesh::PolyMesh_ArrayKernelT<> plain;
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 3; ++i) plain.add_vertex({0.1f * static_cast<float>(i), 0.1f * static_cast<float>(j), 0.f});
   for (const auto& f : grid_faces())
     plain.add_face({plain.vertex_handle(static_cast<unsigned>(f[0])), plain.vertex_handle(static_cast<unsigned>(f[1])),
                     plain.vertex_handle(static_cast<unsigned>(f[2])), plain.vertex_handle(static_cast<unsigned>(f[3]))});
+  return plain;
+}
+
+/// A plain OpenMesh .om (no mrcloth layers, no checksum): OpenMesh's own
+/// reader behind check_om_structure.
+TEST(GarmentMutations, PlainOpenMeshOmEditsLoadSoundOrAreRefusedNamingTheFile) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "plain_om");
+  const OpenMesh::PolyMesh_ArrayKernelT<> plain = plain_grid();
   ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, (dir / "valid.om").string()));
   const std::string valid = read_bytes(dir / "valid.om");
   expect_sound_garment(load_garment((dir / "valid.om").string()).mesh, "(valid .om)");
@@ -282,12 +288,7 @@ TEST(GarmentMutations, OffEditsLoadSoundOrAreRefusedNamingTheFile) {
 TEST(GarmentMutations, BinaryOffEditsLoadSoundOrAreRefusedNamingTheFile) {
   test::bound_memory();
   const fs::path dir = test::fresh_folder("input_mutation_test", "off_binary");
-  OpenMesh::PolyMesh_ArrayKernelT<> plain;
-  for (int j = 0; j <= 2; ++j)
-    for (int i = 0; i <= 3; ++i) plain.add_vertex({0.1f * static_cast<float>(i), 0.1f * static_cast<float>(j), 0.f});
-  for (const auto& f : grid_faces())
-    plain.add_face({plain.vertex_handle(static_cast<unsigned>(f[0])), plain.vertex_handle(static_cast<unsigned>(f[1])),
-                    plain.vertex_handle(static_cast<unsigned>(f[2])), plain.vertex_handle(static_cast<unsigned>(f[3]))});
+  const OpenMesh::PolyMesh_ArrayKernelT<> plain = plain_grid();
   ASSERT_TRUE(OpenMesh::IO::write_mesh(plain, (dir / "valid.off").string(), OpenMesh::IO::Options::Binary));
   const std::string valid = read_bytes(dir / "valid.off");
   const LoadResult loaded = load_garment((dir / "valid.off").string());
