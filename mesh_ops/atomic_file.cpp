@@ -20,8 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
-
 /// The longest file name (bytes) the usual file systems take (ext4, XFS,
 /// tmpfs: NAME_MAX).
 constexpr std::size_t kLongestName = 255;

@@ -1,6 +1,7 @@
 #pragma once
 // The one error style of mrcloth: typed exceptions at module boundaries,
 // each message naming the file, line or element and what was expected.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +26,12 @@ struct ArgumentError : Error {
 struct OutputError : Error {
   using Error::Error;
 };
+
+/// The form every message about a file takes: "<path>: <problem>".
+inline std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
+
+/// " (line N)", for a problem found on line N (1-based) of a text file.
+inline std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
 
 /// Why a file named `path` (UTF-8) cannot be opened when it does not exist:
 /// a name holding U+FFFD came from bytes that were not UTF-8 (a Latin-1

@@ -48,8 +48,6 @@ using VertexHandle = OpenMesh::VertexHandle;
 
 enum class Format { obj, off, ply, om };
 
-std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
-
 /// ".obj" for "A/B.OBJ", "" when there is none.
 std::string lower_extension(const std::string& path) { return ascii_lower(fs::path(path).extension().string()); }
 
@@ -119,8 +117,6 @@ FaceProblem earlier(const FaceProblem& a, const FaceProblem& b) {
 }
 
 std::string face_label(long face) { return "face " + std::to_string(face); }
-
-std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
 
 /// Where each vertex and face of a text file stands (1-based line numbers,
 /// in the file's order, which is the mesh's): messages about an element

@@ -74,9 +74,7 @@ struct Header {
   std::size_t end_line = 0;  ///< the end_header line
 };
 
-InputError error(const std::string& path, const std::string& problem) { return InputError(path + ": " + problem); }
-
-std::string at_line(std::size_t line) { return " (line " + std::to_string(line) + ")"; }
+InputError error(const std::string& path, const std::string& problem) { return InputError(with_path(path, problem)); }
 
 std::vector<std::string> split_words(const std::string& line) {
   std::istringstream in(line);

@@ -32,8 +32,6 @@ constexpr std::uint64_t kHeaderBytes = 32;
 constexpr std::uint64_t kPointBytes = 12;  ///< float32 x, y, z
 constexpr std::streamoff kSampleCountOffset = 28;
 
-std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }
-
 void put_u32(unsigned char* out, std::uint32_t value) {
   for (int i = 0; i < 4; ++i) out[i] = static_cast<unsigned char>(value >> (8 * i));
 }
