@@ -429,18 +429,23 @@ TextScan scan_obj(const std::string& path, const std::string& text) {
 /// checked by name (binary, colours, normals: it learns a layout only from
 /// a file's first line, and only when given a file name): an ASCII OFF
 /// handed over as text after a binary one was read as binary. So it checks
-/// a scratch file holding `text`'s first line before it reads `text`.
-void set_off_layout(const std::string& text) {
+/// a scratch file holding `text`'s first line before it reads `text`; where
+/// no scratch file can be written, the file `path` itself (whose first line
+/// says the same unless comments or blank lines come before it).
+void set_off_layout(const std::string& path, const std::string& text) {
   static std::atomic<unsigned> serial{0};
-  const fs::path scratch = fs::temp_directory_path() / ("mrcloth-off-layout-" + std::to_string(::getpid()) + "-" +
-                                                        std::to_string(serial++) + ".off");
-  {
+  std::error_code error;
+  const fs::path scratch = fs::temp_directory_path(error) / ("mrcloth-off-layout-" + std::to_string(::getpid()) +
+                                                             "-" + std::to_string(serial++) + ".off");
+  bool checked = false;
+  if (!error) {
     std::ofstream out(scratch, std::ios::binary | std::ios::trunc);
     out << text.substr(0, text.find('\n') + 1);
+    out.close();
+    checked = out && OpenMesh::IO::OFFReader().can_u_read(scratch.string());
+    fs::remove(scratch, error);
   }
-  OpenMesh::IO::OFFReader().can_u_read(scratch.string());
-  std::error_code ignored;
-  fs::remove(scratch, ignored);
+  if (!checked) OpenMesh::IO::OFFReader().can_u_read(path);
 }
 
 /// Binary OFF as OpenMesh reads it: after the "OFF BINARY" line, little-
@@ -457,7 +462,11 @@ TextScan scan_binary_off(const std::string& path, const std::string& magic, cons
   if (magic != "OFF")
     throw InputError(with_path(path, "binary " + magic + " (with normals, colours or texture coordinates) is not "
                                      "supported; expected 'OFF BINARY' with positions only, or an ASCII OFF"));
-  const std::size_t data = text.find('\n') + 1;  // the first line held "OFF BINARY"
+  const std::size_t line_end = text.find('\n');  // the first line held "OFF BINARY"
+  if (line_end == std::string::npos)
+    throw InputError(with_path(path, "the binary OFF has no line end after 'OFF BINARY'; expected the counts and data "
+                                     "on the bytes after it"));
+  const std::size_t data = line_end + 1;
   const auto read_u32 = [&](std::size_t at) {
     std::uint32_t value = 0;
     for (int k = 0; k < 4; ++k) value |= std::uint32_t{static_cast<unsigned char>(text[at + k])} << (8 * k);
@@ -1107,7 +1116,7 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
         read = OpenMesh::IO::IOManager().read(path, importer, io_options);
       } else {
         std::istringstream text(scan.text_for_reader);
-        if (*format == Format::off) set_off_layout(scan.text_for_reader);
+        if (*format == Format::off) set_off_layout(path, scan.text_for_reader);
         read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
       }
     } catch (const std::bad_alloc&) {

@@ -1210,6 +1210,8 @@ TEST(GarmentLoadErrors, BinaryOffCountsAreCheckedAgainstTheData) {
   std::string far = binary_off_square();
   far[far.size() - 4] = 9;  // the last corner names vertex 9
   EXPECT_LOAD_ERROR(write_file(dir.file("far.off"), far), "face 0 names vertex 9; expected an index below 4");
+  EXPECT_LOAD_ERROR(write_file(dir.file("one_line.off"), "OFF BINARY " + binary_off_square().substr(11, 20)),
+                    "the binary OFF has no line end after 'OFF BINARY'");
   EXPECT_LOAD_ERROR(write_file(dir.file("short.off"), binary_off_square().substr(0, 19)),
                     "the binary OFF ends before its vertex, face and edge counts");
   std::string coloured = binary_off_square();
