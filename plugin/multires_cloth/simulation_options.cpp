@@ -322,8 +322,11 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   // Progress and Ctrl-C come between frames: a frame's work is bounded.
   if (!character) sim.substeps = fields.integerBetween(QStringLiteral("substeps"), sim.substeps, 1, 1000);
   sim.iterations = fields.integerBetween(QStringLiteral("iterations"), sim.iterations, 1, 100);
-  sim.newton_cg = fields.integerAtLeast(QStringLiteral("newtonCg"), sim.newton_cg, 0);
-  sim.strain_limit_sweeps = fields.integerAtLeast(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0);
+  // The same for the inner loops (a typo of 60000 sweeps left a frame
+  // running for hours with Ctrl-C waiting on it); 1000 CG iterations
+  // converge any garment's Newton step (newtonCg stops once converged).
+  sim.newton_cg = fields.integerBetween(QStringLiteral("newtonCg"), sim.newton_cg, 0, 1000);
+  sim.strain_limit_sweeps = fields.integerBetween(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0, 1000);
   // "auto": the default estimate raised to the garment's chain's
   // (chain_spectral_radius), which the longer chains of refined meshes need.
   const QVariant acceleration =
@@ -350,7 +353,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
              .arg(sim.limiter_mass_exponent));
   sim.t_node_sag = fields.boolean(QStringLiteral("tNodeSag"), sim.t_node_sag);
   sim.pins_yield = fields.boolean(QStringLiteral("pinsYield"), sim.pins_yield);
-  sim.collision_rounds = fields.integerAtLeast(QStringLiteral("collisionRounds"), sim.collision_rounds, 1);
+  sim.collision_rounds = fields.integerBetween(QStringLiteral("collisionRounds"), sim.collision_rounds, 1, 100);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);

@@ -57,7 +57,7 @@ const USAGE = [
   "  --material M           cotton | denim | silk [cotton]",
   "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
   "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
-  "  --newton-cg K          each solve iteration a Newton step by K conjugate-gradient iterations, >= 0;",
+  "  --newton-cg K          each solve iteration a Newton step by K conjugate-gradient iterations, 0-1000;",
   "                         less damped, costlier (simulate's newtonCg; README) [0: the plain iteration]",
   "  --bend-model M         distance | secondDifference: experimental bend springs quadratic in the",
   "                         curvature (simulate's bendModel; give --bend-stiffness) [distance, the paper's]",
@@ -126,7 +126,7 @@ const UNITS = ["m", "dm", "cm", "mm", "inch"];
 // The bounds of the values the API takes (or can run in reasonable time).
 const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
 const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, motionSmoothing: 1, leastFps: 1,
-                stepsPerFrame: 1000,
+                stepsPerFrame: 1000, newtonCg: 1000,  // simulate's bounds on a frame's work
                 uniformFaces: 2e7};  // kMostFaces (mesh_ops/quad_refiner.h)
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
@@ -201,7 +201,7 @@ function parseOptions(args) {
       case "fps": options.fps = numberOption(name, text, LIMITS.leastFps, false); break;
       case "preroll": options.preroll = numberOption(name, text, 0, false, LIMITS.preroll); break;
       case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
-      case "newtonCg": options.newtonCg = integerOption(name, text, 0); break;
+      case "newtonCg": options.newtonCg = integerOption(name, text, 0, LIMITS.newtonCg); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
       case "bendStiffness": options.bendStiffness = numberOption(name, text, 0, false); break;
       case "limiterAcceleration": {

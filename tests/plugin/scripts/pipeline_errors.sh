@@ -35,7 +35,7 @@ refused "option --step-rate: expected a number > 0, got \"0\"" --step-rate 0
 refused "option --step-rate: expected at least --fps \(30 frames per second\), got 20" --step-rate 20
 refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, got \"fast\"" --limiter-acceleration fast
 refused "option --limiter-acceleration: expected auto or a number >= 0 and < 1, got \"1\"" --limiter-acceleration 1
-refused "option --newton-cg: expected an integer >= 0, got \"-1\"" --newton-cg -1
+refused "option --newton-cg: expected an integer >= 0 and <= 1000, got \"-1\"" --newton-cg -1
 refused "option --bend-model: expected one of distance, secondDifference, got \"hinge\"" --bend-model hinge
 refused "option --bend-stiffness: expected a number >= 0, got \"-0.1\"" --bend-stiffness -0.1
 refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"-0.01\"" --waist-smoothing -0.01
@@ -68,7 +68,7 @@ refused "option --levels: expected an integer >= 1 and <= 2147483647, got \"9999
 refused "option --instance-frames: expected an integer >= 2 and <= 2147483647, got \"3000000000\"" \
   $cheap --instance-frames 3000000000
 refused "option --test-frames: expected an integer >= 1 and <= 2147483647" $cheap --test-frames 2147483648
-refused "option --newton-cg: expected an integer >= 0 and <= 2147483647" $cheap --newton-cg 99999999999
+refused "option --newton-cg: expected an integer >= 0 and <= 1000" $cheap --newton-cg 99999999999
 refused "option --threads: expected an integer >= 0 and <= 1024, got \"2000\"" $cheap --threads 2000
 refused "option --modes: expected an integer >= 1 and <= 1000, got \"1e20\"" $cheap --modes 1e20
 refused "option --preroll: expected a number >= 0 and <= 60, got \"61\"" $cheap --preroll 61

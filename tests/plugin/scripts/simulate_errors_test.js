@@ -27,13 +27,13 @@ expectThrows(sim({fps: "30"}), "ArgumentError", "option 'fps' must be a finite n
 expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 0");
 expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number -1");
 expectThrows(sim({bendModel: "hinge"}), "ArgumentError", "option 'bendModel'");
-expectThrows(sim({newtonCg: -1}), "ArgumentError", "option 'newtonCg' must be an integer >= 0");
-expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer >= 0");
+expectThrows(sim({newtonCg: -1}), "ArgumentError", "option 'newtonCg' must be an integer from 0 to 1000, got the number -1");
+expectThrows(sim({limiterSweeps: -1}), "ArgumentError", "option 'limiterSweeps' must be an integer from 0 to 1000, got the number -1");
 expectThrows(sim({limiterAcceleration: -0.1}), "ArgumentError", "option 'limiterAcceleration' must be a number >= 0, got the number -0.1");
 expectThrows(sim({limiterAcceleration: 1}), "ArgumentError", "option 'limiterAcceleration' must be \"auto\" or a number >= 0 and < 1 (0: plain limiter sweeps), got 1");
 expectThrows(sim({limiterMassExponent: -0.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0, got the number -0.5");
 expectThrows(sim({limiterMassExponent: 1.5}), "ArgumentError", "option 'limiterMassExponent' must be a number >= 0 and <= 1 (1: mass-weighted limiter projections), got 1.5");
-expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer >= 1");
+expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRounds' must be an integer from 1 to 100, got the number 0");
 expectThrows(sim({collisionRounds: 1.5}), "ArgumentError", "option 'collisionRounds' must be an integer, got the number 1.5");
 expectThrows(sim({contactSlack: -0.001}), "ArgumentError", "option 'contactSlack' must be a number >= 0, got the number -0.001");
 expectThrows(sim({contactSlack: "1mm"}), "ArgumentError", "option 'contactSlack'");
@@ -164,6 +164,9 @@ core.deleteObject(source);
 // A frame's work is bounded: progress and Ctrl-C come between frames.
 expectThrows(sim({substeps: 1e9}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 1e+09");
 expectThrows(sim({iterations: 101}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number 101");
+expectThrows(sim({limiterSweeps: 60000}), "ArgumentError", "option 'limiterSweeps' must be an integer from 0 to 1000, got the number 60000");
+expectThrows(sim({collisionRounds: 101}), "ArgumentError", "option 'collisionRounds' must be an integer from 1 to 100, got the number 101");
+expectThrows(sim({newtonCg: 1e9}), "ArgumentError", "option 'newtonCg' must be an integer from 0 to 1000, got the number 1e+09");
 
 // The script carries on; the objects are as they were.
 expectEqual(core.objectList().length, 2, "no objects added by failed calls");
