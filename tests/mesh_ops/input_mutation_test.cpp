@@ -302,5 +302,36 @@ TEST(GarmentMutations, BinaryOffEditsLoadSoundOrAreRefusedNamingTheFile) {
   EXPECT_GT(whole.refused + data.refused, 100);
 }
 
+/// The material library an OBJ names (OpenMesh's OBJ reader parses it) has
+/// no say in the garment: every edit of it loads the same mesh.
+TEST(GarmentMutations, MaterialFileEditsLeaveTheGarmentAsItIs) {
+  test::bound_memory();
+  const fs::path dir = test::fresh_folder("input_mutation_test", "mtl");
+  std::string obj = grid_obj();
+  obj.replace(obj.find("mtllib none.mtl"), 15, "mtllib grid.mtl");
+  write_bytes(dir / "grid.obj", obj);
+  const std::string valid =
+      "# made by hand\nnewmtl cotton\nKa 0.2 0.2 0.2\nKd 0.8 0.7 0.6\nKs 0 0 0\nNs 10\nd 1\nTr 0\nillum 2\n"
+      "map_Kd cotton.png\n\nnewmtl other\nKd 1 0 0\n";
+  write_bytes(dir / "grid.mtl", valid);
+  const LoadResult reference = load_garment((dir / "grid.obj").string());
+  test::TextMutator mutate(41, "newmtlKadsNTrilumap_ \n.-0123456789");
+  int loaded = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const std::string input = mutate(valid);
+    write_bytes(dir / "grid.mtl", input);
+    try {
+      const LoadResult result = load_garment((dir / "grid.obj").string());
+      ASSERT_EQ(result.mesh.n_vertices(), reference.mesh.n_vertices()) << input;
+      ASSERT_EQ(result.mesh.n_faces(), reference.mesh.n_faces()) << input;
+      for (const auto v : result.mesh.vertices()) ASSERT_EQ(result.mesh.point(v), reference.mesh.point(v)) << input;
+      ++loaded;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << k << ": " << e.what() << "\n" << input;
+    }
+  }
+  EXPECT_EQ(loaded, 1500);
+}
+
 }  // namespace
 }  // namespace mrcloth
