@@ -29,7 +29,14 @@ void check(const CharacterRunOptions& o, const Motion& motion) {
   if (o.frames < 1) throw ArgumentError("frames must be >= 1, got " + std::to_string(o.frames));
   if (!(o.fps > 0.0)) throw ArgumentError("fps must be > 0");
   if (!(o.step_rate >= o.fps)) throw ArgumentError("the step rate must be at least the output fps");
+  // Both bounds also keep the rounded counts within int (a step rate of
+  // 1e300 rounded to a count past it, and ran one step a frame).
+  if (!(o.step_rate <= kMostStepsPerFrame * o.fps))
+    throw ArgumentError("the step rate must be at most " + std::to_string(kMostStepsPerFrame) +
+                        " steps per output frame");
   if (!(o.preroll_seconds >= 0.0)) throw ArgumentError("pre-roll must be >= 0 seconds");
+  if (!(o.preroll_seconds * o.fps <= std::numeric_limits<int>::max()))
+    throw ArgumentError("the pre-roll must be fewer than 2^31 output frames");
   if (!(o.motion_start >= 0.0)) throw ArgumentError("motion start must be >= 0 seconds");
   if (motion.skeleton.find(o.pelvis_joint) < 0)
     throw ArgumentError("the motion's skeleton has no joint '" + o.pelvis_joint + "' to pin the waist to");

@@ -75,10 +75,17 @@ class SkinnedPosedBody : public PosedBody {
   std::unique_ptr<MeshAndBridges> scene_;
 };
 
+/// The most time steps an output frame may take: progress and cancellation
+/// come between frames, so a frame's work is bounded (as simulate bounds
+/// substeps).
+constexpr int kMostStepsPerFrame = 1000;
+
 struct CharacterRunOptions {
   int frames = 60;                   ///< output frames of the motion (after the pre-roll), >= 1
   double fps = 30.0;                 ///< output frames per second
-  double step_rate = 120.0;          ///< time steps per second (the mocap rate); rounded to a multiple of fps
+  /// Time steps per second (the mocap rate), from fps to kMostStepsPerFrame
+  /// x fps; rounded to a multiple of fps.
+  double step_rate = 120.0;
   double preroll_seconds = 1.0;      ///< rest pose -> first motion frame, not recorded; >= 0
   double motion_start = 0.0;         ///< seconds into the clip where the recording starts
   std::string pelvis_joint = "Hips"; ///< the joint whose frame the pinned waist follows

@@ -328,6 +328,13 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
              .arg(fields.label(QStringLiteral("stepRate"))).arg(fps).arg(request.setup.step_rate)
              .arg(fields.has(QStringLiteral("stepRate")) ? QString()
                                                          : QStringLiteral(" (its default: give a step rate of at least %1)").arg(fps)));
+  // Progress and Ctrl-C come between frames: a frame's work is bounded.
+  if (request.setup.step_rate > kMostStepsPerFrame * fps)
+    fail(QStringLiteral("%1 must be at most %2 steps per output frame (%2 x option 'fps' = %3), got %4")
+             .arg(fields.label(QStringLiteral("stepRate")))
+             .arg(kMostStepsPerFrame)
+             .arg(kMostStepsPerFrame * fps)
+             .arg(request.setup.step_rate));
   return request;
 }
 

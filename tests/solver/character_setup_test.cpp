@@ -217,6 +217,38 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
   EXPECT_EQ(in_setup.motion.frames, 0);
 }
 
+// A frame's work is bounded (progress and cancellation come between
+// frames), and the counts rounded from the rates fit in int: a step rate of
+// 1e300 rounded to a count past it (undefined) and ran one step a frame.
+TEST(CharacterSetup, StepRatesAndPrerollsBeyondTheirBoundsAreRefused) {
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup setup;
+  setup.place = GarmentPlacement::first_frame;
+  setup.preroll_seconds = 0.2;
+  Character character = make_character(walk(), setup, skirt);
+  const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
+  const auto refused = [&](CharacterRunOptions run, const std::string& expected) {
+    ClothState state = rest_state(model);
+    try {
+      simulate_on_character(model, state, *character.motion, *character.body, run, {});
+      ADD_FAILURE() << "expected ArgumentError: " << expected;
+    } catch (const ArgumentError& error) {
+      EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+    }
+  };
+  CharacterRunOptions run = run_options(character, setup, model, 1);
+  run.step_rate = kMostStepsPerFrame * run.fps;
+  EXPECT_EQ(steps_per_frame(run), kMostStepsPerFrame);
+  for (const double rate : {kMostStepsPerFrame * run.fps * (1 + 1e-12), 3e10, 1e300}) {
+    run.step_rate = rate;
+    refused(run, "the step rate must be at most 1000 steps per output frame");
+  }
+  run.step_rate = 120.0;
+  run.fps = 1e300;
+  run.step_rate = 1e300;
+  refused(run, "the pre-roll must be fewer than 2^31 output frames");
+}
+
 // A pre-roll of no whole number of output frames (0.216 s at 30 fps: 6.48)
 // spans its frames exactly, so the motion starts at its first frame: the
 // pins follow the waist's targets at the clip times the report checks

@@ -102,6 +102,11 @@ expectThrows(sim({motion: walk, preroll: -0.5}), "ArgumentError", "option 'prero
 expectThrows(sim({motion: walk, stepRate: 20}), "ArgumentError", "option 'stepRate' must be at least option 'fps'");
 expectThrows(sim({motion: walk, fps: 200}), "ArgumentError", "option 'stepRate' must be at least option 'fps' (200",
              "got 120 (its default: give a step rate of at least 200)");
+// A frame's work is bounded (progress and Ctrl-C come between frames); a
+// step rate of 1e300 also rounded to a count beyond int, and ran one a frame.
+expectThrows(sim({motion: walk, stepRate: 3e10}), "ArgumentError",
+             "option 'stepRate' must be at most 1000 steps per output frame (1000 x option 'fps' = 30000), got 3e+10");
+expectThrows(sim({motion: walk, stepRate: 1e300}), "ArgumentError", "option 'stepRate' must be at most 1000 steps");
 expectThrows(sim({motion: walk, substeps: 4}), "ArgumentError", "option 'substeps' does not apply with option 'motion'",
              "stepRate");
 
