@@ -165,6 +165,10 @@ std::string quoted(std::string_view s) {
 
 /// The longest frame a clip may hold, seconds.
 constexpr double kLongestFrameTime = 60.0;
+/// The shortest: 100,000 frames a second, far beyond any capture system.
+/// Shorter ones are damage ("1e-300"), whose frame counts for a second of
+/// motion no longer fit in an int.
+constexpr double kShortestFrameTime = 1e-5;
 
 class BvhParser {
  public:
@@ -421,6 +425,9 @@ class BvhParser {
     if (*time > kLongestFrameTime)
       fail(time_token.line, "frame time " + std::string(time_token.text) + " s",
            "at most " + std::to_string(static_cast<int>(kLongestFrameTime)) + " seconds per frame");
+    if (*time < kShortestFrameTime)
+      fail(time_token.line, "frame time " + std::string(time_token.text) + " s",
+           "at least 0.00001 seconds per frame (100,000 frames a second)");
     motion_.frame_time = *time;
 
     const long long channels = channel_total_;

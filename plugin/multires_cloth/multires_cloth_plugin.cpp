@@ -874,7 +874,10 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
   // A glitch or jitter in the capture, within the frames the run plays.
   {
     const int first = static_cast<int>(std::floor(run.motion_start / motion.frame_time));
-    const int last = static_cast<int>(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time));
+    // Past the clip's end (in double first: a long run's count of clip
+    // frames need not fit in an int).
+    const int last = static_cast<int>(std::min(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time),
+                                               static_cast<double>(motion.frames.rows())));
     const int in_file = request.character->setup.skip_first ? 1 : 0;  // the run's frame 0 is the file's 1
     // Jitter tears below the speed a glitch is told by: said first, with the smoothing that takes it out.
     if (const double jitter = leg_jitter(motion, first, last); jitter > kLegJitterWarning) {

@@ -314,6 +314,9 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     }
     const QString animation = fields.string(QStringLiteral("animation"));
     const double fps = fields.numberFrom(QStringLiteral("fps"), 30.0, 0.0, true);
+    // simulate's range; a GIF's delay (100 / fps hundredths of a second) then fits its counter.
+    if (!(fps >= 1e-3 && fps <= 1e5))
+      options::fail(QStringLiteral("option 'fps' must be from 0.001 to 100000 frames per second, got %1").arg(fps));
     if (!animation.isEmpty() && !animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
         !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
       options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));

@@ -304,6 +304,8 @@ std::vector<Malformed> malformed_variants() {
   cases.push_back({"zero_frame_time", edit(18, "Frame Time: 0"), 18, "frame time"});
   cases.push_back({"negative_frame_time", edit(18, "Frame Time: -0.0083333"), 18, "frame time"});
   cases.push_back({"absurd_frame_time", edit(18, "Frame Time: 1e300"), 18, "at most 60 seconds per frame"});
+  cases.push_back({"tiny_frame_time", edit(18, "Frame Time: 1e-300"), 18,
+                   "frame time 1e-300 s; expected at least 0.00001 seconds per frame"});
   cases.push_back({"non_numeric_frame_time", edit(18, "Frame Time: fast"), 18, "'fast'"});
   cases.push_back({"zero_frames", edit(17, "Frames: 0"), 17, "frame count"});
   cases.push_back({"negative_frames", edit(17, "Frames: -3"), 17, "frame count"});
