@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <mutex>
+#include <system_error>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,35 +37,10 @@ std::pair<std::size_t, std::size_t> part_range(std::size_t count, int part, int 
 
 }  // namespace
 
-WorkerPool::WorkerPool(int workers) : workers_(workers), shared_(std::make_unique<Shared>()) {
-  if (workers < 1) throw ArgumentError("WorkerPool: " + std::to_string(workers) + " workers; expected at least 1");
-  Shared& s = *shared_;
-  s.errors.resize(static_cast<std::size_t>(workers));
-  for (int part = 1; part < workers; ++part) {
-    s.threads.emplace_back([&s, part, workers] {
-      unsigned long long seen = 0;
-      for (;;) {
-        std::unique_lock<std::mutex> lock(s.mutex);
-        s.start.wait(lock, [&] { return s.stopping || s.generation != seen; });
-        if (s.stopping) return;
-        seen = s.generation;
-        const auto [begin, end] = part_range(s.count, part, workers);
-        const auto* body = s.body;
-        lock.unlock();
-        try {
-          (*body)(part, begin, end);
-        } catch (...) {
-          s.errors[static_cast<std::size_t>(part)] = std::current_exception();
-        }
-        lock.lock();
-        if (--s.unfinished == 0) s.done.notify_one();
-      }
-    });
-  }
-}
+namespace {
 
-WorkerPool::~WorkerPool() {
-  Shared& s = *shared_;
+/// Stops the pool's threads and joins them.
+void stop_threads(WorkerPool::Shared& s) {
   {
     std::lock_guard<std::mutex> lock(s.mutex);
     s.stopping = true;
@@ -71,6 +48,51 @@ WorkerPool::~WorkerPool() {
   s.start.notify_all();
   for (std::thread& t : s.threads) t.join();
 }
+
+/// What the thread of `part` runs: each generation's part, until stopped.
+void serve_part(WorkerPool::Shared& s, int part, int workers) {
+  unsigned long long seen = 0;
+  for (;;) {
+    std::unique_lock<std::mutex> lock(s.mutex);
+    s.start.wait(lock, [&] { return s.stopping || s.generation != seen; });
+    if (s.stopping) return;
+    seen = s.generation;
+    const auto [begin, end] = part_range(s.count, part, workers);
+    const auto* body = s.body;
+    lock.unlock();
+    try {
+      (*body)(part, begin, end);
+    } catch (...) {
+      s.errors[static_cast<std::size_t>(part)] = std::current_exception();
+    }
+    lock.lock();
+    if (--s.unfinished == 0) s.done.notify_one();
+  }
+}
+
+}  // namespace
+
+WorkerPool::WorkerPool(int workers) : workers_(workers), shared_(std::make_unique<Shared>()) {
+  if (workers < 1 || workers > kMostWorkers)
+    throw ArgumentError("WorkerPool: " + std::to_string(workers) + " workers; expected 1 to " +
+                        std::to_string(kMostWorkers));
+  Shared& s = *shared_;
+  s.errors.resize(static_cast<std::size_t>(workers));
+  s.threads.reserve(static_cast<std::size_t>(workers - 1));
+  for (int part = 1; part < workers; ++part) {
+    try {
+      s.threads.emplace_back(serve_part, std::ref(s), part, workers);
+    } catch (const std::system_error& error) {
+      // The threads started stop first: a joinable thread destroyed with
+      // the pool took the process down (a script asking for 1e9 threads).
+      stop_threads(s);
+      throw ArgumentError("WorkerPool: the system refused worker thread " + std::to_string(part) + " of " +
+                          std::to_string(workers - 1) + " (" + error.what() + "); ask for fewer threads");
+    }
+  }
+}
+
+WorkerPool::~WorkerPool() { stop_threads(*shared_); }
 
 void WorkerPool::run(std::size_t count, const std::function<void(int, std::size_t, std::size_t)>& body) {
   Shared& s = *shared_;
@@ -101,7 +123,7 @@ void WorkerPool::run(std::size_t count, const std::function<void(int, std::size_
 
 int resolve_thread_count(int requested) {
   if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, WorkerPool::kMostWorkers);
 }
 
 }  // namespace mrcloth

@@ -11,10 +11,12 @@ namespace mrcloth {
 
 class WorkerPool {
  public:
-  /// `workers`: how many parts a loop is split into, >= 1 (the calling
-  /// thread runs part 0; workers - 1 threads are started here). Throws
-  /// ArgumentError below 1.
+  /// `workers`: how many parts a loop is split into, 1 .. kMostWorkers (the
+  /// calling thread runs part 0; workers - 1 threads are started here).
+  /// Throws ArgumentError outside that range, or when the system refuses a
+  /// thread (those already started are stopped first).
   explicit WorkerPool(int workers);
+  static constexpr int kMostWorkers = 1024;
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
@@ -27,13 +29,16 @@ class WorkerPool {
   /// lowest part's, when several throw). Not re-entrant: one loop at a time.
   void run(std::size_t count, const std::function<void(int part, std::size_t begin, std::size_t end)>& body);
 
- private:
+ /// The threads' shared state (worker_pool.cpp).
   struct Shared;
+
+ private:
   int workers_;
   std::unique_ptr<Shared> shared_;
 };
 
-/// Threads to use for `requested` (0: one per hardware thread, at least 1).
+/// Threads to use for `requested` (0: one per hardware thread, 1 to
+/// WorkerPool::kMostWorkers).
 int resolve_thread_count(int requested);
 
 }  // namespace mrcloth

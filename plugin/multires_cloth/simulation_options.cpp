@@ -362,7 +362,8 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.pins_yield = fields.boolean(QStringLiteral("pinsYield"), sim.pins_yield);
   sim.collision_rounds = fields.integerBetween(QStringLiteral("collisionRounds"), sim.collision_rounds, 1, 100);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
-  sim.threads = resolve_thread_count(fields.integerAtLeast(QStringLiteral("threads"), sim.threads, 0));
+  sim.threads = resolve_thread_count(
+      fields.integerBetween(QStringLiteral("threads"), sim.threads, 0, WorkerPool::kMostWorkers));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
   if (fields.has(QStringLiteral("selfContact"))) {

@@ -78,8 +78,13 @@ TEST(WorkerPool, AnErrorInAPartReachesTheCaller) {
   EXPECT_EQ(ran, 1);
 }
 
-TEST(WorkerPool, RefusesFewerThanOneWorker) {
+// And more than kMostWorkers: a script asking for a billion threads made
+// the system refuse one partway, and the threads already started, destroyed
+// joinable, took the host down.
+TEST(WorkerPool, RefusesFewerThanOneWorkerOrMoreThanItsMost) {
   EXPECT_THROW(WorkerPool(0), ArgumentError);
+  EXPECT_THROW(WorkerPool(WorkerPool::kMostWorkers + 1), ArgumentError);
+  EXPECT_THROW(WorkerPool(1000000000), ArgumentError);
   EXPECT_EQ(resolve_thread_count(3), 3);
   EXPECT_GE(resolve_thread_count(0), 1);
 }

@@ -39,7 +39,7 @@ expectThrows(sim({collisionRounds: 0}), "ArgumentError", "option 'collisionRound
 expectThrows(sim({collisionRounds: 1.5}), "ArgumentError", "option 'collisionRounds' must be an integer, got the number 1.5");
 expectThrows(sim({contactSlack: -0.001}), "ArgumentError", "option 'contactSlack' must be a number >= 0, got the number -0.001");
 expectThrows(sim({contactSlack: "1mm"}), "ArgumentError", "option 'contactSlack'");
-expectThrows(sim({threads: -1}), "ArgumentError", "option 'threads' must be an integer >= 0, got -1");
+expectThrows(sim({threads: -1}), "ArgumentError", "option 'threads' must be an integer from 0 to 1024, got the number -1");
 expectThrows(sim({threads: 2.5}), "ArgumentError", "option 'threads' must be an integer, got the number 2.5");
 expectThrows(sim({alpha: NaN}), "ArgumentError", "option 'alpha' must be a finite number");
 expectThrows(sim({alphaBend: "1"}), "ArgumentError", "option 'alphaBend' must be a finite number");
@@ -168,6 +168,7 @@ expectThrows(sim({substeps: 1e9}), "ArgumentError", "option 'substeps' must be a
 expectThrows(sim({iterations: 101}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number 101");
 expectThrows(sim({limiterSweeps: 60000}), "ArgumentError", "option 'limiterSweeps' must be an integer from 0 to 1000, got the number 60000");
 expectThrows(sim({collisionRounds: 101}), "ArgumentError", "option 'collisionRounds' must be an integer from 1 to 100, got the number 101");
+expectThrows(sim({threads: 1e9}), "ArgumentError", "option 'threads' must be an integer from 0 to 1024, got the number 1e+09");
 expectThrows(sim({newtonCg: 1e9}), "ArgumentError", "option 'newtonCg' must be an integer from 0 to 1000, got the number 1e+09");
 
 // The script carries on; the objects are as they were.
