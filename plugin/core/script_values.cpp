@@ -112,7 +112,12 @@ int toInt(const QVariant& value, const QString& what) {
 int toIntAtLeast(const QVariant& value, const QString& what, int minimum) {
   const double number = wholeNumber(value, what);
   if (number < minimum)
-    fail(QStringLiteral("%1 must be an integer >= %2, got %3").arg(what).arg(minimum).arg(number, 0, 'f', 0));
+    // Written out while that stays readable (-10000000000), else in
+    // exponent form (-1e+300 was 301 digits).
+    fail(QStringLiteral("%1 must be an integer >= %2, got %3")
+             .arg(what)
+             .arg(minimum)
+             .arg(std::abs(number) < 1e15 ? QString::number(number, 'f', 0) : QString::number(number)));
   return toIntBetween(value, what, minimum, std::numeric_limits<int>::max());
 }
 

@@ -42,6 +42,8 @@ TEST(ScriptValues, IntegersAcceptIntegralNumbersOnly) {
             "option 'frames' must be an integer from 1 to 2147483647, got the number 1e+10");
   EXPECT_EQ(errorOf([] { toIntAtLeast(QVariant(-1e10), "option 'frames'", 1); }),
             "option 'frames' must be an integer >= 1, got -10000000000");
+  EXPECT_EQ(errorOf([] { toIntAtLeast(QVariant(-1e300), "option 'frames'", 1); }),
+            "option 'frames' must be an integer >= 1, got -1e+300");
   EXPECT_EQ(errorOf([] { toIntBetween(QVariant(1e10), "mode", 0, 1000); }),
             "mode must be an integer from 0 to 1000, got the number 1e+10");
   EXPECT_EQ(errorOf([] { toIntBetween(QVariant(-1), "mode", 0, 1000); }), "mode must be an integer from 0 to 1000, got the number -1");
