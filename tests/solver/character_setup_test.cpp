@@ -50,6 +50,23 @@ CharacterRunOptions run_options(const Character& character, const CharacterSetup
   return character_run_options(character, setup, model, simulation);
 }
 
+/// The default skirt placed on the walk's first frame, its waist pinned,
+/// with a pre-roll of `preroll` seconds.
+struct SkirtOnWalk {
+  explicit SkirtOnWalk(double preroll) : setup(first_frame_setup(preroll)), character(make_character(walk(), setup, skirt)),
+                                          model(waist_pinned(place_garment(character, setup, skirt).mesh)) {}
+  static CharacterSetup first_frame_setup(double preroll) {
+    CharacterSetup setup;
+    setup.place = GarmentPlacement::first_frame;
+    setup.preroll_seconds = preroll;
+    return setup;
+  }
+  const QuadMesh skirt = default_skirt();
+  CharacterSetup setup;
+  Character character;
+  DynamicsModel model;
+};
+
 TEST(CharacterSetup, WithoutFirstFrameDropsExactlyTheFirst) {
   const Motion full = walk();
   const Motion clip = without_first_frame(full);
@@ -163,13 +180,10 @@ TEST(CharacterSetup, CapsulesStartWhereTheRecordingStartsAndTheGarmentIsPlacedEx
 // long pre-roll shows progress), and a cancel in the pre-roll stops the run
 // there: no motion frame is simulated.
 TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
-  const QuadMesh skirt = default_skirt();
-  CharacterSetup setup;
-  setup.place = GarmentPlacement::first_frame;
-  setup.preroll_seconds = 0.2;
-  Character character = make_character(walk(), setup, skirt);
-  const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
-  const CharacterRunOptions run = run_options(character, setup, model, 3);
+  SkirtOnWalk on_walk(0.2);
+  const DynamicsModel& model = on_walk.model;
+  Character& character = on_walk.character;
+  const CharacterRunOptions run = run_options(character, on_walk.setup, model, 3);
   ASSERT_EQ(preroll_frame_count(run), 6) << "0.2 s at 30 fps";
 
   std::vector<std::pair<int, int>> calls;
@@ -221,12 +235,9 @@ TEST(CharacterSetup, ProgressCountsThePrerollAndCancelsIt) {
 // frames), and the counts rounded from the rates fit in int: a step rate of
 // 1e300 rounded to a count past it (undefined) and ran one step a frame.
 TEST(CharacterSetup, StepRatesAndPrerollsBeyondTheirBoundsAreRefused) {
-  const QuadMesh skirt = default_skirt();
-  CharacterSetup setup;
-  setup.place = GarmentPlacement::first_frame;
-  setup.preroll_seconds = 0.2;
-  Character character = make_character(walk(), setup, skirt);
-  const DynamicsModel model = waist_pinned(place_garment(character, setup, skirt).mesh);
+  SkirtOnWalk on_walk(0.2);
+  const DynamicsModel& model = on_walk.model;
+  Character& character = on_walk.character;
   const auto refused = [&](CharacterRunOptions run, const std::string& expected) {
     ClothState state = rest_state(model);
     try {
@@ -236,7 +247,7 @@ TEST(CharacterSetup, StepRatesAndPrerollsBeyondTheirBoundsAreRefused) {
       EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
     }
   };
-  CharacterRunOptions run = run_options(character, setup, model, 1);
+  CharacterRunOptions run = run_options(character, on_walk.setup, model, 1);
   run.step_rate = kMostStepsPerFrame * run.fps;
   EXPECT_EQ(steps_per_frame(run), kMostStepsPerFrame);
   for (const double rate : {kMostStepsPerFrame * run.fps * (1 + 1e-12), 3e10, 1e300}) {
