@@ -182,7 +182,9 @@ expectThrows(() => multirescloth.simulate(tiny, {motion: walk, frames: 1}), "Inp
              "the garment spans 0.00", "expected 0.1-4 m for a garment worn by a person: check the units");
 // A pre-roll is a second or two: 1e8 s overflowed its frame count and was skipped.
 expectThrows(() => multirescloth.simulate(skirt, {motion: walk, frames: 1, preroll: 1e8}), "ArgumentError",
-             "option 'preroll' must be a number of seconds from 0 to 60, got 1e+08");
+             "option 'preroll' must be 0 or a number of seconds from 0.001 to 60, got 1e+08");
+expectThrows(sim({motion: walk, preroll: 1e-300}), "ArgumentError",
+             "option 'preroll' must be 0 or a number of seconds from 0.001 to 60, got 1e-300");
 // The body's cache on the garment's: refused before the run.
 expectThrows(() => multirescloth.recordInstance(skirt, {motion: walk, frames: 1, preroll: 0, output: tmpDir + "/same.pc2",
                                                         bodyOutput: tmpDir + "/same.pc2"}),
