@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,17 @@ Axis make_axis(double lo, double hi, int target) {
 // Data value -> pixel between a (at axis.lo) and b (at axis.hi).
 double map(const Axis& axis, double v, double a, double b) {
   return a + (v - axis.lo) / (axis.hi - axis.lo) * (b - a);
+}
+
+/// Values whose range a double cannot hold (-1.7e308 to 1.7e308) would put
+/// every point at NaN pixels.
+void check_span(double lo, double hi, const char* who, const char* axis) {
+  if (lo <= hi && !std::isfinite(hi - lo)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g to %g", lo, hi);
+    throw std::invalid_argument(std::string(who) + ": the " + axis + " values span more than a number holds (" +
+                                range + "); expected values a chart can scale");
+  }
 }
 
 void check_size(const ChartOptions& options, const char* who) {
@@ -166,6 +178,8 @@ QImage draw_line_chart(const LineChart& chart, const ChartOptions& options) {
     if (!chart.series[s].name.isEmpty()) legend.push_back({series_color(chart.series[s].color, s), chart.series[s].name});
   }
   const bool has_data = x_lo <= x_hi;
+  check_span(x_lo, x_hi, "draw_line_chart", "x");
+  check_span(y_lo, y_hi, "draw_line_chart", "y");
   const Axis x_axis = has_data ? make_axis(x_lo, x_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
   const Axis y_axis = has_data ? make_axis(y_lo, y_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
 
@@ -247,6 +261,7 @@ QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
     }
     if (!chart.series[s].name.isEmpty()) legend.push_back({series_color(chart.series[s].color, s), chart.series[s].name});
   }
+  check_span(lo, hi, "draw_bar_chart", "bar");
   if (lo == hi) hi = 1.0;  // all zero (or nothing): show 0..1 rather than a range around zero
   const Axis y_axis = make_axis(lo, hi, options.target_ticks);
 

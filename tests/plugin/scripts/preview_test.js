@@ -239,6 +239,12 @@ expectEqual([barSheet.width, barSheet.height], [820, 10 + 500 + 22 + 10], "bar c
 expectThrows(() => preview.lineChart(png("line_bad"), {series: [{x: [0, 1, 2], y: [1, 2]}]}), "ArgumentError",
              "series[0]", "x has 3 values, y has 2");
 expectThrows(() => preview.lineChart(png("line_bad"), {title: "no series"}), "ArgumentError", "series");
+// Values whose range no double holds would put every point at NaN pixels.
+expectThrows(() => preview.lineChart(png("line_bad"), {series: [{x: [-1.7e308, 1.7e308], y: [0, 1]}]}), "ArgumentError",
+             "the x values span more than a number holds (-1.7e+308 to 1.7e+308)");
+expectThrows(() => preview.barChart(png("bar_bad"), {categories: ["a", "b"], series: [{name: "s", values: [-1.7e308, 1.7e308]}]}),
+             "ArgumentError", "the bar values span more than a number holds");
+expectEqual(core.fileExists(png("bar_bad")), false, "no chart written by the refused call");
 expectThrows(() => preview.lineChart(png("line_bad"), {series: [{y: [1, "two"]}]}), "ArgumentError", "series[0].y[1]");
 expectThrows(() => preview.barChart(png("line_bad"), {categories: ["a", "b"], series: [{name: "s", values: [1]}]}),
              "ArgumentError", "has 1 values for 2 categories; expected one per category");
