@@ -199,7 +199,12 @@ function parseOptions(args) {
       case "testFrames": options.testFrames = integerOption(name, text, 1); break;
       case "threads": options.threads = integerOption(name, text, 0, LIMITS.threads); break;
       case "fps": options.fps = numberOption(name, text, LIMITS.leastFps, false); break;
-      case "preroll": options.preroll = numberOption(name, text, 0, false, LIMITS.preroll); break;
+      case "preroll":
+        options.preroll = numberOption(name, text, 0, false, LIMITS.preroll);
+        // simulate's rule: 0 jumps to the first frame; shorter than 1 ms made steps too short to stay finite.
+        if (options.preroll > 0 && options.preroll < 0.001)
+          throw pipelineError("option " + name + ": expected 0 or a number from 0.001 to " + LIMITS.preroll + ", got \"" + text + "\"");
+        break;
       case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
       case "newtonCg": options.newtonCg = integerOption(name, text, 0, LIMITS.newtonCg); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;

@@ -72,6 +72,7 @@ refused "option --newton-cg: expected an integer >= 0 and <= 1000" $cheap --newt
 refused "option --threads: expected an integer >= 0 and <= 1024, got \"2000\"" $cheap --threads 2000
 refused "option --modes: expected an integer >= 1 and <= 1000, got \"1e20\"" $cheap --modes 1e20
 refused "option --preroll: expected a number >= 0 and <= 60, got \"61\"" $cheap --preroll 61
+refused "option --preroll: expected 0 or a number from 0.001 to 60, got \"0.0001\"" $cheap --preroll 0.0001
 refused "option --fps: expected at most the step rate, 120 steps per second by default, got 200; give --step-rate" \
   $cheap --fps 200
 refused "option --fps: expected a number >= 1, got \"1e-320\"" $cheap --fps 1e-320
