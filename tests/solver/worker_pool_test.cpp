@@ -8,8 +8,11 @@
 
 #include <atomic>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include <sys/resource.h>
 
 namespace mrcloth {
 namespace {
@@ -87,6 +90,36 @@ TEST(WorkerPool, RefusesFewerThanOneWorkerOrMoreThanItsMost) {
   EXPECT_THROW(WorkerPool(1000000000), ArgumentError);
   EXPECT_EQ(resolve_thread_count(3), 3);
   EXPECT_GE(resolve_thread_count(0), 1);
+}
+
+// With the address space capped, the system refuses a thread partway
+// through 1024 (each reserves its stack): the pool stops and joins the ones
+// it started and throws, and the threads' resources are back (a pool can be
+// made again). Not under AddressSanitizer, which reserves terabytes.
+TEST(WorkerPool, AThreadTheSystemRefusesStopsTheStartedOnesAndThrows) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "the address-space cap does not work under AddressSanitizer";
+#else
+  rlimit before{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
+  const rlimit cap{rlim_t{2} << 30, before.rlim_max};
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &cap), 0);
+  // The cap ends with the test (the tests after it in a whole-binary run).
+  struct Restore {
+    rlimit limit;
+    ~Restore() { setrlimit(RLIMIT_AS, &limit); }
+  } restore{before};
+  try {
+    WorkerPool pool(WorkerPool::kMostWorkers);
+    GTEST_SKIP() << "the system started " << WorkerPool::kMostWorkers << " threads within 2 GiB";
+  } catch (const ArgumentError& error) {
+    EXPECT_NE(std::string(error.what()).find("the system refused worker thread"), std::string::npos) << error.what();
+  }
+  WorkerPool again(4);
+  std::atomic<int> sum{0};
+  again.run(100, [&](int, std::size_t begin, std::size_t end) { sum += static_cast<int>(end - begin); });
+  EXPECT_EQ(sum.load(), 100);
+#endif
 }
 
 }  // namespace
