@@ -21,6 +21,14 @@ namespace mrcloth::options {
 
 [[noreturn]] inline void fail(const QString& message) { throw ArgumentError(message.toStdString()); }
 
+/// The output frame rates every slot takes (simulate, recordInstance,
+/// renderSequence): from a frame every 1000 s to 100,000 a second. Beyond,
+/// a simulated step is so long or so short that the run only turns
+/// non-finite (1e-300 and 1e300 ran, to NaN), and a clip's frames over a
+/// run no longer fit an int.
+constexpr double kLeastFps = 1e-3;
+constexpr double kMostFps = 1e5;
+
 inline QString optionLabel(const QString& key) { return QStringLiteral("option '%1'").arg(key); }
 
 using script::isNumber;
@@ -61,6 +69,20 @@ class Fields {
                .arg(label(name), strict ? QStringLiteral(">") : QStringLiteral(">="))
                .arg(minimum)
                .arg(script::describeValue(required(name))));
+    return value;
+  }
+  /// A number in [minimum, maximum]; `unit` ("frames per second") follows
+  /// the range in the message.
+  double numberBetween(const QString& name, double fallback, double minimum, double maximum,
+                       const QString& unit) const {
+    if (!has(name)) return fallback;
+    const double value = script::toNumber(required(name), label(name));
+    if (!(value >= minimum && value <= maximum))
+      fail(QStringLiteral("%1 must be from %2 to %3 %4, got %5")
+               .arg(label(name))
+               .arg(minimum)
+               .arg(maximum)
+               .arg(unit, script::describeValue(required(name))));
     return value;
   }
   int integerAtLeast(const QString& name, int fallback, int minimum) const {

@@ -21,6 +21,8 @@ namespace {
 using options::Fields;
 using options::fail;
 using options::isNumber;
+using options::kLeastFps;
+using options::kMostFps;
 using options::isObjectLike;
 using options::optionLabel;
 
@@ -318,14 +320,7 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   SimulationRequest request;
   SimulationOptions& sim = request.simulation;
   sim.frames = fields.integerAtLeast(QStringLiteral("frames"), record ? 200 : sim.frames, 1);
-  sim.fps = fields.numberFrom(QStringLiteral("fps"), sim.fps, 0.0, true);
-  // From a frame every 1000 s to 100,000 a second: beyond, a step is so
-  // long or so short that the run only turns non-finite (1e-300 and 1e300
-  // ran, to NaN), and a clip's frames over the run no longer fit an int.
-  if (!(sim.fps >= 1e-3 && sim.fps <= 1e5))
-    fail(QStringLiteral("%1 must be from 0.001 to 100000 frames per second, got %2")
-             .arg(fields.label(QStringLiteral("fps")))
-             .arg(sim.fps));
+  sim.fps = fields.numberBetween(QStringLiteral("fps"), sim.fps, kLeastFps, kMostFps, QStringLiteral("frames per second"));
   // Progress and Ctrl-C come between frames: a frame's work is bounded.
   if (!character) sim.substeps = fields.integerBetween(QStringLiteral("substeps"), sim.substeps, 1, 1000);
   sim.iterations = fields.integerBetween(QStringLiteral("iterations"), sim.iterations, 1, 100);

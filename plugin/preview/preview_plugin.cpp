@@ -313,10 +313,9 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
       for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
     }
     const QString animation = fields.string(QStringLiteral("animation"));
-    const double fps = fields.numberFrom(QStringLiteral("fps"), 30.0, 0.0, true);
     // simulate's range; a GIF's delay (100 / fps hundredths of a second) then fits its counter.
-    if (!(fps >= 1e-3 && fps <= 1e5))
-      options::fail(QStringLiteral("option 'fps' must be from 0.001 to 100000 frames per second, got %1").arg(fps));
+    const double fps = fields.numberBetween(QStringLiteral("fps"), 30.0, options::kLeastFps, options::kMostFps,
+                                            QStringLiteral("frames per second"));
     if (!animation.isEmpty() && !animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
         !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
       options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));

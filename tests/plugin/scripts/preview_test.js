@@ -188,7 +188,7 @@ expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache
 expectThrows(() => preview.renderSequence(refined, tmpDir + "/seq_bad", opts({cache: pc2})), "ArgumentError",
              "16 points");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache: pc2, fps: 1e-300})), "ArgumentError",
-             "option 'fps' must be from 0.001 to 100000 frames per second, got 1e-300");
+             "option 'fps' must be from 0.001 to 100000 frames per second, got the number 1e-300");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/no_such_folder/seq", opts({cache: pc2})), "OutputError",
              "no_such_folder");
 // A body cache shorter than the frames drawn, or nothing to draw: refused

@@ -22,10 +22,10 @@ expectThrows(sim({frame: 10}), "ArgumentError", "multirescloth.simulate: ", "unk
 expectThrows(sim({frames: "10"}), "ArgumentError", "option 'frames' must be an integer, got the string \"10\"");
 expectThrows(sim({frames: 0}), "ArgumentError", "option 'frames' must be an integer >= 1, got 0");
 expectThrows(sim({frames: 2.5}), "ArgumentError", "option 'frames' must be an integer, got the number 2.5");
-expectThrows(sim({fps: 0}), "ArgumentError", "option 'fps' must be a number > 0, got the number 0");
+expectThrows(sim({fps: 0}), "ArgumentError", "option 'fps' must be from 0.001 to 100000 frames per second, got the number 0");
 expectThrows(sim({fps: "30"}), "ArgumentError", "option 'fps' must be a finite number");
-expectThrows(sim({fps: 1e-300}), "ArgumentError", "option 'fps' must be from 0.001 to 100000 frames per second, got 1e-300");
-expectThrows(sim({fps: 1e300}), "ArgumentError", "option 'fps' must be from 0.001 to 100000 frames per second, got 1e+300");
+expectThrows(sim({fps: 1e-300}), "ArgumentError", "option 'fps' must be from 0.001 to 100000 frames per second, got the number 1e-300");
+expectThrows(sim({fps: 1e300}), "ArgumentError", "option 'fps' must be from 0.001 to 100000 frames per second, got the number 1e+300");
 expectThrows(sim({substeps: 0}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 0");
 expectThrows(sim({iterations: -1}), "ArgumentError", "option 'iterations' must be an integer from 1 to 100, got the number -1");
 expectThrows(sim({bendModel: "hinge"}), "ArgumentError", "option 'bendModel'");
