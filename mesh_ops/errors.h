@@ -2,6 +2,8 @@
 // The one error style of mrcloth: typed exceptions at module boundaries,
 // each message naming the file, line or element and what was expected.
 #include <cstddef>
+#include <locale>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +28,15 @@ struct ArgumentError : Error {
 struct OutputError : Error {
   using Error::Error;
 };
+
+/// A number as messages print it: six significant digits, '.' whatever the
+/// locale ("0.05", "1e+09").
+inline std::string number_text(double value) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << value;
+  return out.str();
+}
 
 /// The form every message about a file takes: "<path>: <problem>".
 inline std::string with_path(const std::string& path, const std::string& problem) { return path + ": " + problem; }

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <locale>
-#include <sstream>
 #include <tuple>
 #include <utility>
 
@@ -99,13 +97,6 @@ bool under_bare_joint(const Skeleton& skeleton, int j) {
   return false;
 }
 
-std::string text(double value) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out << value;
-  return out.str();
-}
-
 /// Height of the figure in its rest pose: the top of the head (the highest
 /// of "Head" and its descendants, i.e. its End Site; the highest joint when
 /// there is no Head) minus the lowest joint (toe or foot). 0 if degenerate.
@@ -148,8 +139,8 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
                   " are not both in the skeleton's " + std::to_string(joint_count) + " joints");
     if (!(std::isfinite(bone.radius_head) && std::isfinite(bone.radius_tail) && bone.radius_head >= 0.0 &&
           bone.radius_tail >= 0.0 && bone.radius_head + bone.radius_tail > 0.0))
-      fail(i, "radii must be finite, >= 0 and not both 0 (got " + text(bone.radius_head) + ", " +
-                  text(bone.radius_tail) + ")");
+      fail(i, "radii must be finite, >= 0 and not both 0 (got " + number_text(bone.radius_head) + ", " +
+                  number_text(bone.radius_tail) + ")");
     if (!(bone.shift_head.allFinite() && bone.shift_tail.allFinite())) fail(i, "its shifts must be finite");
   }
   for (std::size_t i = 0; i < rig.bridges.size(); ++i) {
@@ -160,13 +151,13 @@ void check_rig(const CapsuleRig& rig, int joint_count, const char* caller) {
                             std::to_string(joint) + ", not one of the skeleton's " + std::to_string(joint_count));
     if (!(bridge.at >= 0.0 && bridge.at <= 1.0 && std::isfinite(bridge.radius) && bridge.radius > 0.0))
       throw ArgumentError(std::string(caller) + ": bridge " + std::to_string(i) + " needs 0 <= at <= 1 and a radius > 0 (got at " +
-                          text(bridge.at) + ", radius " + text(bridge.radius) + ")");
+                          number_text(bridge.at) + ", radius " + number_text(bridge.radius) + ")");
   }
-  if (!(std::isfinite(rig.thickness) && rig.thickness >= 0.0))
-    throw ArgumentError(std::string(caller) + ": thickness must be a finite number >= 0 (got " + text(rig.thickness) +
-                        ")");
+  if (!(rig.thickness >= 0.0 && rig.thickness <= kMostContactThickness))
+    throw ArgumentError(std::string(caller) + ": thickness must be from 0 to " + number_text(kMostContactThickness) +
+                        " m (got " + number_text(rig.thickness) + ")");
   if (!(std::isfinite(rig.friction) && rig.friction >= 0.0))
-    throw ArgumentError(std::string(caller) + ": friction must be a finite number >= 0 (got " + text(rig.friction) + ")");
+    throw ArgumentError(std::string(caller) + ": friction must be a finite number >= 0 (got " + number_text(rig.friction) + ")");
 }
 
 /// The collider of one bone in a pose.
@@ -232,7 +223,7 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
       throw ArgumentError("make_capsule_rig: radius override for \"" + name + "\", which is not a joint of the skeleton");
     if (!(std::isfinite(radii.first) && std::isfinite(radii.second) && radii.first >= 0.0 && radii.second >= 0.0))
       throw ArgumentError("make_capsule_rig: radius override for \"" + name + "\" must be finite and >= 0 (got " +
-                          text(radii.first) + ", " + text(radii.second) + ")");
+                          number_text(radii.first) + ", " + number_text(radii.second) + ")");
   }
 
   CapsuleRig rig;
@@ -457,7 +448,7 @@ std::vector<Collider> posed_capsules(const CapsuleRig& rig, const Pose& pose) {
 int clear_capsules_of(CapsuleRig& rig, const Pose& pose, const Eigen::MatrixX3d& points, double floor) {
   check_rig(rig, static_cast<int>(pose.global.size()), "clear_capsules_of");
   if (!(floor > 0.0 && floor <= 1.0))
-    throw ArgumentError("clear_capsules_of: floor must be in (0, 1] (got " + text(floor) + ")");
+    throw ArgumentError("clear_capsules_of: floor must be in (0, 1] (got " + number_text(floor) + ")");
   if (!points.allFinite()) throw ArgumentError("clear_capsules_of: the points must be finite");
   int shrunk = 0;
   for (BoneCapsule& bone : rig.bones) {
@@ -502,7 +493,7 @@ void add_leg_bridges(CapsuleRig& rig, const Skeleton& skeleton, double reach) {
   check_skeleton(skeleton, "add_leg_bridges");
   check_rig(rig, static_cast<int>(skeleton.joints.size()), "add_leg_bridges");
   if (!(reach >= 0.5 && reach <= 2.0))
-    throw ArgumentError("add_leg_bridges: reach must be in [0.5, 2] bones from the hips (got " + text(reach) + ")");
+    throw ArgumentError("add_leg_bridges: reach must be in [0.5, 2] bones from the hips (got " + number_text(reach) + ")");
   const auto joint = [&](const char* name) {
     const int j = skeleton.find(name);
     if (j < 0) throw ArgumentError(std::string("add_leg_bridges: the skeleton has no joint '") + name + "'");

@@ -34,7 +34,7 @@ struct BridgeCapsule {
 };
 
 struct CapsuleRigOptions {
-  double thickness = 0.004;  ///< cloth keeps this far from the capsules, metres
+  double thickness = 0.004;  ///< cloth keeps this far from the capsules, metres, 0 to kMostContactThickness
   double friction = 0.3;     ///< Coulomb coefficient
   /// Radius overrides by joint name, metres (head, tail), applied after defaults/fitting.
   std::map<std::string, std::pair<double, double>> radii;

@@ -43,8 +43,8 @@ struct CharacterSetup {
   /// the capsules are fitted to. Required for `mesh`; none: capsules with
   /// default radii.
   std::optional<MakeHumanOptions> makehuman;
-  double thickness = 0.004;  ///< metres kept between the body and the cloth
-  double friction = 0.3;     ///< Coulomb coefficient of the body
+  double thickness = 0.004;  ///< metres kept between the body and the cloth, 0 to kMostContactThickness
+  double friction = 0.3;     ///< Coulomb coefficient of the body, >= 0
   /// Capsule radius overrides by joint name (head, tail), metres; 0 removes the capsule.
   std::map<std::string, std::pair<double, double>> radii;
   /// Bridges between the legs (add_leg_bridges): < 0 automatic

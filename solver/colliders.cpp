@@ -8,8 +8,6 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <locale>
-#include <sstream>
 #include <string>
 #include <type_traits>
 
@@ -103,12 +101,7 @@ double support(const Collider& collider, const Vector3d& n) {
   throw ArgumentError("collider " + std::to_string(index) + " (" + kind + "): " + problem);
 }
 
-std::string text(double value) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out << value;
-  return out.str();
-}
+std::string text(double value) { return number_text(value); }
 
 std::string text(const Vector3d& v) { return "(" + text(v.x()) + ", " + text(v.y()) + ", " + text(v.z()) + ")"; }
 
@@ -247,6 +240,9 @@ void validate_colliders(const std::vector<Collider>& colliders) {
     const Collider& collider = colliders[i];
     std::visit([&](const auto& shape) { validate_shape(i, shape); }, collider.shape);
     require_finite_at_least(i, kind_of(collider), "thickness", collider.thickness, 0.0, false);
+    if (collider.thickness > kMostContactThickness)
+      refuse(i, kind_of(collider),
+             "thickness must be at most " + text(kMostContactThickness) + " m (got " + text(collider.thickness) + ")");
     require_finite_at_least(i, kind_of(collider), "friction", collider.friction, 0.0, false);
   }
 }

@@ -24,9 +24,16 @@ struct CapsuleCollider {
   double radius_a = 0.1, radius_b = 0.1;     ///< radii at a and b, metres, >= 0, not both 0
 };
 
+/// The largest gap (metres) a collider or body may keep between cloth and
+/// its surface: cloth rests millimetres off the skin, and a thickness of
+/// centimetres already stretches a garment pushed out to it at the first
+/// step; larger values are units mistakes (4 meaning 4 mm), and a larger
+/// shape is a larger radius.
+inline constexpr double kMostContactThickness = 0.05;
+
 struct Collider {
   std::variant<PlaneCollider, SphereCollider, CapsuleCollider> shape;
-  double thickness = 0.002;  ///< metres kept between cloth and surface
+  double thickness = 0.002;  ///< metres kept between cloth and surface, 0 to kMostContactThickness
   double friction = 0.3;     ///< Coulomb coefficient mu >= 0
 };
 
@@ -66,7 +73,8 @@ SurfaceNearby nearest_surface(const std::vector<Collider>& colliders, const Eige
 bool surely_clear(const Collider& collider, const Eigen::Vector3d& p);
 
 /// Throws ArgumentError for a non-positive radius, a zero normal, negative
-/// thickness or friction, or non-finite values; names the collider index.
+/// friction, a thickness outside 0 to kMostContactThickness, or non-finite
+/// values; names the collider index.
 void validate_colliders(const std::vector<Collider>& colliders);
 
 /// The collision response of one point, for a step that moved it from

@@ -1074,10 +1074,11 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
                    double friction)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  if (!(std::isfinite(thickness) && thickness >= 0.0))
-    throw ArgumentError("MeshBody: thickness must be a finite number >= 0 (got " + std::to_string(thickness) + ")");
+  if (!(thickness >= 0.0 && thickness <= kMostContactThickness))
+    throw ArgumentError("MeshBody: thickness must be from 0 to " + number_text(kMostContactThickness) + " m (got " +
+                        number_text(thickness) + ")");
   if (!(std::isfinite(friction) && friction >= 0.0))
-    throw ArgumentError("MeshBody: friction must be a finite number >= 0 (got " + std::to_string(friction) + ")");
+    throw ArgumentError("MeshBody: friction must be a finite number >= 0 (got " + number_text(friction) + ")");
   if (triangles.empty()) throw ArgumentError("MeshBody: no triangles; expected a closed triangle mesh");
   m.thickness = thickness;
   m.friction = friction;

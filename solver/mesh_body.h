@@ -25,6 +25,7 @@ namespace mrcloth {
 /// too (then, as at the surface, to the nearest surface).
 class MeshBody : public CollisionScene {
  public:
+  /// thickness: metres, 0 to kMostContactThickness; friction: Coulomb coefficient >= 0.
   MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i> triangles, double thickness = 0.004,
            double friction = 0.3);
   ~MeshBody() override;

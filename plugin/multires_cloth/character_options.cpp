@@ -259,7 +259,8 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     fail(QStringLiteral("%1 applies where the waist follows the skin: give the MakeHuman files (obj, skeleton, "
                         "weights), and no waistFollows \"pelvis\"")
              .arg(fields.label(QStringLiteral("waistSmoothing"))));
-  request.setup.thickness = fields.numberFrom(QStringLiteral("thickness"), request.setup.thickness, 0.0, false);
+  request.setup.thickness = fields.numberBetween(QStringLiteral("thickness"), request.setup.thickness, 0.0,
+                                                  kMostContactThickness, QStringLiteral("m"));
   request.setup.friction = fields.numberFrom(QStringLiteral("friction"), request.setup.friction, 0.0, false);
   if (fields.has(QStringLiteral("radii"))) {
     const QString label = fields.label(QStringLiteral("radii"));

@@ -108,7 +108,8 @@ Collider parseCollider(const QVariant& value, const QString& path) {
     }
     collider.shape = capsule;
   }
-  collider.thickness = fields.numberFrom(QStringLiteral("thickness"), collider.thickness, 0.0, false);
+  collider.thickness =
+      fields.numberBetween(QStringLiteral("thickness"), collider.thickness, 0.0, kMostContactThickness, QStringLiteral("m"));
   collider.friction = fields.numberFrom(QStringLiteral("friction"), collider.friction, 0.0, false);
   return collider;
 }

@@ -259,6 +259,10 @@ TEST(CapsuleRig, OverridesReplaceAddAndRemoveCapsules) {
   CapsuleRigOptions thickness;
   thickness.thickness = -0.001;
   EXPECT_THROW(make_capsule_rig(skeleton, thickness), ArgumentError);
+  thickness.thickness = kMostContactThickness;
+  EXPECT_NO_THROW(make_capsule_rig(skeleton, thickness));
+  thickness.thickness = std::nextafter(kMostContactThickness, 1.0);
+  EXPECT_THROW(make_capsule_rig(skeleton, thickness), ArgumentError);
 }
 
 /// A motion of the CMU-like skeleton with random joint angles.

@@ -668,6 +668,7 @@ void expect_refused(const Collider& bad, const std::string& who, const std::stri
 
 TEST(ValidateColliders, AcceptsTheDefaults) {
   EXPECT_NO_THROW(validate_colliders({}));
+  EXPECT_NO_THROW(validate_colliders({make(SphereCollider{}, kMostContactThickness, 0.3), make(PlaneCollider{}, 0.0, 0.0)}));
   EXPECT_NO_THROW(validate_colliders({Collider{PlaneCollider{}}, Collider{SphereCollider{}},
                                       Collider{CapsuleCollider{}}, make(CapsuleCollider{{0, 0, 0}, {1, 0, 0}, 0.1, 0.0})}));
 }
@@ -683,6 +684,8 @@ TEST(ValidateColliders, NamesTheColliderAndTheField) {
   expect_refused(make(CapsuleCollider{{0, 0, 0}, {1, 0, 0}, 0.1, -0.2}), "capsule", "radius_b");
   expect_refused(make(CapsuleCollider{{0, 0, 0}, {nan, 0, 0}, 0.1, 0.1}), "capsule", "b");
   expect_refused(make(SphereCollider{}, -0.001, 0.3), "sphere", "thickness");
+  expect_refused(make(CapsuleCollider{}, std::nextafter(kMostContactThickness, 1.0), 0.3), "capsule", "thickness must be at most 0.05 m");
+  expect_refused(make(PlaneCollider{}, HUGE_VAL, 0.3), "plane", "thickness");
   expect_refused(make(SphereCollider{}, 0.001, -0.3), "sphere", "friction");
   expect_refused(make(PlaneCollider{}, 0.001, nan), "plane", "friction");
 }

@@ -1020,6 +1020,8 @@ TEST(MeshBody, RefusesBadMeshesAndUpdates) {
   out_of_range[0](0) = 1000;
   EXPECT_THROW(MeshBody(cube.vertices, out_of_range), ArgumentError);
   EXPECT_THROW(MeshBody(cube.vertices, cube.triangles, -0.1), ArgumentError);
+  EXPECT_NO_THROW(MeshBody(cube.vertices, cube.triangles, kMostContactThickness));
+  EXPECT_THROW(MeshBody(cube.vertices, cube.triangles, std::nextafter(kMostContactThickness, 1.0)), ArgumentError);
   MeshBody body(cube.vertices, cube.triangles);
   EXPECT_THROW(body.update(cube.vertices.topRows(5)), ArgumentError);
   EXPECT_THROW(body.update(cube.vertices, std::vector<char>(3, 0)), ArgumentError);

@@ -36,7 +36,11 @@ expectThrows(sim({motion: walk, body: {units: "cm"}}), "ArgumentError",
              "option 'body.units' are the units of the MakeHuman body file (obj): give obj, skeleton and weights with it");
 expectThrows(sim({motion: walk, body: {obj: walk, skeleton: walk, weights: walk, units: "cmu"}}), "ArgumentError",
              "option 'body.units' must be one of \"m\", \"dm\", \"cm\", \"mm\", \"inch\", got the string \"cmu\"");
-expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError", "option 'body.thickness' must be a number >= 0");
+expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError",
+             "option 'body.thickness' must be from 0 to 0.05 m, got the number -1");
+// A thickness in millimetres read as metres pushes the cloth metres out at the first step.
+expectThrows(sim({motion: walk, body: {thickness: 4}}), "ArgumentError",
+             "option 'body.thickness' must be from 0 to 0.05 m, got the number 4");
 expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must be \"capsules\", \"mesh\" or an object");
 expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
              "option 'body.waistFollows' \"skin\" needs a body to skin by");

@@ -79,6 +79,8 @@ expectThrows(sim({colliders: [{type: "box", center: [0, 0, 0]}]}), "ArgumentErro
              "option 'colliders[0].type' must be one of \"plane\", \"sphere\", \"capsule\", got the string \"box\"");
 expectThrows(sim({colliders: [{center: [0, 0, 0], radius: 1}]}), "ArgumentError", "missing option 'colliders[0].type'");
 expectThrows(sim({colliders: {type: "plane"}}), "ArgumentError", "option 'colliders' must be an array");
+expectThrows(sim({colliders: [{type: "plane"}, {type: "sphere", center: [0, 0, 0], radius: 0.1, thickness: 4}]}),
+             "ArgumentError", "option 'colliders[1].thickness' must be from 0 to 0.05 m, got the number 4");
 expectThrows(sim({colliders: [{type: "plane"}, {type: "sphere", center: [0, 0, 0]}]}), "ArgumentError",
              "missing option 'colliders[1].radius'", "accepted: type, center, radius, thickness, friction");
 expectThrows(sim({colliders: [{type: "plane", radius: 1}]}), "ArgumentError",
