@@ -9,6 +9,7 @@
 #include "texture_coords.h"
 #include "om_structure.h"
 #include "ply_layout.h"
+#include "text_words.h"
 #include "units.h"
 
 // MeshIO.hh pulls in the reader and writer modules, which register
@@ -240,13 +241,6 @@ struct TextScan {
   /// vertex and shifts every face) and with continued lines joined.
   std::string text_for_reader;
 };
-
-std::vector<std::string> split_words(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> words;
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
-}
 
 std::string strip_comment(const std::string& line) { return line.substr(0, line.find('#')); }
 

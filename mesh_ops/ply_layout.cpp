@@ -1,6 +1,7 @@
 #include "ply_layout.h"
 
 #include "errors.h"
+#include "text_words.h"
 
 #include <algorithm>
 #include <charconv>
@@ -8,7 +9,6 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
-#include <sstream>
 #include <string_view>
 
 namespace mrcloth {
@@ -75,13 +75,6 @@ struct Header {
 };
 
 InputError error(const std::string& path, const std::string& problem) { return InputError(with_path(path, problem)); }
-
-std::vector<std::string> split_words(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> words;
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
-}
 
 /// A word of the file as a message may show it: printable, not too long.
 std::string shown(std::string_view word) {
