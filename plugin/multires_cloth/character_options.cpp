@@ -1,4 +1,5 @@
 #include "character_options.h"
+#include "option_limits.h"
 
 #include "mesh_ops/boundary_loops.h"
 #include "mesh_ops/units.h"
@@ -20,6 +21,8 @@ namespace {
 
 using options::Fields;
 using options::fail;
+using options::kLongestPreroll;
+using options::kShortestPreroll;
 using options::optionLabel;
 
 /// Metres per unit of the CMU BVH files (their default scale).
@@ -319,13 +322,13 @@ CharacterRequest parseCharacterOptions(const Fields& fields, double fps) {
   }
 
   request.setup.preroll_seconds = fields.numberFrom(QStringLiteral("preroll"), request.setup.preroll_seconds, 0.0, false);
-  // A pre-roll settles the cloth for a second or two; 1e8 s overflowed its
-  // frame count and was skipped, and 1e-300 s made steps so short the run
-  // turned non-finite (0 is a jump to the first frame, which is allowed).
   const double preroll = request.setup.preroll_seconds;
-  if (preroll > 60.0 || (preroll > 0.0 && preroll < 0.001))
-    fail(QStringLiteral("%1 must be 0 or a number of seconds from 0.001 to 60, got %2")
-             .arg(fields.label(QStringLiteral("preroll"))).arg(preroll));
+  if (preroll > kLongestPreroll || (preroll > 0.0 && preroll < kShortestPreroll))
+    fail(QStringLiteral("%1 must be 0 or a number of seconds from %2 to %3, got %4")
+             .arg(fields.label(QStringLiteral("preroll")))
+             .arg(kShortestPreroll)
+             .arg(kLongestPreroll)
+             .arg(preroll));
   request.setup.step_rate = fields.numberFrom(QStringLiteral("stepRate"), request.setup.step_rate, 0.0, true);
   if (request.setup.step_rate < fps)
     fail(QStringLiteral("%1 must be at least option 'fps' (%2 frames per second), got %3%4")

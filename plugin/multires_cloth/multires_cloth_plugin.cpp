@@ -10,11 +10,13 @@
 #include "mesh_ops/mode_mapping.h"
 #include "mesh_ops/mode_painting.h"
 #include "mesh_ops/quad_mesh.h"
+#include "mesh_ops/quad_refiner.h"
 #include "mesh_ops/uniform_refine.h"
 #include "plugin/core/job_scope.h"
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
+#include "option_limits.h"
 #include "simulation_options.h"
 #include "plugin/core/option_fields.h"
 #include "solver/character_fit.h"
@@ -731,6 +733,26 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   });
 }
 
+QVariantMap MultiresClothPlugin::limits() {
+  using namespace options;
+  const auto range = [](double least, double most) { return QVariantList{least, most}; };
+  return QVariantMap{{QStringLiteral("fps"), range(kLeastFps, kMostFps)},
+                     {QStringLiteral("substeps"), range(1, kMostSubsteps)},
+                     {QStringLiteral("stepsPerFrame"), range(1, kMostStepsPerFrame)},
+                     {QStringLiteral("iterations"), range(1, kMostIterations)},
+                     {QStringLiteral("newtonCg"), range(0, kMostNewtonCg)},
+                     {QStringLiteral("limiterSweeps"), range(0, kMostLimiterSweeps)},
+                     {QStringLiteral("collisionRounds"), range(1, kMostCollisionRounds)},
+                     {QStringLiteral("threads"), range(0, kMostThreads)},
+                     {QStringLiteral("preroll"), range(kShortestPreroll, kLongestPreroll)},
+                     {QStringLiteral("motionSmoothing"), range(0, kLongestMotionSmoothing)},
+                     {QStringLiteral("contactThickness"), range(0, kMostContactThickness)},
+                     {QStringLiteral("selfContactThickness"), range(0, kMostSelfContactThickness)},
+                     {QStringLiteral("mode"), range(0, kLargestMode)},
+                     {QStringLiteral("refinedFaces"), range(1, kMostFaces)},
+                     {QStringLiteral("garmentSpan"), range(kGarmentSpanLow, kGarmentSpanHigh)}};
+}
+
 QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
   return guarded("motionInfo", [&] {
     const MotionReading reading = readMotion(motion);
@@ -1171,6 +1193,15 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
         QStringLiteral("{colorBy: \"level\" | \"mode\" | \"curvature\" (mean curvature after extractModes, viridis "
                        "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false, cache: PC2 of "
                        "this object (simulate's output) = none, frame: int >= 0 = 0 (of the cache)}")}},
+      {QStringLiteral("limits() -> object"),
+       QStringLiteral("The bounds of the numeric options, each [least, most], as the calls check them: fps, "
+                      "substeps, stepsPerFrame (stepRate / fps on a character), iterations, newtonCg, "
+                      "limiterSweeps, collisionRounds, threads, preroll (s; 0 is allowed too), motionSmoothing "
+                      "(s), contactThickness (m: colliders and body), selfContactThickness (m), mode, refinedFaces "
+                      "(faces a refinement may make), garmentSpan (m: the largest side of a garment worn on a "
+                      "character). For checking a tool's own inputs before a run (the pipeline does)."),
+       {},
+       {}},
       {QStringLiteral("motionInfo(object motion) -> object"),
        QStringLiteral("Reads a BVH clip as a run on a character would (joints renamed, axes turned, units resolved) "
                       "and returns path, units (resolved: \"auto: cm\"), metresPerUnit, joints (names, End Sites "

@@ -69,6 +69,7 @@ class MultiresClothPlugin : public QObject,
   QVariantMap simulate(QVariant id = QVariant(), QVariant options = QVariant());
   QVariantMap recordInstance(QVariant id = QVariant(), QVariant options = QVariant());
   QVariantMap motionInfo(QVariant motion = QVariant());
+  QVariantMap limits();
   QVariantMap extractModes(QVariant id = QVariant(), QVariant cachePath = QVariant(), QVariant options = QVariant());
   QVariantMap mapModes(QVariant refinedId = QVariant(), QVariant coarseId = QVariant(), QVariant options = QVariant());
   QVariantMap compareResults(QVariant id = QVariant(), QVariant cachePath = QVariant(), QVariant referenceId = QVariant(),

@@ -1,4 +1,5 @@
 #include "simulation_options.h"
+#include "option_limits.h"
 
 #include "plugin/core/option_fields.h"
 
@@ -22,7 +23,14 @@ using options::Fields;
 using options::fail;
 using options::isNumber;
 using options::kLeastFps;
+using options::kMostCollisionRounds;
 using options::kMostFps;
+using options::kMostIterations;
+using options::kMostLimiterSweeps;
+using options::kMostNewtonCg;
+using options::kMostSelfContactThickness;
+using options::kMostSubsteps;
+using options::kMostThreads;
 using options::isObjectLike;
 using options::optionLabel;
 
@@ -323,13 +331,13 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.frames = fields.integerAtLeast(QStringLiteral("frames"), record ? 200 : sim.frames, 1);
   sim.fps = fields.numberBetween(QStringLiteral("fps"), sim.fps, kLeastFps, kMostFps, QStringLiteral("frames per second"));
   // Progress and Ctrl-C come between frames: a frame's work is bounded.
-  if (!character) sim.substeps = fields.integerBetween(QStringLiteral("substeps"), sim.substeps, 1, 1000);
-  sim.iterations = fields.integerBetween(QStringLiteral("iterations"), sim.iterations, 1, 100);
+  if (!character) sim.substeps = fields.integerBetween(QStringLiteral("substeps"), sim.substeps, 1, kMostSubsteps);
+  sim.iterations = fields.integerBetween(QStringLiteral("iterations"), sim.iterations, 1, kMostIterations);
   // The same for the inner loops (a typo of 60000 sweeps left a frame
-  // running for hours with Ctrl-C waiting on it); 1000 CG iterations
-  // converge any garment's Newton step (newtonCg stops once converged).
-  sim.newton_cg = fields.integerBetween(QStringLiteral("newtonCg"), sim.newton_cg, 0, 1000);
-  sim.strain_limit_sweeps = fields.integerBetween(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0, 1000);
+  // running for hours with Ctrl-C waiting on it).
+  sim.newton_cg = fields.integerBetween(QStringLiteral("newtonCg"), sim.newton_cg, 0, kMostNewtonCg);
+  sim.strain_limit_sweeps =
+      fields.integerBetween(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0, kMostLimiterSweeps);
   // "auto": the default estimate raised to the garment's chain's
   // (chain_spectral_radius), which the longer chains of refined meshes need.
   const QVariant acceleration =
@@ -356,10 +364,11 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
              .arg(sim.limiter_mass_exponent));
   sim.t_node_sag = fields.boolean(QStringLiteral("tNodeSag"), sim.t_node_sag);
   sim.pins_yield = fields.boolean(QStringLiteral("pinsYield"), sim.pins_yield);
-  sim.collision_rounds = fields.integerBetween(QStringLiteral("collisionRounds"), sim.collision_rounds, 1, 100);
+  sim.collision_rounds =
+      fields.integerBetween(QStringLiteral("collisionRounds"), sim.collision_rounds, 1, kMostCollisionRounds);
   sim.contact_slack = fields.numberFrom(QStringLiteral("contactSlack"), sim.contact_slack, 0.0, false);
   sim.threads = resolve_thread_count(
-      fields.integerBetween(QStringLiteral("threads"), sim.threads, 0, WorkerPool::kMostWorkers));
+      fields.integerBetween(QStringLiteral("threads"), sim.threads, 0, kMostThreads));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
   if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
   if (fields.has(QStringLiteral("selfContact"))) {
@@ -384,12 +393,15 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
     }
     if (thickness.typeId() == QMetaType::Bool) {
       if (thickness.toBool())
-        fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got true").arg(thickness_label));
+        fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got true")
+                 .arg(thickness_label).arg(kMostSelfContactThickness));
     } else {
       metres = script::toNumber(thickness, thickness_label);
-      if (!(metres >= 0.0 && metres <= 0.02))
-        fail(QStringLiteral("%1 must be false or a thickness from 0 to 0.02 m, got %2")
-                 .arg(thickness_label, script::describeValue(thickness)));
+      if (!(metres >= 0.0 && metres <= kMostSelfContactThickness))
+        fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got %3")
+                 .arg(thickness_label)
+                 .arg(kMostSelfContactThickness)
+                 .arg(script::describeValue(thickness)));
     }
     sim.self_contact.thickness = metres;
   }

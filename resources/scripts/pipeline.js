@@ -123,11 +123,19 @@ const VALUED = {
 };
 const HOST_FLAGS = ["-q", "--quiet"];  // mrcloth's own, taken before the script sees its arguments
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
-// The bounds of the values the API takes (or can run in reasonable time).
 const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
-const LIMITS = {modes: 1000, threads: 1024, preroll: 60, waistSmoothing: 1, motionSmoothing: 1, leastFps: 1,
-                stepsPerFrame: 1000, newtonCg: 1000,  // simulate's bounds on a frame's work
-                uniformFaces: 2e7};  // kMostFaces (mesh_ops/quad_refiner.h)
+// The bounds of the values the API takes, as its calls check them
+// (multirescloth.limits(): [least, most] each), and the pipeline's own.
+// Read when the first flag needs one: --help works without the plugins.
+let apiLimits = null;
+function limits(name) {
+  checkPlugins();
+  if (apiLimits === null) apiLimits = multirescloth.limits();
+  return apiLimits[name];
+}
+const limit = (name) => limits(name)[1];
+const LEAST_FPS = 1;             // the pipeline's own bounds: --fps
+const MOST_WAIST_SMOOTHING = 1;  // and --waist-smoothing (m)
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
 function integerOption(name, text, least, most = MOST_INTEGER) {
@@ -194,19 +202,20 @@ function parseOptions(args) {
     else throw pipelineError("option " + name + " needs a value");
     switch (key) {
       case "levels": options.levels = integerOption(name, text, 1); break;
-      case "modes": options.modes = integerOption(name, text, 1, LIMITS.modes); break;
+      case "modes": options.modes = integerOption(name, text, 1, limit("mode")); break;
       case "instanceFrames": options.instanceFrames = integerOption(name, text, 2); break;
       case "testFrames": options.testFrames = integerOption(name, text, 1); break;
-      case "threads": options.threads = integerOption(name, text, 0, LIMITS.threads); break;
-      case "fps": options.fps = numberOption(name, text, LIMITS.leastFps, false); break;
+      case "threads": options.threads = integerOption(name, text, 0, limit("threads")); break;
+      case "fps": options.fps = numberOption(name, text, LEAST_FPS, false, limit("fps")); break;
       case "preroll":
-        options.preroll = numberOption(name, text, 0, false, LIMITS.preroll);
+        options.preroll = numberOption(name, text, 0, false, limit("preroll"));
         // simulate's rule: 0 jumps to the first frame; shorter than 1 ms made steps too short to stay finite.
-        if (options.preroll > 0 && options.preroll < 0.001)
-          throw pipelineError("option " + name + ": expected 0 or a number from 0.001 to " + LIMITS.preroll + ", got \"" + text + "\"");
+        if (options.preroll > 0 && options.preroll < limits("preroll")[0])
+          throw pipelineError("option " + name + ": expected 0 or a number from " + limits("preroll").join(" to ") +
+                              ", got \"" + text + "\"");
         break;
       case "stepRate": options.stepRate = numberOption(name, text, 0, true); break;
-      case "newtonCg": options.newtonCg = integerOption(name, text, 0, LIMITS.newtonCg); break;
+      case "newtonCg": options.newtonCg = integerOption(name, text, 0, limit("newtonCg")); break;
       case "bendModel": options.bendModel = choiceOption(name, text, ["distance", "secondDifference"]); break;
       case "bendStiffness": options.bendStiffness = numberOption(name, text, 0, false); break;
       case "limiterAcceleration": {
@@ -217,7 +226,7 @@ function parseOptions(args) {
         break;
       }
       case "waistSmoothing":
-        options.waistSmoothing = numberOption(name, text, 0, false, LIMITS.waistSmoothing);
+        options.waistSmoothing = numberOption(name, text, 0, false, MOST_WAIST_SMOOTHING);
         waistGiven = true;
         break;
       case "delta": {
@@ -242,7 +251,7 @@ function parseOptions(args) {
         break;
       case "motionUnits": options.motionUnits = choiceOption(name, text, ["m", "cmu", "dm", "cm", "mm", "inch", "auto"]); break;
       case "motionPositions": options.motionPositions = choiceOption(name, text, ["absolute", "relative"]); break;
-      case "motionSmoothing": options.motionSmoothing = numberOption(name, text, 0, false, LIMITS.motionSmoothing); break;
+      case "motionSmoothing": options.motionSmoothing = numberOption(name, text, 0, false, limit("motionSmoothing")); break;
       case "body": options.body = choiceOption(name, text, ["capsules", "mesh"]); break;
       case "place": options.place = choiceOption(name, text, ["none", "makehuman", "firstFrame"]); break;
       case "material": options.material = choiceOption(name, text, ["cotton", "denim", "silk"]); break;
@@ -304,9 +313,9 @@ function checkRates(options) {
   if (options.stepRate !== null && options.stepRate < options.fps)
     throw pipelineError("option --step-rate: expected at least --fps (" + options.fps + " frames per second), got " +
                         options.stepRate);
-  if (options.stepRate !== null && options.stepRate > LIMITS.stepsPerFrame * options.fps)
-    throw pipelineError("option --step-rate: expected at most " + LIMITS.stepsPerFrame + " steps per frame (" +
-                        LIMITS.stepsPerFrame * options.fps + " at --fps " + options.fps + "), got " + options.stepRate);
+  if (options.stepRate !== null && options.stepRate > limit("stepsPerFrame") * options.fps)
+    throw pipelineError("option --step-rate: expected at most " + limit("stepsPerFrame") + " steps per frame (" +
+                        limit("stepsPerFrame") * options.fps + " at --fps " + options.fps + "), got " + options.stepRate);
 }
 
 /// The clips' joint map read from its JSON file: an object of names to names.
@@ -765,7 +774,7 @@ function checkPlugins() {
 /// is refused before any work, with the units that would fit: the span
 /// multirescloth.simulate accepts on a character (kGarmentSpanLow/High).
 function checkGarmentSize(options, info) {
-  const [low, high] = [0.1, 4.0];
+  const [low, high] = limits("garmentSpan");
   const span = Math.max(...[0, 1, 2].map((k) => info.bbox.max[k] - info.bbox.min[k]));
   if (span >= low && span <= high) return;
   const metres = {m: 1, dm: 0.1, cm: 0.01, mm: 0.001, inch: 0.0254};
@@ -803,15 +812,15 @@ function loadGarment(options) {
 }
 
 /// Uniform refinement makes four faces of each per level, at most
-/// LIMITS.uniformFaces (refineUniform's bound).
+/// limit("refinedFaces") (refineUniform's bound).
 function checkLevels(options, coarseInfo) {
   const faces = coarseInfo.faces * Math.pow(4, options.levels);
-  if (faces <= LIMITS.uniformFaces) return;
+  if (faces <= limit("refinedFaces")) return;
   let most = 0;
-  while (coarseInfo.faces * Math.pow(4, most + 1) <= LIMITS.uniformFaces) ++most;
+  while (coarseInfo.faces * Math.pow(4, most + 1) <= limit("refinedFaces")) ++most;
   throw pipelineError("option --levels: " + options.levels + " uniform refinements of the garment's " +
                       coarseInfo.faces + " faces would make " + faces.toPrecision(3) + " faces, more than the " +
-                      LIMITS.uniformFaces.toExponential() + " refinement makes; expected at most " + most);
+                      limit("refinedFaces").toExponential() + " refinement makes; expected at most " + most);
 }
 
 /// The high-resolution mesh's vertex count without making it: each uniform

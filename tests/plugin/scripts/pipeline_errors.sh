@@ -29,7 +29,7 @@ refused "unexpected argument \"stray\"" stray
 refused "option --levels: expected an integer >= 1, got \"two\"" --levels two
 refused "option --levels: expected an integer >= 1, got \"0\"" --levels 0
 refused "option --delta: expected a number > 0, got \"-3\"" --delta 8,-3
-refused "option --fps: expected a number >= 1, got \"fast\"" --fps fast
+refused "option --fps: expected a number >= 1 and <= 100000, got \"fast\"" --fps fast
 refused "option --threads: expected an integer >= 0 and <= 1024, got \"-2\"" --threads -2
 refused "option --step-rate: expected a number > 0, got \"0\"" --step-rate 0
 refused "option --step-rate: expected at least --fps \(30 frames per second\), got 20" --step-rate 20
@@ -75,7 +75,9 @@ refused "option --preroll: expected a number >= 0 and <= 60, got \"61\"" $cheap 
 refused "option --preroll: expected 0 or a number from 0.001 to 60, got \"0.0001\"" $cheap --preroll 0.0001
 refused "option --fps: expected at most the step rate, 120 steps per second by default, got 200; give --step-rate" \
   $cheap --fps 200
-refused "option --fps: expected a number >= 1, got \"1e-320\"" $cheap --fps 1e-320
+refused "option --fps: expected a number >= 1 and <= 100000, got \"1e-320\"" $cheap --fps 1e-320
+# Bounds read from multirescloth.limits(), as simulate checks them.
+refused "option --fps: expected a number >= 1 and <= 100000, got \"1e6\"" $cheap --fps 1e6
 refused "option --step-rate: expected at most 1000 steps per frame \(30000 at --fps 30\)" $cheap --step-rate 1e9
 refused "option --waist-smoothing: expected a number >= 0 and <= 1, got \"2\"" --waist-smoothing 2 --makehuman "$tmp"
 # The garment bounds --levels (refinement makes at most 2e7 faces) and --modes (clusters of its vertices).

@@ -1,0 +1,58 @@
+// multirescloth.limits(): every bound it lists is the one the calls check,
+// just beyond it refused with the range in the message, so a tool that
+// checks its inputs against limits() (the pipeline does) agrees with the
+// calls. Arguments: <tests/data> <shared data> <tmp>.
+"use strict";
+const [dataDir] = core.scriptArguments();
+
+core.include("test_asserts.js");
+
+const L = multirescloth.limits();
+expectEqual(Object.keys(L).sort().join(","),
+            "collisionRounds,contactThickness,fps,garmentSpan,iterations,limiterSweeps,mode,motionSmoothing,newtonCg," +
+            "preroll,refinedFaces,selfContactThickness,stepsPerFrame,substeps,threads", "the bounds listed");
+for (const [name, range] of Object.entries(L)) {
+  expectType(range, "array", name);
+  expectEqual(range.length, 2, name + ": [least, most]");
+  expectEqual(range.every(isFinite), true, name + " finite");
+  expectAtLeast(range[1] - range[0], Number.MIN_VALUE, name + ": most - least");
+}
+const span = (name) => L[name][0] + " to " + L[name][1];
+
+const grid = core.loadObject(dataDir + "/grid3x3.obj");
+const sim = (options) => () => multirescloth.simulate(grid, options);
+for (const name of ["substeps", "iterations", "newtonCg", "limiterSweeps", "collisionRounds", "threads"]) {
+  for (const beyond of [L[name][0] - 1, L[name][1] + 1])
+    expectThrows(sim({[name]: beyond}), "ArgumentError",
+                 "option '" + name + "' must be an integer from " + span(name) + ", got the number " + beyond);
+}
+expectThrows(sim({fps: 2 * L.fps[1]}), "ArgumentError", "option 'fps' must be from " + span("fps") + " frames per second");
+expectThrows(sim({fps: L.fps[0] / 2}), "ArgumentError", "option 'fps' must be from " + span("fps") + " frames per second");
+expectThrows(sim({selfContact: 1.5 * L.selfContactThickness[1]}), "ArgumentError",
+             "option 'selfContact' must be false or a thickness from " + span("selfContactThickness") + " m");
+expectThrows(sim({colliders: [{type: "plane", thickness: 1.5 * L.contactThickness[1]}]}), "ArgumentError",
+             "option 'colliders[0].thickness' must be from " + span("contactThickness") + " m");
+
+// On a character.
+const walk = core.resourcePath() + "/characters/walk_instance.bvh";
+expectThrows(sim({motion: walk, body: {thickness: 1.5 * L.contactThickness[1]}}), "ArgumentError",
+             "option 'body.thickness' must be from " + span("contactThickness") + " m");
+for (const preroll of [L.preroll[0] / 2, L.preroll[1] + 1])
+  expectThrows(sim({motion: walk, preroll: preroll}), "ArgumentError",
+               "option 'preroll' must be 0 or a number of seconds from " + span("preroll") + ", got " + preroll);
+expectThrows(sim({motion: walk, fps: 30, stepRate: 30 * L.stepsPerFrame[1] + 1}), "ArgumentError",
+             "option 'stepRate' must be at most " + L.stepsPerFrame[1] + " steps per output frame");
+expectThrows(sim({motion: {path: walk, smoothing: 2 * L.motionSmoothing[1]}}), "ArgumentError",
+             "option 'motion.smoothing' must be at most " + L.motionSmoothing[1] + " s");
+const tiny = core.loadObject(dataDir + "/grid3x3.obj", {units: "cm"});  // 3 cm across
+expectThrows(() => multirescloth.simulate(tiny, {motion: walk}), "InputError",
+             "expected " + L.garmentSpan[0] + "-" + L.garmentSpan[1] + " m for a garment worn by a person");
+
+// Modes and refinement.
+expectThrows(() => multirescloth.setModes(grid, [0], L.mode[1] + 1), "ArgumentError",
+             "mode must be an integer from " + span("mode") + ", got the number " + (L.mode[1] + 1));
+expectThrows(() => multirescloth.refineUniform(grid, 20), "ArgumentError",
+             "would make more than " + L.refinedFaces[1] + " faces from 9");
+expectEqual(multirescloth.setModes(grid, [0], L.mode[1]), 1, "the largest mode is accepted");
+
+print("limits: ok");
