@@ -66,7 +66,7 @@ const USAGE = [
   "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
   "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
   "                         README, Collision cost) [simulate's default, auto]",
-  "  --fps F                output frames per second, >= 1 and at most --step-rate [30]",
+  "  --fps F                output frames per second, 1..100000 and at most --step-rate [30]",
   "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
   "                         (README, Characters) [120, the CMU mocap rate]",
   "  --instance-frames N    recorded instance frames, >= 2 [200]",
