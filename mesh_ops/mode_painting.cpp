@@ -125,9 +125,9 @@ void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes) {
                         std::to_string(mesh.n_vertices()) + " vertices; expected one per vertex");
   }
   for (std::size_t v = 0; v < modes.size(); ++v)
-    if (modes[v] < 1)
+    if (modes[v] < 1 || modes[v] > kLargestMode)
       throw ArgumentError("set_computed_modes: vertex " + std::to_string(v) + " has mode " + std::to_string(modes[v]) +
-                          "; expected computed modes >= 1");
+                          "; expected computed modes from 1 to " + std::to_string(kLargestMode));
   const auto computed = computed_handle(mesh);
   const auto current = ensure_layers(mesh).mode;
   for (const auto v : mesh.vertices()) {

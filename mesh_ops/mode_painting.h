@@ -25,8 +25,9 @@ inline constexpr const char* curvature_deviation = "mrcloth:curvature_deviation"
 /// calls this; other double layers travel in the CSV file.
 void ensure_analysis_layers(QuadMesh& mesh);
 
-/// Stores an analysis's modes (one per vertex, >= 1) as the computed layer
-/// and as the current modes (painting starts from them).
+/// Stores an analysis's modes (one per vertex, 1..kLargestMode) as the
+/// computed layer and as the current modes (painting starts from them).
+/// Throws ArgumentError naming the first vertex out of range; nothing changes then.
 void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes);
 
 /// Sets only the computed modes (one per vertex, 0 = none; the current

@@ -1,6 +1,7 @@
 #include "deformation_modes.h"
 
 #include "mesh_ops/errors.h"
+#include "mesh_ops/mode_layer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,9 @@ FeatureNormalization normalization_from_name(const std::string& name) {
 
 ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation,
                              const ModeOptions& options, const KMeansProgress& progress) {
+  if (options.modes < 1 || options.modes > kLargestMode)
+    throw ArgumentError("deformation_modes: " + std::to_string(options.modes) + " modes asked for; expected 1 to " +
+                        std::to_string(kLargestMode) + ", the modes a mode layer holds");
   if (mean_curvature.size() != deviation.size()) {
     throw ArgumentError("deformation_modes: " + std::to_string(mean_curvature.size()) + " mean curvatures but " +
                         std::to_string(deviation.size()) + " deviations; expected one of each per vertex");

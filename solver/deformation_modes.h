@@ -24,7 +24,7 @@ std::string normalization_name(FeatureNormalization normalization);
 FeatureNormalization normalization_from_name(const std::string& name);
 
 struct ModeOptions {
-  int modes = 3;                                             ///< h, the paper's 3; >= 1
+  int modes = 3;                                             ///< h, the paper's 3; 1..kLargestMode (a mode layer's largest)
   FeatureNormalization normalization = FeatureNormalization::min_max;
   int restarts = 8;                                          ///< k-means++ seedings, the lowest inertia kept
   int max_iterations = 300;                                  ///< Lloyd iterations per restart

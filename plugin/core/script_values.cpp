@@ -225,6 +225,10 @@ int Options::integerAtLeast(const QString& key, int fallback, int minimum) const
   return has(key) ? toIntAtLeast(values_.value(key), label(key), minimum) : fallback;
 }
 
+int Options::integerBetween(const QString& key, int fallback, int minimum, int maximum) const {
+  return has(key) ? toIntBetween(values_.value(key), label(key), minimum, maximum) : fallback;
+}
+
 bool Options::boolean(const QString& key, bool fallback) const {
   return has(key) ? toBool(values_.value(key), label(key)) : fallback;
 }

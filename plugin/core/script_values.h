@@ -57,6 +57,7 @@ class Options {
 
   double number(const QString& key, double fallback) const;
   int integerAtLeast(const QString& key, int fallback, int minimum) const;
+  int integerBetween(const QString& key, int fallback, int minimum, int maximum) const;
   bool boolean(const QString& key, bool fallback) const;
   QString string(const QString& key, const QString& fallback) const;
   QString choice(const QString& key, const QString& fallback, const QStringList& choices) const;

@@ -513,14 +513,13 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
                                 {QStringLiteral("clusters"), QStringLiteral("normalize"), QStringLiteral("seed"),
                                  QStringLiteral("restarts"), QStringLiteral("skipFrames"), QStringLiteral("maxFrames")});
     ModeOptions modes;
-    modes.modes = given.integerAtLeast(QStringLiteral("clusters"), modes.modes, 1);
+    modes.modes = given.integerBetween(QStringLiteral("clusters"), modes.modes, 1, kLargestMode);
     modes.normalization = normalization_from_name(
         given.choice(QStringLiteral("normalize"), QStringLiteral("minmax"), {QStringLiteral("minmax"), QStringLiteral("zscore")})
             .toStdString());
     modes.seed = static_cast<std::uint64_t>(given.integerAtLeast(QStringLiteral("seed"), 1, 0));
-    modes.restarts = given.integerAtLeast(QStringLiteral("restarts"), modes.restarts, 1);
-    if (modes.restarts > 10000)  // each restart is a whole k-means run (a step of the clustering job)
-      options::fail(QStringLiteral("option 'restarts' must be an integer from 1 to 10000, got %1").arg(modes.restarts));
+    // Each restart is a whole k-means run (a step of the clustering job).
+    modes.restarts = given.integerBetween(QStringLiteral("restarts"), modes.restarts, 1, options::kMostRestarts);
     CurvatureAnalysisOptions analysis;
     analysis.skip_frames = given.integerAtLeast(QStringLiteral("skipFrames"), 0, 0);
     analysis.max_frames = given.has(QStringLiteral("maxFrames"))
@@ -749,6 +748,8 @@ QVariantMap MultiresClothPlugin::limits() {
                      {QStringLiteral("contactThickness"), range(0, kMostContactThickness)},
                      {QStringLiteral("selfContactThickness"), range(0, kMostSelfContactThickness)},
                      {QStringLiteral("mode"), range(0, kLargestMode)},
+                     {QStringLiteral("clusters"), range(1, kLargestMode)},
+                     {QStringLiteral("restarts"), range(1, kMostRestarts)},
                      {QStringLiteral("refinedFaces"), range(1, kMostFaces)},
                      {QStringLiteral("garmentSpan"), range(kGarmentSpanLow, kGarmentSpanHigh)}};
 }
@@ -1197,7 +1198,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        QStringLiteral("The bounds of the numeric options, each [least, most], as the calls check them: fps, "
                       "substeps, stepsPerFrame (stepRate / fps on a character), iterations, newtonCg, "
                       "limiterSweeps, collisionRounds, threads, preroll (s; 0 is allowed too), motionSmoothing "
-                      "(s), contactThickness (m: colliders and body), selfContactThickness (m), mode, refinedFaces "
+                      "(s), contactThickness (m: colliders and body), selfContactThickness (m), mode, clusters and restarts "
+                      "(extractModes), refinedFaces "
                       "(faces a refinement may make), garmentSpan (m: the largest side of a garment worn on a "
                       "character). For checking a tool's own inputs before a run (the pipeline does)."),
        {},
@@ -1356,7 +1358,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "scale (normalised = (feature - offset) / scale), maxMeanCurvature, milliseconds."),
        {QStringLiteral("id"), QStringLiteral("cachePath"), QStringLiteral("options")},
        {id_text, QStringLiteral("a PC2 cache of this mesh's vertices (recordInstance's output), metres"),
-        QStringLiteral("{clusters: int >= 1 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
+        QStringLiteral("{clusters: int 1..1000 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
                        "= 1, restarts: int 1..10000 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
       {QStringLiteral("compareResults(int id, string cachePath, int referenceId, string referenceCachePath, object "
                       "options = {}) -> object"),

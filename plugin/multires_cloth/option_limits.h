@@ -23,5 +23,7 @@ constexpr int kMostThreads = WorkerPool::kMostWorkers;
 constexpr double kShortestPreroll = 1e-3;
 constexpr double kLongestPreroll = 60.0;
 constexpr double kMostSelfContactThickness = 0.02;  ///< metres of cloth-cloth contact thickness
+/// extractModes' k-means restarts: each is a whole k-means run (a step of the clustering job).
+constexpr int kMostRestarts = 10000;
 
 }  // namespace mrcloth::options

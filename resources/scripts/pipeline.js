@@ -202,7 +202,7 @@ function parseOptions(args) {
     else throw pipelineError("option " + name + " needs a value");
     switch (key) {
       case "levels": options.levels = integerOption(name, text, 1); break;
-      case "modes": options.modes = integerOption(name, text, 1, limit("mode")); break;
+      case "modes": options.modes = integerOption(name, text, 1, limit("clusters")); break;
       case "instanceFrames": options.instanceFrames = integerOption(name, text, 2); break;
       case "testFrames": options.testFrames = integerOption(name, text, 1); break;
       case "threads": options.threads = integerOption(name, text, 0, limit("threads")); break;

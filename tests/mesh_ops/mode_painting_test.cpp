@@ -118,6 +118,20 @@ TEST(ModePainting, EraseGoesBackToTheComputedModes) {
   EXPECT_THROW(erase_modes(mesh, {-1}), ArgumentError);
   EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(49, 0)), ArgumentError);
   EXPECT_THROW(set_computed_modes(mesh, std::vector<int>(3, 1)), ArgumentError);
+  // A mode no layer file could hold again (saved, it would be read back as damaged) is refused, nothing changed.
+  std::vector<int> beyond(49, kLargestMode);
+  beyond[30] = kLargestMode + 1;
+  try {
+    set_computed_modes(mesh, beyond);
+    ADD_FAILURE() << "a mode beyond kLargestMode";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 30 has mode 1001; expected computed modes from 1 to 1000"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(get_modes(mesh), computed);
+  set_computed_modes(mesh, std::vector<int>(49, kLargestMode));
+  EXPECT_EQ(get_modes(mesh), std::vector<int>(49, kLargestMode));
 }
 
 // New vertices inherit the computed modes as they inherit the modes (the

@@ -2,6 +2,7 @@
 // deformation, the report's numbers against brute force, and a sheet half
 // rolled up whose rolled half must come out as the top mode.
 #include "solver/deformation_modes.h"
+#include "mesh_ops/mode_layer.h"
 
 #include "mesh_ops/errors.h"
 #include "solver/instance_curvature.h"
@@ -177,6 +178,16 @@ TEST(DeformationModes, RefusesBadFeaturesAndNames) {
   ModeOptions options;
   options.modes = 11;
   EXPECT_THROW(deformation_modes(mean, deviation, options), ArgumentError) << "more modes than vertices";
+  for (const int modes : {0, kLargestMode + 1}) {
+    options.modes = modes;
+    try {
+      deformation_modes(mean, deviation, options);
+      ADD_FAILURE() << modes << " modes";
+    } catch (const ArgumentError& e) {
+      EXPECT_NE(std::string(e.what()).find("expected 1 to 1000, the modes a mode layer holds"), std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_EQ(normalization_from_name(normalization_name(FeatureNormalization::z_score)), FeatureNormalization::z_score);
   EXPECT_EQ(normalization_from_name("minmax"), FeatureNormalization::min_max);
   try {

@@ -71,6 +71,12 @@ multirescloth.simulate(grid, {frames: 2, pins: "top", output: gridCache});
 expectThrows(() => multirescloth.extractModes(sheet, gridCache), "InputError", "grid.pc2", "16 points", "169");
 expectThrows(() => multirescloth.extractModes(sheet, tmpDir + "/missing.pc2"), "InputError", "missing.pc2");
 expectThrows(() => multirescloth.extractModes(sheet, pc2, {clusters: 0}), "ArgumentError", "option 'clusters'");
+// More modes than a mode layer holds (kLargestMode): were they written, the
+// .om and layer CSV files saved from the mesh would be refused on reading.
+expectThrows(() => multirescloth.extractModes(sheet, pc2, {clusters: 1001}), "ArgumentError",
+             "option 'clusters' must be an integer from 1 to 1000, got the number 1001");
+expectThrows(() => multirescloth.extractModes(sheet, pc2, {restarts: 10001}), "ArgumentError",
+             "option 'restarts' must be an integer from 1 to 10000, got the number 10001");
 expectThrows(() => multirescloth.extractModes(sheet, pc2, {normalize: "log"}), "ArgumentError", "option 'normalize'");
 expectThrows(() => multirescloth.extractModes(sheet, pc2, {skipFrames: frames}), "ArgumentError", "leaves none");
 expectThrows(() => multirescloth.extractModes(sheet, pc2, {cluster: 3}), "ArgumentError", "unknown option 'cluster'");

@@ -9,8 +9,8 @@ core.include("test_asserts.js");
 
 const L = multirescloth.limits();
 expectEqual(Object.keys(L).sort().join(","),
-            "collisionRounds,contactThickness,fps,garmentSpan,iterations,limiterSweeps,mode,motionSmoothing,newtonCg," +
-            "preroll,refinedFaces,selfContactThickness,stepsPerFrame,substeps,threads", "the bounds listed");
+            "clusters,collisionRounds,contactThickness,fps,garmentSpan,iterations,limiterSweeps,mode,motionSmoothing," +
+            "newtonCg,preroll,refinedFaces,restarts,selfContactThickness,stepsPerFrame,substeps,threads", "the bounds listed");
 for (const [name, range] of Object.entries(L)) {
   expectType(range, "array", name);
   expectEqual(range.length, 2, name + ": [least, most]");
@@ -54,5 +54,9 @@ expectThrows(() => multirescloth.setModes(grid, [0], L.mode[1] + 1), "ArgumentEr
 expectThrows(() => multirescloth.refineUniform(grid, 20), "ArgumentError",
              "would make more than " + L.refinedFaces[1] + " faces from 9");
 expectEqual(multirescloth.setModes(grid, [0], L.mode[1]), 1, "the largest mode is accepted");
+for (const name of ["clusters", "restarts"])
+  for (const beyond of [L[name][0] - 1, L[name][1] + 1])
+    expectThrows(() => multirescloth.extractModes(grid, "no_such.pc2", {[name]: beyond}), "ArgumentError",
+                 "option '" + name + "' must be an integer from " + span(name) + ", got the number " + beyond);
 
 print("limits: ok");
