@@ -8,6 +8,7 @@
 #include <OpenMesh/Core/Utils/Property.hh>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -295,7 +296,7 @@ void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path) {
   });
 }
 
-std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
+ModesCsvRead read_modes_csv(QuadMesh& mesh, const std::string& path) {
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored))
     throw InputError(path + ": is a folder; expected a CSV file of vertex modes");
@@ -319,10 +320,16 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
     return ascii_lower(field);
   };
   int vertex_column = -1, mode_column = -1;
+  std::array<int, 3> position_columns{-1, -1, -1};
   for (std::size_t c = 0; c < header.size(); ++c) {
-    if (named(header[c]) == "vertex") vertex_column = static_cast<int>(c);
-    if (named(header[c]) == "mode") mode_column = static_cast<int>(c);
+    const std::string name = named(header[c]);
+    if (name == "vertex") vertex_column = static_cast<int>(c);
+    if (name == "mode") mode_column = static_cast<int>(c);
+    for (int k = 0; k < 3; ++k)
+      if (name == std::string(1, "xyz"[k])) position_columns[static_cast<std::size_t>(k)] = static_cast<int>(c);
   }
+  const bool has_positions = std::all_of(position_columns.begin(), position_columns.end(), [](int c) { return c >= 0; });
+  ModesCsvRead read;
   if (vertex_column < 0 || mode_column < 0) fail(1, "the header has no 'vertex' or no 'mode' column", "vertex,mode,...");
   const int n = static_cast<int>(mesh.n_vertices());
   std::vector<std::pair<int, int>> assignments;
@@ -363,10 +370,32 @@ std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path) {
            "one row per vertex");
     earlier = line;
     assignments.emplace_back(vertex, mode);
+    if (has_positions) {
+      // A position that is no finite number is another tool's column: not compared.
+      OpenMesh::Vec3d p(0, 0, 0);
+      bool numbers = true;
+      for (int k = 0; k < 3; ++k) {
+        const auto column = static_cast<std::size_t>(position_columns[static_cast<std::size_t>(k)]);
+        const std::string& field = column < fields.size() ? fields[column] : std::string();
+        const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), p[k]);
+        numbers = numbers && error == std::errc() && end == field.data() + field.size() && !field.empty() &&
+                  std::isfinite(p[k]);
+      }
+      const double off = (p - mesh.point(mesh.vertex_handle(static_cast<unsigned>(vertex)))).norm();
+      if (numbers && !(off <= kCsvPositionTolerance)) {
+        ++read.misplaced;
+        if (!(off <= read.farthest)) {
+          read.farthest = off;
+          read.farthest_vertex = vertex;
+          read.farthest_line = line;
+        }
+      }
+    }
   }
   const auto layer_handle = ensure_layers(mesh).mode;
   for (const auto& [vertex, mode] : assignments) mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(vertex))) = mode;
-  return assignments.size();
+  read.set = assignments.size();
+  return read;
 }
 
 }  // namespace mrcloth

@@ -67,12 +67,28 @@ std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids = {})
 /// layer, one row per vertex, atomically. OutputError naming the path.
 void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path);
 
+/// What read_modes_csv set, and how well the file's positions (its x, y, z
+/// columns, where it has them) fit the mesh: a file of another mesh, or of
+/// this one with its vertices in another order, sets modes on the wrong
+/// vertices without any malformed line.
+struct ModesCsvRead {
+  std::size_t set = 0;             ///< vertices whose mode the file set
+  std::size_t misplaced = 0;       ///< rows whose x, y, z lie farther than kCsvPositionTolerance from their vertex
+  double farthest = 0.0;           ///< metres: the largest such distance
+  int farthest_vertex = -1;        ///< its vertex (-1: none misplaced)
+  int farthest_line = 0;           ///< its line in the file
+};
+/// Metres a row's position may differ from its vertex's: the 17 digits
+/// saveLayers writes round-trip exactly; a mesh saved in a text format in
+/// between keeps micrometres.
+inline constexpr double kCsvPositionTolerance = 1e-4;
+
 /// Reads modes from a CSV with a header naming a "vertex" and a "mode"
-/// column (case and spaces ignored, a byte-order mark skipped; any other
-/// columns ignored, e.g. write_vertex_layers_csv's) and sets them; vertices
-/// not listed keep theirs. InputError naming the file and line for anything
-/// malformed, a vertex given twice included; nothing changes then. Returns
-/// how many were set.
-std::size_t read_modes_csv(QuadMesh& mesh, const std::string& path);
+/// column (case and spaces ignored, a byte-order mark skipped; other
+/// columns ignored but x, y, z, which are compared with the mesh's positions
+/// in metres, as write_vertex_layers_csv writes them) and sets them;
+/// vertices not listed keep theirs. InputError naming the file and line for
+/// anything malformed, a vertex given twice included; nothing changes then.
+ModesCsvRead read_modes_csv(QuadMesh& mesh, const std::string& path);
 
 }  // namespace mrcloth

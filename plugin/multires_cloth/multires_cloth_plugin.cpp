@@ -301,13 +301,22 @@ int MultiresClothPlugin::loadModes(QVariant id, QVariant path) {
   return guarded("loadModes", [&] {
     QuadMesh& mesh = store().mesh(script::toInt(id, QStringLiteral("id")));
     const QString file = script::toString(path, QStringLiteral("path"));
-    const std::size_t set = read_modes_csv(mesh, file.toStdString());
+    const ModesCsvRead read = read_modes_csv(mesh, file.toStdString());
     // A subset is legitimate (a tool's selection), but a CSV of another mesh
     // (the coarse garment's loaded into its refinement) looks just like one.
-    if (set != mesh.n_vertices())
+    if (read.set != mesh.n_vertices())
       emit log(LOGWARN, QStringLiteral("loadModes: %1 sets the modes of %2 of the mesh's %3 vertices; the others keep "
-                                       "theirs (a CSV of another mesh?)").arg(file).arg(set).arg(mesh.n_vertices()));
-    return static_cast<int>(set);
+                                       "theirs (a CSV of another mesh?)").arg(file).arg(read.set).arg(mesh.n_vertices()));
+    // So does a file of a mesh with as many vertices, or of this one with
+    // its vertices in another order (a re-export): its positions tell.
+    if (read.misplaced > 0)
+      emit log(LOGWARN, QStringLiteral("loadModes: in %1, %2 of the %3 rows' x, y, z lie more than %4 mm from their "
+                                       "vertex (at most %5 m: vertex %6, line %7): modes saved from another mesh, or "
+                                       "from this one with its vertices in another order or moved? The modes are set "
+                                       "by vertex number as given")
+                            .arg(file).arg(read.misplaced).arg(read.set).arg(1000.0 * kCsvPositionTolerance)
+                            .arg(read.farthest, 0, 'g', 3).arg(read.farthest_vertex).arg(read.farthest_line));
+    return static_cast<int>(read.set);
   });
 }
 
@@ -1164,7 +1173,10 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {id_text, QStringLiteral("a .csv path")}},
       {QStringLiteral("loadModes(int id, string path) -> int"),
        QStringLiteral("Sets modes from a CSV with vertex and mode columns (saveLayers' or any tool's); returns how "
-                      "many rows. A malformed file changes nothing and names its line."),
+                      "many rows. A malformed file changes nothing and names its line. Where the file has x, y, z "
+                      "columns (saveLayers' do), rows farther than 0.1 mm from their vertex are warned of: modes of "
+                      "another mesh, or of this one with its vertices renumbered, are set by vertex number all the "
+                      "same."),
        {QStringLiteral("id"), QStringLiteral("path")},
        {id_text, QStringLiteral("a CSV path")}},
       {QStringLiteral("getModes(int id) -> int[]"),

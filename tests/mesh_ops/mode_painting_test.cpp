@@ -204,9 +204,42 @@ TEST(ModePainting, LayersRoundTripThroughOmAndCsv) {
   for (std::string line; std::getline(in, line);) ++rows;
   EXPECT_EQ(rows, n);
   QuadMesh other = test::make_grid(4, 3, 0.5);
-  EXPECT_EQ(read_modes_csv(other, (dir / "layers.csv").string()), static_cast<std::size_t>(n));
+  const ModesCsvRead read = read_modes_csv(other, (dir / "layers.csv").string());
+  EXPECT_EQ(read.set, static_cast<std::size_t>(n));
+  EXPECT_EQ(read.misplaced, 0u) << "the same positions, to the bit";
+  EXPECT_EQ(read.farthest_vertex, -1);
   EXPECT_EQ(get_modes(other), painted);
   for (const auto& name : vertex_layer_names(mesh)) EXPECT_NO_THROW(vertex_layer(mesh, name)) << name;
+}
+
+// A CSV of a mesh with as many vertices but elsewhere, or of this mesh with
+// its vertices renumbered, sets the modes all the same (by vertex number),
+// and says how many rows' positions do not fit: exactly those moved beyond
+// the tolerance, the farthest named with its line.
+TEST(ModePainting, CsvPositionsThatDoNotFitTheMeshAreCounted) {
+  QuadMesh mesh = test::make_grid(3, 3, 1.0);  // 16 vertices, 1 m apart
+  const fs::path dir = temp_dir();
+  write_vertex_layers_csv(mesh, (dir / "grid.csv").string());
+  QuadMesh moved = test::make_grid(3, 3, 1.0);
+  moved.set_point(moved.vertex_handle(5), moved.point(moved.vertex_handle(5)) + OpenMesh::Vec3d(0, 0, 0.5 * kCsvPositionTolerance));
+  moved.set_point(moved.vertex_handle(9), moved.point(moved.vertex_handle(9)) + OpenMesh::Vec3d(0, 0, 2 * kCsvPositionTolerance));
+  moved.set_point(moved.vertex_handle(12), moved.point(moved.vertex_handle(12)) + OpenMesh::Vec3d(0.3, 0, 0));
+  ModesCsvRead read = read_modes_csv(moved, (dir / "grid.csv").string());
+  EXPECT_EQ(read.set, 16u);
+  EXPECT_EQ(read.misplaced, 2u) << "vertices 9 and 12; 5 is within the tolerance";
+  EXPECT_EQ(read.farthest_vertex, 12);
+  EXPECT_EQ(read.farthest_line, 14) << "the header is line 1, vertex v's row line v + 2";
+  EXPECT_NEAR(read.farthest, 0.3, 1e-12);
+  // The same mesh in decimetres: every row but the origin's is off.
+  QuadMesh scaled = test::make_grid(3, 3, 0.1);
+  read = read_modes_csv(scaled, (dir / "grid.csv").string());
+  EXPECT_EQ(read.misplaced, 15u);
+  EXPECT_NEAR(read.farthest, 0.9 * std::sqrt(18.0), 1e-12) << "the far corner, (3, 3) against (0.3, 0.3)";
+  // Without x, y, z columns (another tool's file) nothing is compared.
+  std::ofstream(dir / "plain.csv") << "vertex,mode\n12,3\n";
+  read = read_modes_csv(scaled, (dir / "plain.csv").string());
+  EXPECT_EQ(read.set, 1u);
+  EXPECT_EQ(read.misplaced, 0u);
 }
 
 TEST(ModePainting, MalformedCsvNamesTheLine) {
@@ -247,21 +280,21 @@ TEST(ModePainting, MalformedCsvNamesTheLine) {
   }
   // Quoted fields as spreadsheets write them (a quoted comma, doubled quotes), and trailing commas.
   std::ofstream(dir / "quoted.csv") << "\"vertex\",\"mode\",\"note\"\n\"2\",\"4\",\"a, \"\"b\"\"\"\n3 , 6 ,,\n";
-  EXPECT_EQ(read_modes_csv(mesh, (dir / "quoted.csv").string()), 2u);
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "quoted.csv").string()).set, 2u);
   EXPECT_EQ(get_modes(mesh)[2], 4);
   EXPECT_EQ(get_modes(mesh)[3], 6);
   // Rows shorter than the header that reach the vertex and mode columns, and blank lines.
   std::ofstream(dir / "short.csv") << "vertex,mode,comment\n2,7\n   \n3,8,ok\n";
-  EXPECT_EQ(read_modes_csv(mesh, (dir / "short.csv").string()), 2u);
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "short.csv").string()).set, 2u);
   EXPECT_EQ(get_modes(mesh)[2], 7);
   set_modes(mesh, {2, 3}, kDefaultMode);
   // Extra columns and a header in any order are fine; unlisted vertices keep their modes.
   std::ofstream(dir / "ok.csv") << "mode,note,vertex\n3,a,4\n2,b,0\n";
-  EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()), 2u);
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "ok.csv").string()).set, 2u);
   EXPECT_EQ(get_modes(mesh), (std::vector<int>{2, 1, 1, 1, 3, 1, 1, 1, 1}));
   // A spreadsheet's export: a byte-order mark, capitals, spaces, CRLF.
   std::ofstream(dir / "excel.csv") << "\xEF\xBB\xBFVertex , Mode\r\n1,5\r\n";
-  EXPECT_EQ(read_modes_csv(mesh, (dir / "excel.csv").string()), 1u);
+  EXPECT_EQ(read_modes_csv(mesh, (dir / "excel.csv").string()).set, 1u);
   EXPECT_EQ(get_modes(mesh)[1], 5);
 }
 

@@ -1,7 +1,8 @@
 // A garment with triangles loads as an all-quad mesh (each triangle split
 // into 3 quads), with a [warn] line saying so (checked by run_and_check.cmake).
 // The triangulated file is made by exporting the 3 x 3 grid with triangulate.
-// And loadModes warns when a CSV sets only some of a mesh's vertices.
+// And loadModes warns when a CSV sets only some of a mesh's vertices, or
+// its positions do not fit the mesh's.
 "use strict";
 const [dataDir, , tmpDir] = core.scriptArguments();
 core.makePath(tmpDir);
@@ -19,4 +20,8 @@ multirescloth.saveLayers(grid, tmpDir + "/coarse_layers.csv");
 const refined = multirescloth.refineUniform(grid, 1);
 if (multirescloth.loadModes(refined, tmpDir + "/coarse_layers.csv") !== 16) throw new Error("rows read");
 if (multirescloth.loadModes(grid, tmpDir + "/coarse_layers.csv") !== 16) throw new Error("rows read, whole");
+// The same CSV into the grid read in decimetres: as many vertices, but every
+// row's position save the origin's lies elsewhere (the far corner 3.82 m off).
+const small = core.loadObject(dataDir + "/grid3x3.obj", {units: "dm"});
+if (multirescloth.loadModes(small, tmpDir + "/coarse_layers.csv") !== 16) throw new Error("rows read, scaled");
 print("load warning: ok");
