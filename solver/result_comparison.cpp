@@ -68,6 +68,18 @@ ComparisonReport compare_results(const QuadMesh& model, const std::string& model
   if (reference_frames.num_points() != static_cast<int>(reference.n_vertices()))
     throw ArgumentError(reference_cache + ": " + std::to_string(reference_frames.num_points()) +
                         " points, the reference has " + std::to_string(reference.n_vertices()) + " vertices");
+  // Frame k against frame k: the same time only if both are sampled alike
+  // (a cache another tool wrote every second frame, or from frame 10, is not).
+  if (model_frames.start_frame() != reference_frames.start_frame() ||
+      model_frames.sample_rate() != reference_frames.sample_rate()) {
+    const auto timing = [](const Pc2Reader& cache) {
+      return cache.path() + " starts at frame " + number_text(cache.start_frame()) + " with a sample every " +
+             number_text(cache.sample_rate()) + " frames";
+    };
+    throw ArgumentError(timing(model_frames) + ", " + timing(reference_frames) +
+                        ": their frames are not at the same times; expected caches sampled alike (as every mrcloth run "
+                        "writes them: from frame 1, every frame)");
+  }
   // Caches of other lengths compare only over the frames both hold, asked for.
   const int shorter = std::min(model_frames.num_frames(), reference_frames.num_frames());
   if (model_frames.num_frames() != reference_frames.num_frames() && !(options.max_frames >= 0 && options.max_frames <= shorter))

@@ -49,7 +49,8 @@ struct ComparisonReport {
 /// meshes do not share their coarse mesh (its faces' corners in order, its
 /// vertices at rest), a cache's point count is not its mesh's vertex count,
 /// or the caches hold different frame counts and options.max_frames does not
-/// stay within both; InputError for an unreadable cache or a frame with a
+/// stay within both, or their headers' start frames or sample rates differ
+/// (frame k would be another time in each); InputError for an unreadable cache or a frame with a
 /// non-finite point. `progress` (frames done, frames) may stop it early
 /// (cancelled).
 ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
