@@ -1157,6 +1157,12 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   // A refined mesh saved by save_mesh: its forest and layers are the truth.
   if (*format == Format::om && !quadtree(mesh).empty()) {
     check_stored_forest(path, mesh);
+    // save_mesh writes metres; a scale makes another garment of it, whose
+    // layers in metres (curvature, 1/m) no longer fit it.
+    if (scale != 1.0 && checksum_place(om_bytes).present)
+      result.warnings.push_back(with_path(
+          path, "mrcloth saved this mesh in metres; units '" + options.units + "' scale it by " + number_text(scale) +
+                    " (its curvature layers, in 1/m, are not rescaled): give units 'm' to load it as saved"));
     return result;
   }
   // Lines are named only where the scan saw the vertices OpenMesh read.

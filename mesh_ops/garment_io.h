@@ -23,7 +23,7 @@ struct LoadResult {
 /// triangles or n-gons is made all-quad by one midpoint split of every face
 /// (face centre + edge midpoints), with a warning. A `.om` file written by
 /// save_mesh is restored with its forest and layers untouched (no scaling
-/// unless units is not "m").
+/// unless units is not "m", which is warned of: its layers stay in metres).
 /// Throws InputError, naming the file and the problem, for: a missing or
 /// unreadable file, an unknown extension, no vertices or no faces, a
 /// non-finite coordinate or one beyond float range (naming the vertex), a

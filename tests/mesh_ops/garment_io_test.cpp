@@ -1029,6 +1029,24 @@ TEST(GarmentSave, AnOmRoundTripAddsNoLayers) {
             std::vector<double>(analysed.n_vertices(), 2.5));
 }
 
+TEST(GarmentSave, AnOmOfMrclothLoadedInOtherUnitsIsWarnedOf) {
+  // save_mesh writes metres: a units option scales the mesh (as the option
+  // says) but not its layers in metres, so the load says so; in metres,
+  // nothing is said.
+  ScratchDir dir;
+  const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
+  mrcloth::save_mesh(loaded.mesh, dir.file("saved.om"));
+  EXPECT_TRUE(mrcloth::load_garment(dir.file("saved.om")).warnings.empty());
+  mrcloth::LoadOptions centimetres;
+  centimetres.units = "cm";
+  const mrcloth::LoadResult scaled = mrcloth::load_garment(dir.file("saved.om"), centimetres);
+  ASSERT_EQ(scaled.warnings.size(), 1u);
+  EXPECT_EQ(scaled.warnings[0], dir.file("saved.om") +
+                                    ": mrcloth saved this mesh in metres; units 'cm' scale it by 0.01 (its curvature "
+                                    "layers, in 1/m, are not rescaled): give units 'm' to load it as saved");
+  EXPECT_EQ(scaled.mesh.point(scaled.mesh.vertex_handle(5)), loaded.mesh.point(loaded.mesh.vertex_handle(5)) * 0.01);
+}
+
 TEST(GarmentSave, SaveReplacesAnExistingFile) {
   ScratchDir dir;
   const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
