@@ -187,8 +187,10 @@ std::vector<double> vertex_layer(const QuadMesh& mesh, const std::string& name) 
   if (stored == layer::computed_mode) return values;
   OpenMesh::VPropHandleT<double> doubles;
   if (!mesh.get_property_handle(doubles, stored)) {
+    const bool analysed = stored == layer::mean_curvature || stored == layer::curvature_deviation;
     throw ArgumentError("the mesh has no per-vertex layer '" + shown_name(stored) + "'; it has " +
-                        joined(vertex_layer_names(mesh)));
+                        joined(vertex_layer_names(mesh)) +
+                        (analysed ? " (the curvature layers come from analysing a cache of the mesh: extractModes)" : ""));
   }
   for (const auto v : mesh.vertices()) values[static_cast<std::size_t>(v.idx())] = mesh.property(doubles, v);
   return values;

@@ -82,6 +82,9 @@ expectThrows(() => multirescloth.paintModes(grid, {type: "threshold", layer: "wr
              "ArgumentError", "'wrinkles'", "mean_curvature");
 expectThrows(() => multirescloth.paintModes(grid, {type: "lasso", mode: 2}), "ArgumentError", "option 'type'");
 expectThrows(() => multirescloth.getLayer(grid, "nothing"), "ArgumentError", "no per-vertex layer 'nothing'");
+const unanalysed = core.loadObject(dataDir + "/grid3x3.obj");
+expectThrows(() => multirescloth.exportSurface(unanalysed, tmpDir + "/curvature.ply", {colorBy: "curvature"}), "ArgumentError",
+             "no per-vertex layer 'mean_curvature'", "(the curvature layers come from analysing a cache of the mesh: extractModes)");
 expectThrows(() => multirescloth.loadModes(grid, tmpDir + "/missing.csv"), "InputError", "missing.csv");
 expectEqual(multirescloth.getModes(grid), saved, "refusals change nothing");
 // core.writeTextFile: atomic, UTF-8; a missing folder is an OutputError.
