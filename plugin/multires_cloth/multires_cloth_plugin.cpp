@@ -1274,7 +1274,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
         QStringLiteral(
-            "{(numeric bounds: limits()) frames: int >= 1 = 60, fps: 0.001..100000 = 30, substeps: int 1..1000 = 4 (steps "
+            "{frames: int >= 1 = 60, fps: 0.001..100000 = 30, substeps: int 1..1000 = 4 (steps "
             "per frame), iterations: int 1..100 = 2 (per step), newtonCg: int 0..1000 = 0 (k: each iteration a Newton step solved by k "
             "preconditioned conjugate-gradient iterations, less damped; 0: the plain iteration), limiterSweeps: int 0..1000 = 6 (strain-limiting sweeps per round), "
             "limiterAcceleration: \"auto\" | number in [0, 1) = \"auto\" (Chebyshev acceleration of those sweeps, a spectral radius "
@@ -1309,7 +1309,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "0.3], output: PC2 file (its folder must exist) = none, objSequence: OBJ file prefix "
             "(<prefix>_0000.obj ...; written when the run completes, its frames held until then; later frames an "
             "earlier, longer sequence of the prefix left are removed) = none, updateObject: bool = false (store the last frame as a new "
-            "object)}; lengths in m. On a character (all of these need `motion`; `substeps` is refused): "
+            "object)}; lengths in m; every numeric bound as limits() gives it. On a character (all of these need `motion`; `substeps` is refused): "
             "motion: BVH file or {path, units: \"m\" | \"cmu\" (0.056444 m, CMU files) | \"dm\" | \"cm\" | "
             "\"mm\" | \"inch\" | \"auto\" (those giving the figure an adult's legs) = \"m\" or scale: metres "
             "per unit (a figure whose legs are not within 1.5 times the MakeHuman body's, or 0.4-2 times an "
