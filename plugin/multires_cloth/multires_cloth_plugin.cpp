@@ -33,6 +33,7 @@
 #include <QFileInfo>
 
 #include <QElapsedTimer>
+#include <QRegularExpression>
 
 #include <algorithm>
 #include <array>
@@ -741,7 +742,11 @@ QVariantMap MultiresClothPlugin::recordInstance(QVariant id, QVariant options) {
   });
 }
 
-QVariantMap MultiresClothPlugin::limits() {
+namespace {
+
+/// Every numeric option's [least, most] as the calls check them: what
+/// limits() returns and what the API's descriptions print.
+QVariantMap optionLimits() {
   using namespace options;
   const auto range = [](double least, double most) { return QVariantList{least, most}; };
   return QVariantMap{{QStringLiteral("fps"), range(kLeastFps, kMostFps)},
@@ -762,6 +767,30 @@ QVariantMap MultiresClothPlugin::limits() {
                      {QStringLiteral("refinedFaces"), range(1, kMostFaces)},
                      {QStringLiteral("garmentSpan"), range(kGarmentSpanLow, kGarmentSpanHigh)}};
 }
+
+/// `text` with each `@name@` replaced by optionLimits()'s bounds of name,
+/// "least..most", so the descriptions print the bounds the calls check; an
+/// unknown name is left visible as "@unknown limit name@".
+QString withLimits(const QString& text) {
+  static const QRegularExpression token(QStringLiteral("@([A-Za-z]+)@"));
+  const QVariantMap limits = optionLimits();
+  QString filled;
+  qsizetype done = 0;
+  for (QRegularExpressionMatchIterator it = token.globalMatch(text); it.hasNext();) {
+    const QRegularExpressionMatch match = it.next();
+    filled += text.mid(done, match.capturedStart() - done);
+    const QVariantList range = limits.value(match.captured(1)).toList();
+    filled += range.size() == 2 ? QStringLiteral("%1..%2").arg(QString::number(range[0].toDouble(), 'g', 15),
+                                                              QString::number(range[1].toDouble(), 'g', 15))
+                                : QStringLiteral("@unknown limit %1@").arg(match.captured(1));
+    done = match.capturedEnd();
+  }
+  return filled + text.mid(done);
+}
+
+}  // namespace
+
+QVariantMap MultiresClothPlugin::limits() { return optionLimits(); }
 
 QVariantMap MultiresClothPlugin::motionInfo(QVariant motion) {
   return guarded("motionInfo", [&] {
@@ -1136,23 +1165,23 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
 
 QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id (from core.loadObject or a refinement)");
-  return {
+  QList<SlotDescription> descriptions{
       {QStringLiteral("refineUniform(int id, int levels) -> int"),
        QStringLiteral("Copies the object and splits every face `levels` times; returns the new object's id "
                       "(the input is untouched)."),
        {QStringLiteral("id"), QStringLiteral("levels")},
-       {id_text, QStringLiteral("number of uniform 1-to-4 splits, >= 0")}},
+       {id_text, QStringLiteral("number of uniform 1-to-4 splits, >= 0 (the result may have @refinedFaces@ faces)")}},
       {QStringLiteral("setModes(int id, int[] vertexIds, int mode) -> int"),
        QStringLiteral("Sets the deformation mode of the given vertices; returns how many ids were given."),
        {QStringLiteral("id"), QStringLiteral("vertexIds"), QStringLiteral("mode")},
        {id_text, QStringLiteral("vertex indices in [0, vertices)"),
-        QStringLiteral("mode to set, 0 .. 1000 (1 = least deformation, the default)")}},
+        QStringLiteral("mode to set, @mode@ (1 = least deformation, the default)")}},
       {QStringLiteral("paintModes(int id, object brush) -> int"),
        QStringLiteral("Sets the mode of the vertices a brush selects; returns how many. sphere: within radius of "
                       "center; geodesic: within radius along the mesh's edges from any seed; threshold: where a "
                       "per-vertex layer (getLayer) is >= threshold (<= with below)."),
        {QStringLiteral("id"), QStringLiteral("brush")},
-       {id_text, QStringLiteral("{type: \"sphere\" | \"geodesic\" | \"threshold\" = \"sphere\", mode: int 0 .. 1000; "
+       {id_text, QStringLiteral("{type: \"sphere\" | \"geodesic\" | \"threshold\" = \"sphere\", mode: int @mode@; "
                                 "sphere: center [x, y, z] m, radius m (inclusive); geodesic: seeds int[], radius m; "
                                 "threshold: layer (e.g. \"mean_curvature\"), threshold, below: bool = false}")}},
       {QStringLiteral("eraseModes(int id, int[] vertexIds = all) -> int"),
@@ -1274,9 +1303,9 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text,
         QStringLiteral(
-            "{frames: int >= 1 = 60, fps: 0.001..100000 = 30, substeps: int 1..1000 = 4 (steps "
-            "per frame), iterations: int 1..100 = 2 (per step), newtonCg: int 0..1000 = 0 (k: each iteration a Newton step solved by k "
-            "preconditioned conjugate-gradient iterations, less damped; 0: the plain iteration), limiterSweeps: int 0..1000 = 6 (strain-limiting sweeps per round), "
+            "{frames: int >= 1 = 60, fps: @fps@ = 30, substeps: int @substeps@ = 4 (steps "
+            "per frame), iterations: int @iterations@ = 2 (per step), newtonCg: int @newtonCg@ = 0 (k: each iteration a Newton step solved by k "
+            "preconditioned conjugate-gradient iterations, less damped; 0: the plain iteration), limiterSweeps: int @limiterSweeps@ = 6 (strain-limiting sweeps per round), "
             "limiterAcceleration: \"auto\" | number in [0, 1) = \"auto\" (Chebyshev acceleration of those sweeps, a spectral radius "
             "estimate; a number fixes it, 0: plain Gauss-Seidel sweeps; \"auto\": 0.97 or, if larger and the cloth is not near rest, "
             "cos^2(pi / (n + 1)) for the garment's longest chain of n springs from a pin, 0.9935 for a skirt of 19 rows "
@@ -1288,15 +1317,15 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "where the fine row beside it would put the T-node, not from the coarse edge's chord), "
             "pinsYield: bool = true (a pin whose target lies below a body's surface is moved out onto it for the step, "
             "as a thigh pushes a waistband; false: pins exactly at their targets, inside a body or not), "
-            "collisionRounds: int 1..100 = 8 (rounds of strain limiting and collision checks per step, at most), "
+            "collisionRounds: int @collisionRounds@ = 8 (rounds of strain limiting and collision checks per step, at most), "
             "optionNames: {option: string} (how the run's warnings name these options, for a tool that takes them "
             "under names of its own, e.g. {stepRate: \"--step-rate\"}; \"\": one the tool does not offer, whose "
             "advice is left out), "
             "contactSlack: m >= 0 = 0.002 (how far the strain limiter may move a point along its contact plane "
-            "before the point is checked against the body again), selfContact: false | thickness m in [0, 0.02] | "
+            "before the point is checked against the body again), selfContact: false | thickness m @selfContactThickness@ | "
             "{thickness, neighbourhood: m in [0, 0.1] = 2 (thickness + 0.01)} = false (cloth-cloth contact: layers kept "
             "that far apart; cloth joined at rest within the neighbourhood along the sheet is one sheet, never in "
-            "contact, so folds with less cloth than that between their layers are not held), threads: int 0..1024 = 1 (threads resolving collisions; 0: one per "
+            "contact, so folds with less cloth than that between their layers are not held), threads: int @threads@ = 1 (threads resolving collisions; 0: one per "
             "core; the same result for any count), material: \"cotton\" | \"denim\" | \"silk\" = \"cotton\" or "
             "{preset, arealDensity (kg/m^2), stretchStiffness, shearStiffness, bendStiffness (N/m), damping "
             "(1/s), stretchLimit (strain)}, alpha: number = 0 and alphaBend: number = 2 (stiffness x "
@@ -1305,7 +1334,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "thirtieth of the distance springs'), gravity: [x, y, z] m/s^2 = [0, -9.81, 0], pins: vertex ids or a boundary "
             "loop \"top\" | \"bottom\" | \"loop:N\" (or an array mixing both) = none, colliders: [{type: "
             "\"plane\", point = [0, 0, 0], normal = [0, 1, 0]} | {type: \"sphere\", center, radius} | {type: "
-            "\"capsule\", a, b, radius or radiusA and radiusB}, each with thickness m in [0, 0.05] = 0.002 and friction = "
+            "\"capsule\", a, b, radius or radiusA and radiusB}, each with thickness m @contactThickness@ = 0.002 and friction = "
             "0.3], output: PC2 file (its folder must exist) = none, objSequence: OBJ file prefix "
             "(<prefix>_0000.obj ...; written when the run completes, its frames held until then; later frames an "
             "earlier, longer sequence of the prefix left are removed) = none, updateObject: bool = false (store the last frame as a new "
@@ -1321,7 +1350,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "turned by multiples of 90 degrees to stand so, as the MakeHuman body stands; exact), positions: \"absolute\" | "
             "\"relative\" = \"absolute\" (position channels are the joint's translation, its OFFSET only where it "
             "rests, as Blender and MotionBuilder write them; or added to the OFFSET; a CMU clip reads alike either "
-            "way), smoothing: s in [0, 1] = 0 (every channel smoothed in time by a Gaussian of this standard "
+            "way), smoothing: s @motionSmoothing@ = 0 (every channel smoothed in time by a Gaussian of this standard "
             "deviation, a joint's three rotation channels as one rotation, the ends continued by point "
             "reflection; 0.01-0.02 takes raw capture "
             "jitter out, which tears cloth on the legs: a run warns of a jittery clip with the smoothing that "
@@ -1330,7 +1359,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "(default, from the skeleton) | {type: \"capsules\" | \"mesh\" = \"capsules\", obj, skeleton, weights "
             "(MakeHuman base.obj, .mhskel, .mhw: required for \"mesh\"; for capsules, fit their radii to "
             "that body), units: \"m\" | \"dm\" | \"cm\" | \"mm\" | \"inch\" = \"dm\" (base.obj's units; MakeHuman "
-            "exports decimetres; a body not 0.5-3 m tall is refused with the units that fit), thickness m in [0, 0.05] = "
+            "exports decimetres; a body not 0.5-3 m tall is refused with the units that fit), thickness m @contactThickness@ = "
             "0.004, friction = 0.3, radii: {joint name: r or [head, tail]} (m, capsules "
             "only, 0 removes that joint's capsules), legBridges: \"auto\" (or true) | false | 0.5 .. 2 = \"auto\" (capsules "
             "between the legs down to that many bones below the hips, 1 = knees, 2 = ankles, so a skirt cannot "
@@ -1351,8 +1380,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
             "body's files) | \"firstFrame\" (modelled on the clip's frame 0, as the embedded garments are) = "
             "\"none\" (with each, the rest pose and the garment on it are turned to face as the clip starts where "
             "that is more than 30 degrees from the rest pose's facing), waist: like pins = \"top\" (or give pins, "
-            "not both), preroll: s 0 or 0.001..60 = 1 (from the rest pose to the motion's first frame), stepRate: "
-            "steps per second, fps..1000 fps = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
+            "not both), preroll: s 0 or @preroll@ = 1 (from the rest pose to the motion's first frame), stepRate: "
+            "steps per second, fps x @stepsPerFrame@ = 120, bodyOutput: PC2 file = none (the body at every output frame, its rest "
             "OBJ beside it: drawn by previews, loaded beside the garment in a DCC tool), fitWarning: bool = true (log a "
             "warning when a tube garment is too narrow for the motion, when the body overlaps its pins' targets "
             "by more than 1 mm, or when the cloth starts inside the body; the report's fit, maxPinYield, "
@@ -1370,8 +1399,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "scale (normalised = (feature - offset) / scale), maxMeanCurvature, milliseconds."),
        {QStringLiteral("id"), QStringLiteral("cachePath"), QStringLiteral("options")},
        {id_text, QStringLiteral("a PC2 cache of this mesh's vertices (recordInstance's output), metres"),
-        QStringLiteral("{clusters: int 1..1000 = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
-                       "= 1, restarts: int 1..10000 = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
+        QStringLiteral("{clusters: int @clusters@ = 3, normalize: \"minmax\" | \"zscore\" = \"minmax\", seed: int >= 0 "
+                       "= 1, restarts: int @restarts@ = 8, skipFrames: int >= 0 = 0, maxFrames: int >= 1 = all}")}},
       {QStringLiteral("compareResults(int id, string cachePath, int referenceId, string referenceCachePath, object "
                       "options = {}) -> object"),
        QStringLiteral("Measures a model's recorded result against the high-resolution one, frame by frame, at the "
@@ -1412,6 +1441,11 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text, QStringLiteral("simulate's options with motion and output required and frames = 200")}},
   };
+  for (SlotDescription& slot : descriptions) {
+    slot.description = withLimits(slot.description);
+    for (QString& text : slot.parameterDescriptions) text = withLimits(text);
+  }
+  return descriptions;
 }
 
 }  // namespace mrcloth

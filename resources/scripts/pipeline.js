@@ -17,74 +17,6 @@
 "use strict";
 
 const resources = core.resourcePath();
-const USAGE = [
-  "Usage: mrcloth pipeline [options]        (or: mrcloth -b pipeline.js -- [options])",
-  "",
-  "Runs the whole method: refine, record the instance, extract and map modes, refine",
-  "adaptively, simulate every test motion on every model, export, render and report.",
-  "Without options it runs on the embedded default (skirt, mannequin, walks).",
-  "",
-  "Inputs:",
-  "  --garment FILE         coarse quad garment (.obj/.om/...) [embedded default skirt]",
-  "  --units U              the garment's units: m, dm, cm, mm, inch [m; dm with --makehuman]",
-  "  --makehuman DIR        a MakeHuman body folder (base.obj, rigs/cmu_mb.mhskel,",
-  "                         rigs/default_weights.mhw): fits the capsules, or is the body",
-  "  --makehuman-units U    base.obj's units: m, dm, cm, mm, inch [dm, as MakeHuman exports]",
-  "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
-  "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
-  "  --waist-smoothing M    with --makehuman: metres (0..1) along the waist over which its pins' skin weights",
-  "                         are averaged, so the band keeps its length where skinning stretches the",
-  "                         skin; 0: each pin as the skin under it (body.waistSmoothing; README) [0.02]",
-  "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
-  "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
-  "  --motion-units U       m, cmu, dm, cm, mm, inch, or auto (per file, the units giving an adult's legs):",
-  "                         the BVH files' units [m]",
-  "  --motion-positions P   absolute | relative: the BVH position channels are each joint's translation",
-  "                         (its OFFSET only where it rests; Blender, MotionBuilder) or are added to",
-  "                         the OFFSET; CMU clips read alike either way [absolute]",
-  "  --motion-smoothing S   seconds (0..1): every clip smoothed in time by a Gaussian of this standard",
-  "                         deviation; 0.01-0.02 takes raw capture jitter out (motion.smoothing; a run",
-  "                         warns of a jittery clip with the smoothing that would do) [0: as recorded]",
-  "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
-  "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
-  "Method:",
-  "  --levels N             uniform refinements of the high-resolution mesh, >= 1, at most 2e7 faces [2]",
-  "  --modes N              deformation modes (k-means clusters), 1..1000, at most the high mesh's vertices [3]",
-  "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
-  "  --map-modes M          index | highest | frequent: how the instance's modes reach the coarse garment",
-  "                         (index: coarse vertex i takes high vertex i's, the paper's rule; highest /",
-  "                         frequent: the highest / most frequent mode in its cell) [index]",
-  "  --material M           cotton | denim | silk [cotton]",
-  "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
-  "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
-  "  --newton-cg K          each solve iteration a Newton step by K conjugate-gradient iterations, 0-1000;",
-  "                         less damped, costlier (simulate's newtonCg; README) [0: the plain iteration]",
-  "  --bend-model M         distance | secondDifference: experimental bend springs quadratic in the",
-  "                         curvature (simulate's bendModel; give --bend-stiffness) [distance, the paper's]",
-  "  --bend-stiffness K     bend spring stiffness at level 1, N/m, >= 0 [the material's]",
-  "  --limiter-acceleration A",
-  "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
-  "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
-  "                         README, Collision cost) [simulate's default, auto]",
-  "  --fps F                output frames per second, 1..100000 and at most --step-rate [30]",
-  "  --step-rate HZ         simulation steps per second, >= --fps; fewer are cheaper and stretch more",
-  "                         (README, Characters) [120, the CMU mocap rate]",
-  "  --instance-frames N    recorded instance frames, >= 2 [200]",
-  "  --test-frames N        frames per test motion, >= 1 [60]",
-  "  --preroll S            seconds from the rest pose to each motion's start, 0..60 [1]",
-  "  --threads N            threads resolving collisions, 0..1024 (0: one per core); the same results,",
-  "                         but the reported times are then no longer one core's [1]",
-  "Output:",
-  "  --out DIR              output folder, created if missing [pipeline_out]",
-  "  --resume               skip stages whose outputs are complete (same options and input files only;",
-  "                         --threads and --size may differ: --size renders the previews again)",
-  "  --size WxH             preview image size in pixels [800x800]",
-  "  --sequence             also render every frame of each test motion's first multi-resolution run",
-  "                         (and an animated GIF of it when ImageMagick's convert is installed)",
-  "  --obj-sequence         also write every simulated frame as OBJ (caches/<run>_0000.obj ...)",
-  "  -q, --quiet            no progress (host option)",
-  "  -h, --help             this text",
-].join("\n");
 
 // --- Options -----------------------------------------------------------------
 
@@ -137,6 +69,82 @@ const limit = (name) => limits(name)[1];
 const LEAST_FPS = 1;             // the pipeline's own bounds: --fps
 const MOST_WAIST_SMOOTHING = 1;  // and --waist-smoothing (m)
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
+
+/// The --help text; its bounds are the API's (multirescloth.limits()) where
+/// the plugins are loaded, so they read as the options are checked.
+function usage() {
+  const api = typeof multirescloth !== "undefined" ? multirescloth.limits() : null;
+  const range = (name) => api ? api[name].join("..") : "multirescloth.limits()." + name;
+  const most = (name) => api ? String(api[name][1]) : "multirescloth.limits()." + name + "[1]";
+  return [
+    "Usage: mrcloth pipeline [options]        (or: mrcloth -b pipeline.js -- [options])",
+    "",
+    "Runs the whole method: refine, record the instance, extract and map modes, refine",
+    "adaptively, simulate every test motion on every model, export, render and report.",
+    "Without options it runs on the embedded default (skirt, mannequin, walks).",
+    "",
+    "Inputs:",
+    "  --garment FILE         coarse quad garment (.obj/.om/...) [embedded default skirt]",
+    "  --units U              the garment's units: m, dm, cm, mm, inch [m; dm with --makehuman]",
+    "  --makehuman DIR        a MakeHuman body folder (base.obj, rigs/cmu_mb.mhskel,",
+    "                         rigs/default_weights.mhw): fits the capsules, or is the body",
+    "  --makehuman-units U    base.obj's units: m, dm, cm, mm, inch [dm, as MakeHuman exports]",
+    "  --body B               capsules | mesh (the skinned MakeHuman mesh) [capsules]",
+    "  --place P              none | makehuman | firstFrame [makehuman with --makehuman, else firstFrame]",
+    "  --waist-smoothing M    with --makehuman: metres (0.." + MOST_WAIST_SMOOTHING + ") along the waist over which its pins' skin weights",
+    "                         are averaged, so the band keeps its length where skinning stretches the",
+    "                         skin; 0: each pin as the skin under it (body.waistSmoothing; README) [0.02]",
+    "  --instance FILE        BVH of the instance motion [embedded walk_instance.bvh]",
+    "  --test FILE[,FILE...]  BVH test motions; repeatable [embedded walk_new.bvh,squat.bvh]",
+    "  --motion-units U       m, cmu, dm, cm, mm, inch, or auto (per file, the units giving an adult's legs):",
+    "                         the BVH files' units [m]",
+    "  --motion-positions P   absolute | relative: the BVH position channels are each joint's translation",
+    "                         (its OFFSET only where it rests; Blender, MotionBuilder) or are added to",
+    "                         the OFFSET; CMU clips read alike either way [absolute]",
+    "  --motion-smoothing S   seconds (" + range("motionSmoothing") + "): every clip smoothed in time by a Gaussian of this standard",
+    "                         deviation; 0.01-0.02 takes raw capture jitter out (motion.smoothing; a run",
+    "                         warns of a jittery clip with the smoothing that would do) [0: as recorded]",
+    "  --joint-map FILE       JSON {\"name in the clip\": \"CMU name\", ...} for clips whose joints the",
+    "                         automatic renaming (CMU, DAZ/Poser, Mixamo) does not know [automatic]",
+    "Method:",
+    "  --levels N             uniform refinements of the high-resolution mesh, >= 1, at most " + most("refinedFaces") + " faces [2]",
+    "  --modes N              deformation modes (k-means clusters), " + range("clusters") + ", at most the high mesh's vertices [3]",
+    "  --delta D[,D...]       adaptive thresholds, one multi-resolution mesh each, > 0 [5,7]",
+    "  --map-modes M          index | highest | frequent: how the instance's modes reach the coarse garment",
+    "                         (index: coarse vertex i takes high vertex i's, the paper's rule; highest /",
+    "                         frequent: the highest / most frequent mode in its cell) [index]",
+    "  --material M           cotton | denim | silk [cotton]",
+    "  --t-node-sag           experimental: the limiter reads a spring from a T-node from where the fine",
+    "                         row beside it would put the T-node (simulate's tNodeSag; README) [off]",
+    "  --newton-cg K          each solve iteration a Newton step by K conjugate-gradient iterations, " + range("newtonCg") + ";",
+    "                         less damped, costlier (simulate's newtonCg; README) [0: the plain iteration]",
+    "  --bend-model M         distance | secondDifference: experimental bend springs quadratic in the",
+    "                         curvature (simulate's bendModel; give --bend-stiffness) [distance, the paper's]",
+    "  --bend-stiffness K     bend spring stiffness at level 1, N/m, >= 0 [the material's]",
+    "  --limiter-acceleration A",
+    "                         the strain limiter's Chebyshev estimate: a number in [0, 1) (0: plain sweeps),",
+    "                         or auto (raised to the garment's chain's; simulate's limiterAcceleration;",
+    "                         README, Collision cost) [simulate's default, auto]",
+    "  --fps F                output frames per second, " + LEAST_FPS + ".." + most("fps") + " and at most --step-rate [30]",
+    "  --step-rate HZ         simulation steps per second, --fps to " + most("stepsPerFrame") + " x --fps; fewer are cheaper and stretch more",
+    "                         (README, Characters) [120, the CMU mocap rate]",
+    "  --instance-frames N    recorded instance frames, >= 2 [200]",
+    "  --test-frames N        frames per test motion, >= 1 [60]",
+    "  --preroll S            seconds from the rest pose to each motion's start, 0 or " + range("preroll") + " [1]",
+    "  --threads N            threads resolving collisions, " + range("threads") + " (0: one per core); the same results,",
+    "                         but the reported times are then no longer one core's [1]",
+    "Output:",
+    "  --out DIR              output folder, created if missing [pipeline_out]",
+    "  --resume               skip stages whose outputs are complete (same options and input files only;",
+    "                         --threads and --size may differ: --size renders the previews again)",
+    "  --size WxH             preview image size in pixels [800x800]",
+    "  --sequence             also render every frame of each test motion's first multi-resolution run",
+    "                         (and an animated GIF of it when ImageMagick's convert is installed)",
+    "  --obj-sequence         also write every simulated frame as OBJ (caches/<run>_0000.obj ...)",
+    "  -q, --quiet            no progress (host option)",
+    "  -h, --help             this text",
+  ].join("\n");
+}
 
 function integerOption(name, text, least, most = MOST_INTEGER) {
   const value = Number(text);
@@ -747,7 +755,7 @@ const REPORTED_ERRORS = ["ArgumentError", "InputError", "OutputError", "Error"];
 try {
   const options = parseOptions(core.scriptArguments());
   if (options.help) {
-    print(USAGE);
+    print(usage());
   } else {
     checkPlugins();
     runPipeline(options, checkInputs(options));
