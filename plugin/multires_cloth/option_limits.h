@@ -8,6 +8,8 @@
 #include "solver/character_sim.h"
 #include "solver/worker_pool.h"
 
+#include <QVariantMap>
+
 namespace mrcloth::options {
 
 constexpr int kMostSubsteps = kMostStepsPerFrame;  ///< implicit steps per output frame
@@ -25,5 +27,10 @@ constexpr double kLongestPreroll = 60.0;
 constexpr double kMostSelfContactThickness = 0.02;  ///< metres of cloth-cloth contact thickness
 /// extractModes' k-means restarts: each is a whole k-means run (a step of the clustering job).
 constexpr int kMostRestarts = 10000;
+
+/// Every numeric option's [least, most] as the calls check them, by name
+/// ("fps", "substeps", ...): what multirescloth.limits() returns and what
+/// the API's descriptions print (api_descriptions.cpp).
+QVariantMap limitsMap();
 
 }  // namespace mrcloth::options
