@@ -7,6 +7,7 @@
 #include <QList>
 #include <QString>
 #include <QStringList>
+#include <QVariantMap>
 #include <QtPlugin>
 
 namespace mrcloth {
@@ -29,6 +30,12 @@ class ScriptInterface {
   /// One description per public slot.
   virtual QList<SlotDescription> slotDescriptions() const = 0;
 };
+
+/// The descriptions with each `@name@` in their texts replaced by the bounds
+/// of `limits` (name -> [least, most], a plugin's limits() table) as
+/// "least..most", so the help prints the bounds the calls check; an unknown
+/// name is left visible as "@unknown limit name@".
+QList<SlotDescription> withLimits(QList<SlotDescription> descriptions, const QVariantMap& limits);
 
 /// Name under which the script engine sees an object: the display name
 /// lower-cased without spaces ("Multires Cloth" -> "multirescloth").

@@ -9,8 +9,6 @@
 #include "plugin/core/option_fields.h"
 #include "solver/colliders.h"
 
-#include <QRegularExpression>
-
 namespace mrcloth {
 
 namespace options {
@@ -37,30 +35,6 @@ QVariantMap limitsMap() {
 }
 
 }  // namespace options
-
-namespace {
-
-/// `text` with each `@name@` replaced by options::limitsMap()'s bounds of name,
-/// "least..most", so the descriptions print the bounds the calls check; an
-/// unknown name is left visible as "@unknown limit name@".
-QString withLimits(const QString& text) {
-  static const QRegularExpression token(QStringLiteral("@([A-Za-z]+)@"));
-  const QVariantMap limits = options::limitsMap();
-  QString filled;
-  qsizetype done = 0;
-  for (QRegularExpressionMatchIterator it = token.globalMatch(text); it.hasNext();) {
-    const QRegularExpressionMatch match = it.next();
-    filled += text.mid(done, match.capturedStart() - done);
-    const QVariantList range = limits.value(match.captured(1)).toList();
-    filled += range.size() == 2 ? QStringLiteral("%1..%2").arg(QString::number(range[0].toDouble(), 'g', 15),
-                                                              QString::number(range[1].toDouble(), 'g', 15))
-                                : QStringLiteral("@unknown limit %1@").arg(match.captured(1));
-    done = match.capturedEnd();
-  }
-  return filled + text.mid(done);
-}
-
-}  // namespace
 
 QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
   const QString id_text = QStringLiteral("object id (from core.loadObject or a refinement)");
@@ -340,11 +314,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("options")},
        {id_text, QStringLiteral("simulate's options with motion and output required and frames = 200")}},
   };
-  for (SlotDescription& slot : descriptions) {
-    slot.description = withLimits(slot.description);
-    for (QString& text : slot.parameterDescriptions) text = withLimits(text);
-  }
-  return descriptions;
+  return withLimits(std::move(descriptions), options::limitsMap());
 }
 
 }  // namespace mrcloth

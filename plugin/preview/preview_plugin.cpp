@@ -34,6 +34,13 @@ namespace {
 
 using options::Fields;
 
+// The bounds of the numeric options, as limits() hands them to scripts.
+constexpr int kLeastImageSide = 16;   ///< pixels: a render's width and height
+constexpr int kMostImageSide = 8192;
+constexpr int kLeastChartSide = 100;  ///< pixels: a chart's (room for its axes and labels)
+constexpr int kMostSupersample = 4;   ///< samples per pixel along each side
+constexpr double kMarginBelow = 0.45; ///< a render's margin, a fraction of the image (exclusive)
+
 /// What one render call asks for.
 struct RenderRequest {
   int width = 800;
@@ -66,8 +73,8 @@ QStringList presetNames() {
 
 RenderRequest parseRenderOptions(const Fields& fields) {
   RenderRequest request;
-  request.width = fields.integerBetween(QStringLiteral("width"), request.width, 16, 8192);
-  request.height = fields.integerBetween(QStringLiteral("height"), request.height, 16, 8192);
+  request.width = fields.integerBetween(QStringLiteral("width"), request.width, kLeastImageSide, kMostImageSide);
+  request.height = fields.integerBetween(QStringLiteral("height"), request.height, kLeastImageSide, kMostImageSide);
   request.camera = render::parse_preset(
       fields.choice(QStringLiteral("camera"), QStringLiteral("front"), presetNames()).toStdString());
   request.projection = fields.choice(QStringLiteral("projection"), QStringLiteral("perspective"),
@@ -85,9 +92,7 @@ RenderRequest parseRenderOptions(const Fields& fields) {
   request.wireframe = fields.boolean(QStringLiteral("wireframe"), request.wireframe);
   request.legend = fields.boolean(QStringLiteral("legend"), request.legend);
   request.title = fields.string(QStringLiteral("title"));
-  request.supersample = fields.integerAtLeast(QStringLiteral("supersample"), request.supersample, 1);
-  if (request.supersample > 4)
-    options::fail(QStringLiteral("option 'supersample' must be 1 .. 4, got %1").arg(request.supersample));
+  request.supersample = fields.integerBetween(QStringLiteral("supersample"), request.supersample, 1, kMostSupersample);
   const long long samples = static_cast<long long>(request.width) * request.height * request.supersample * request.supersample;
   if (samples > render::kMaxRenderSamples)
     options::fail(QStringLiteral("options 'width' x 'height' (%1 x %2) at 'supersample' %3 take %4 samples; expected at "
@@ -95,7 +100,9 @@ RenderRequest parseRenderOptions(const Fields& fields) {
                       .arg(request.width).arg(request.height).arg(request.supersample).arg(samples)
                       .arg(render::kMaxRenderSamples));
   request.margin = fields.numberFrom(QStringLiteral("margin"), request.margin, 0.0, false);
-  if (request.margin >= 0.45) options::fail(QStringLiteral("option 'margin' must be below 0.45 (a fraction of the image), got %1").arg(request.margin));
+  if (request.margin >= kMarginBelow)
+    options::fail(QStringLiteral("option 'margin' must be below %1 (a fraction of the image), got %2")
+                      .arg(kMarginBelow).arg(request.margin));
   request.fit_all = fields.choice(QStringLiteral("fit"), QStringLiteral("garment"),
                                   {QStringLiteral("garment"), QStringLiteral("all")}) == QLatin1String("all");
   if (fields.has(QStringLiteral("cache")))
@@ -183,8 +190,8 @@ std::vector<double> numberList(const QVariant& value, const QString& what) {
 render::ChartOptions chartSize(const Fields& fields) {
   render::ChartOptions options;
   // As render's: 1e9 pixels failed only at saving, after a flood of Qt warnings.
-  options.width = fields.integerBetween(QStringLiteral("width"), options.width, 100, 8192);
-  options.height = fields.integerBetween(QStringLiteral("height"), options.height, 100, 8192);
+  options.width = fields.integerBetween(QStringLiteral("width"), options.width, kLeastChartSide, kMostImageSide);
+  options.height = fields.integerBetween(QStringLiteral("height"), options.height, kLeastChartSide, kMostImageSide);
   return options;
 }
 
@@ -443,17 +450,32 @@ void PreviewPlugin::barChart(QVariant path, QVariant chart) {
   });
 }
 
+namespace {
+
+QVariantMap previewLimits() {
+  const auto range = [](double least, double most) { return QVariantList{least, most}; };
+  return QVariantMap{{QStringLiteral("imageSide"), range(kLeastImageSide, kMostImageSide)},
+                     {QStringLiteral("chartSide"), range(kLeastChartSide, kMostImageSide)},
+                     {QStringLiteral("supersample"), range(1, kMostSupersample)},
+                     {QStringLiteral("samples"), range(1, static_cast<double>(render::kMaxRenderSamples))}};
+}
+
+}  // namespace
+
+QVariantMap PreviewPlugin::limits() { return previewLimits(); }
+
 QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
   const QString render_options = QStringLiteral(
-      "{width, height: pixels 16 .. 8192 = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
+      "{width, height: pixels @imageSide@ = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
       "projection: \"perspective\" | \"orthographic\" = \"perspective\", colorBy: \"none\" | \"mode\" | \"level\" | "
       "\"curvature\" = \"none\" (with a legend or colour bar), wireframe: bool = true (the active faces' edges, "
       "T-nodes included), legend: bool = true (drawn on images at least 240 pixels wide and high), title: string = none, cache: PC2 of this mesh = none (its frame "
       "is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
-      "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction 0 .. 0.45 (below) = 0.08, "
-      "supersample: 1 .. 4 = 2}");
-  const QString chart_size = QStringLiteral("width, height: pixels 100..8192 = 800 x 500");
-  return {
+      "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction from 0 to below ") +
+      QString::number(kMarginBelow) + QStringLiteral(" = 0.08, supersample: @supersample@ = 2 (samples per pixel along each side; "
+      "width x height x supersample^2 within @samples@)}");
+  const QString chart_size = QStringLiteral("width, height: pixels @chartSide@ = 800 x 500");
+  QList<SlotDescription> descriptions{
       {QStringLiteral("render(int id, string path, object options = {}) -> object"),
        QStringLiteral("Renders the object (at rest, or at a frame of its cache) off-screen, shaded, to an image "
                       "(written atomically). Returns {file, width, height, frame}."),
@@ -486,7 +508,15 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
         QStringLiteral("{title, xLabel, yLabel: strings, categories: string[], series: [{name, values: number[] (one "
                        "per category)}], ") +
             chart_size + QLatin1Char('}')}},
+      {QStringLiteral("limits() -> object"),
+       QStringLiteral("The bounds of the numeric options, each [least, most], as the calls check them: imageSide "
+                      "(render's width and height, pixels), chartSide (the charts'), supersample, samples (render's "
+                      "width x height x supersample^2). For checking a tool's own inputs before a run (the "
+                      "pipeline does)."),
+       {},
+       {}},
   };
+  return withLimits(std::move(descriptions), previewLimits());
 }
 
 }  // namespace mrcloth

@@ -50,6 +50,7 @@ class PreviewPlugin : public QObject,
   QVariantMap contactSheet(QVariant images = QVariant(), QVariant path = QVariant(), QVariant options = QVariant());
   void lineChart(QVariant path = QVariant(), QVariant chart = QVariant());
   void barChart(QVariant path = QVariant(), QVariant chart = QVariant());
+  QVariantMap limits();
 
  private:
   /// Says (as a warning: an interrupted script's error is not shown) and

@@ -66,8 +66,16 @@ function limits(name) {
   return apiLimits[name];
 }
 const limit = (name) => limits(name)[1];
+let previewBounds = null;  // preview.limits(), read as apiLimits is
+function previewLimits(name) {
+  checkPlugins();
+  if (previewBounds === null) previewBounds = preview.limits();
+  return previewBounds[name];
+}
 const LEAST_FPS = 1;             // the pipeline's own bounds: --fps
 const MOST_WAIST_SMOOTHING = 1;  // and --waist-smoothing (m)
+const LEAST_PREVIEW_SIDE = 64;   // and --size (pixels)
+const PREVIEW_SUPERSAMPLE = 2;   // preview.render's default supersample, which the previews use
 const DEFAULT_STEP_RATE = 120;  // simulate's stepRate when --step-rate is not given
 
 /// The --help text; its bounds are the API's (multirescloth.limits()) where
@@ -76,6 +84,8 @@ function usage() {
   const api = typeof multirescloth !== "undefined" ? multirescloth.limits() : null;
   const range = (name) => api ? api[name].join("..") : "multirescloth.limits()." + name;
   const most = (name) => api ? String(api[name][1]) : "multirescloth.limits()." + name + "[1]";
+  const previewApi = typeof preview !== "undefined" ? preview.limits() : null;
+  const mostSide = previewApi ? String(previewApi.imageSide[1]) : "preview.limits().imageSide[1]";
   return [
     "Usage: mrcloth pipeline [options]        (or: mrcloth -b pipeline.js -- [options])",
     "",
@@ -137,7 +147,7 @@ function usage() {
     "  --out DIR              output folder, created if missing [pipeline_out]",
     "  --resume               skip stages whose outputs are complete (same options and input files only;",
     "                         --threads and --size may differ: --size renders the previews again)",
-    "  --size WxH             preview image size in pixels [800x800]",
+    "  --size WxH             preview image size in pixels, " + LEAST_PREVIEW_SIDE + ".." + mostSide + " each [800x800]",
     "  --sequence             also render every frame of each test motion's first multi-resolution run",
     "                         (and an animated GIF of it when ImageMagick's convert is installed)",
     "  --obj-sequence         also write every simulated frame as OBJ (caches/<run>_0000.obj ...)",
@@ -266,14 +276,21 @@ function parseOptions(args) {
       case "mapModes": options.mapModes = choiceOption(name, text, ["index", "highest", "frequent"]); break;
       case "size": {
         const match = /^(\d+)x(\d+)$/.exec(text);
-        if (!match || Number(match[1]) < 64 || Number(match[2]) < 64 || Number(match[1]) > 8192 || Number(match[2]) > 8192)
-          throw pipelineError("option " + name + ": expected WIDTHxHEIGHT in pixels, 64..8192 each, got \"" + text + "\"");
-        // The previews are drawn at 2 x 2 samples a pixel, which the renderer
-        // bounds (preview.render would refuse them only after the simulations).
-        if (Number(match[1]) * Number(match[2]) > 8192 * 4096)
-          throw pipelineError("option " + name + ": " + text + " is " + Number(match[1]) * Number(match[2]) +
-                              " pixels; expected at most 33554432 (for instance 5792x5792 or 8192x4096)");
-        options.size = [Number(match[1]), Number(match[2])];
+        const [width, height] = match ? [Number(match[1]), Number(match[2])] : [NaN, NaN];
+        const mostSide = previewLimits("imageSide")[1];
+        if (!(width >= LEAST_PREVIEW_SIDE && height >= LEAST_PREVIEW_SIDE && width <= mostSide && height <= mostSide))
+          throw pipelineError("option " + name + ": expected WIDTHxHEIGHT in pixels, " + LEAST_PREVIEW_SIDE + ".." +
+                              mostSide + " each, got \"" + text + "\"");
+        // The previews are drawn at preview.render's default samples a pixel,
+        // which the renderer bounds (it would refuse them only after the
+        // simulations).
+        const mostPixels = Math.floor(previewLimits("samples")[1] / (PREVIEW_SUPERSAMPLE * PREVIEW_SUPERSAMPLE));
+        if (width * height > mostPixels)
+          throw pipelineError("option " + name + ": " + text + " is " + width * height + " pixels; expected at most " +
+                              mostPixels + " (for instance " + Math.floor(Math.sqrt(mostPixels)) + "x" +
+                              Math.floor(Math.sqrt(mostPixels)) + " or " + mostSide + "x" +
+                              Math.floor(mostPixels / mostSide) + ")");
+        options.size = [width, height];
         break;
       }
       default:

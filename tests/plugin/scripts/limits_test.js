@@ -3,7 +3,7 @@
 // checks its inputs against limits() (the pipeline does) agrees with the
 // calls. Arguments: <tests/data> <shared data> <tmp>.
 "use strict";
-const [dataDir] = core.scriptArguments();
+const [dataDir, , tmp] = core.scriptArguments();
 
 core.include("test_asserts.js");
 
@@ -58,5 +58,30 @@ for (const name of ["clusters", "restarts"])
   for (const beyond of [L[name][0] - 1, L[name][1] + 1])
     expectThrows(() => multirescloth.extractModes(grid, "no_such.pc2", {[name]: beyond}), "ArgumentError",
                  "option '" + name + "' must be an integer from " + span(name) + ", got the number " + beyond);
+
+// The previews' bounds (preview.limits()), which the pipeline checks --size against.
+const P = preview.limits();
+expectEqual(Object.keys(P).sort().join(","), "chartSide,imageSide,samples,supersample", "the previews' bounds listed");
+const previewSpan = (name) => P[name][0] + " to " + P[name][1];
+const image = tmp + "/limits.png";
+for (const side of ["width", "height"]) {
+  for (const beyond of [P.imageSide[0] - 1, P.imageSide[1] + 1])
+    expectThrows(() => preview.render(grid, image, {[side]: beyond}), "ArgumentError",
+                 "option '" + side + "' must be an integer from " + previewSpan("imageSide") + ", got the number " + beyond);
+  const chart = {series: [{name: "a", y: [1, 2]}], [side]: P.chartSide[0] - 1};
+  expectThrows(() => preview.lineChart(image, chart), "ArgumentError",
+               "option '" + side + "' must be an integer from " + previewSpan("chartSide"));
+  chart[side] = P.chartSide[1] + 1;
+  expectThrows(() => preview.lineChart(image, chart), "ArgumentError",
+               "option '" + side + "' must be an integer from " + previewSpan("chartSide"));
+}
+for (const beyond of [P.supersample[0] - 1, P.supersample[1] + 1])
+  expectThrows(() => preview.render(grid, image, {supersample: beyond}), "ArgumentError",
+               "option 'supersample' must be an integer from " + previewSpan("supersample") + ", got the number " + beyond);
+// The largest square image at the largest supersample within the samples' bound, and one pixel row more.
+const side = Math.floor(Math.sqrt(P.samples[1]) / P.supersample[1]);
+expectThrows(() => preview.render(grid, image, {width: side, height: side + 1, supersample: P.supersample[1]}),
+             "ArgumentError", "expected at most " + P.samples[1]);
+expectEqual(core.fileExists(image), false, "nothing written by the refused renders");
 
 print("limits: ok");
