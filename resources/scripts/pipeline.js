@@ -57,21 +57,17 @@ const HOST_FLAGS = ["-q", "--quiet"];  // mrcloth's own, taken before the script
 const UNITS = ["m", "dm", "cm", "mm", "inch"];
 const MOST_INTEGER = 2147483647;  // 2^31 - 1: an integer option of the API
 // The bounds of the values the API takes, as its calls check them
-// (multirescloth.limits(): [least, most] each), and the pipeline's own.
-// Read when the first flag needs one: --help works without the plugins.
-let apiLimits = null;
-function limits(name) {
+// (multirescloth.limits() and preview.limits(): [least, most] each), and the
+// pipeline's own. Read when the first flag needs one: --help works without
+// the plugins.
+const apiLimits = {};  // plugin's script name -> its limits()
+function limits(name, plugin = "multirescloth") {
   checkPlugins();
-  if (apiLimits === null) apiLimits = multirescloth.limits();
-  return apiLimits[name];
+  if (!(plugin in apiLimits)) apiLimits[plugin] = (plugin === "preview" ? preview : multirescloth).limits();
+  return apiLimits[plugin][name];
 }
 const limit = (name) => limits(name)[1];
-let previewBounds = null;  // preview.limits(), read as apiLimits is
-function previewLimits(name) {
-  checkPlugins();
-  if (previewBounds === null) previewBounds = preview.limits();
-  return previewBounds[name];
-}
+const previewLimits = (name) => limits(name, "preview");
 const LEAST_FPS = 1;             // the pipeline's own bounds: --fps
 const MOST_WAIST_SMOOTHING = 1;  // and --waist-smoothing (m)
 const LEAST_PREVIEW_SIDE = 64;   // and --size (pixels)
