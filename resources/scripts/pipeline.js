@@ -463,6 +463,12 @@ function checkOutputFolder(out) {
   }
 }
 
+/// `path` (which `folder + "/"` starts) relative to `folder`.
+function relativeTo(folder, path) {
+  if (!path.startsWith(folder + "/")) throw new Error("pipeline: " + path + " is not inside " + folder);
+  return path.slice(folder.length + 1);
+}
+
 function isFile(path) {
   try {
     core.fileSize(path);  // InputError for a folder
@@ -700,16 +706,23 @@ class Stages {
     }
     // Another run's record (an earlier one, with other options) is not this run's result.
     if (record.run !== this.runId || JSON.stringify(record.outputs) !== JSON.stringify(outputs)) return null;
-    const missing = outputs.find((file) => !isFile(this.out + "/" + file));
+    // The files named only once the stage ran (--obj-sequence's, --sequence's) are checked as its others.
+    const extra = record.extraOutputs === undefined ? [] : record.extraOutputs;
+    if (!Array.isArray(extra) || !extra.every((file) => typeof file === "string")) {
+      core.warn("pipeline: " + path + " holds no list of the further files " + name + " wrote; running " + name + " again");
+      return null;
+    }
+    const written = outputs.concat(extra);
+    const missing = written.find((file) => !isFile(this.out + "/" + file));
     if (missing !== undefined) {
       core.warn("pipeline: " + this.out + "/" + missing + ", which " + name + " wrote, is gone; running " + name + " again");
       return null;
     }
     // Records from before the outputs' fingerprints: their files' presence.
     if (!("files" in record)) return record;
-    const fingerprinted = Array.isArray(record.files) && record.files.length === outputs.length &&
+    const fingerprinted = Array.isArray(record.files) && record.files.length === written.length &&
                           record.files.every((entry, k) => entry !== null && typeof entry === "object" &&
-                                                           entry.file === outputs[k] && typeof entry.bytes === "number" &&
+                                                           entry.file === written[k] && typeof entry.bytes === "number" &&
                                                            typeof entry.sha256 === "string");
     if (!fingerprinted) {
       core.warn("pipeline: " + path + " does not hold a size and SHA-256 for each of its files; running " + name + " again");
@@ -727,8 +740,10 @@ class Stages {
   }
 
   /// Runs `work` (which returns the stage's record) unless resuming finds
-  /// its record and every file in `outputs` (relative to the output folder),
-  /// and `fits(record)` if given.
+  /// its record and every file in `outputs` (relative to the output folder)
+  /// as the stage wrote it, and `fits(record)` if given. Files whose names
+  /// only the work knows (one per frame) it lists in the record's
+  /// `extraOutputs` (relative too): resuming checks them the same way.
   run(name, outputs, work, fits = () => true) {
     const label = "pipeline [" + (this.ran.length + this.skipped.length + 1) + "/" + this.total + "] " + name;
     const earlier = this.resume ? this.finished(name, outputs) : null;
@@ -745,7 +760,7 @@ class Stages {
     record.stageSeconds = (Date.now() - started) / 1000;
     record.outputs = outputs;
     // What resuming checks the files against: cut short, replaced or edited since.
-    record.files = outputs.map((file) => ({file: file, bytes: core.fileSize(this.out + "/" + file),
+    record.files = outputs.concat(record.extraOutputs || []).map((file) => ({file: file, bytes: core.fileSize(this.out + "/" + file),
                                            sha256: core.fileHash(this.out + "/" + file)}));
     record.run = this.runId;
     core.writeTextFile(this.recordPath(name), JSON.stringify(record, null, 1) + "\n");
@@ -1038,7 +1053,9 @@ function runPipeline(options, inputs) {
         const report = multirescloth.simulate(id, settings);
         core.deleteObject(id);
         mustFinish(model.name + " on " + motionName, report);
-        return simulationNumbers(report);
+        const numbers = simulationNumbers(report);
+        if (options.objSequence) numbers.extraOutputs = report.objFiles.map((file) => relativeTo(out, file));
+        return numbers;
       });
       runs.push({model: model.name, modelFile: model.file, motion: motionName, cache: cache,
                  bodyCache: "caches/body_" + motionName + ".pc2", numbers: record});
@@ -1157,6 +1174,7 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
   const cellSize = {width: Math.max(64, Math.round(size.width / 2)), height: Math.max(64, Math.round(size.height / 2))};
   core.makePath(out + "/previews/frames");
   const images = [];
+  const frameFiles = [];  // the cells and sequence frames: the record's extraOutputs
   // The high-resolution mesh's wires would hide its colours: drawn without.
   const still = (file, meshFile, colorBy, camera, title, wireframe = true) => {
     const id = core.loadObject(out + "/" + meshFile);
@@ -1175,7 +1193,9 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
   // Per test motion: the models side by side at three frames, on the body.
   for (const test of options.test) {
     const motionName = baseName(test);
-    const frames = [Math.floor(options.testFrames / 3), Math.floor(2 * options.testFrames / 3), options.testFrames - 1];
+    // Three frames, fewer when the run is shorter (one frame shown once, not three times).
+    const frames = [...new Set([Math.floor(options.testFrames / 3), Math.floor(2 * options.testFrames / 3),
+                                options.testFrames - 1])];
     const cells = [], captions = [];
     for (const run of runs.filter((r) => r.motion === motionName)) {
       const id = core.loadObject(out + "/" + run.modelFile);
@@ -1187,18 +1207,22 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
         cells.push(file);
         captions.push(run.model + ", frame " + frame);
       }
-      if (options.sequence && run.model === multiNames[0])
-        preview.renderSequence(id, out + "/previews/frames/sequence_" + run.model + "_" + motionName, {
+      if (options.sequence && run.model === multiNames[0]) {
+        const animation = out + "/previews/sequence_" + run.model + "_" + motionName + ".gif";
+        frameFiles.push(...preview.renderSequence(id, out + "/previews/frames/sequence_" + run.model + "_" + motionName, {
           cache: out + "/" + run.cache, colorBy: "level", camera: "front", width: cellSize.width,
-          height: cellSize.height, fps: options.fps,
-          animation: out + "/previews/sequence_" + run.model + "_" + motionName + ".gif",
-          body: {cache: out + "/" + run.bodyCache}});
+          height: cellSize.height, fps: options.fps, animation: animation, body: {cache: out + "/" + run.bodyCache}}));
+        // Without an encoder it is not written (renderSequence warned).
+        if (isFile(animation)) frameFiles.push(animation);
+      }
       core.deleteObject(id);
     }
+    frameFiles.push(...cells);
     const sheet = "previews/sheet_" + motionName + ".png";
+    const atFrames = (frames.length === 1 ? "frame " : "frames ") + frames.join(", ");
     preview.contactSheet(cells, out + "/" + sheet, {columns: frames.length, captions: captions,
-                                                    title: motionName + ": models (rows) at frames " + frames.join(", ")});
-    images.push({file: sheet, title: motionName + ": every model at three frames"});
+                                                    title: motionName + ": models (rows) at " + atFrames});
+    images.push({file: sheet, title: motionName + ": every model at " + atFrames});
   }
 
   // Plots.
@@ -1222,7 +1246,7 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
   images.push({file: "plots/time_per_frame.png", title: "time per frame on " + baseName(options.test[0])},
               {file: "plots/vertices_per_level.png", title: "vertices per level"},
               {file: "plots/mode_histogram.png", title: "mode histogram"});
-  return {images: images, size: options.size};
+  return {images: images, size: options.size, extraOutputs: frameFiles.map((file) => relativeTo(out, file))};
 }
 
 // --- The report ------------------------------------------------------------------

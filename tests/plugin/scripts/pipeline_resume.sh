@@ -103,6 +103,29 @@ grep -q "\[warn\] pipeline: .*/run/meshes/uniform_equal.om, which refine-equal w
 grep -q "\[warn\] pipeline: .*/run/stages/modes.json does not hold a size and SHA-256 for each of its files; running modes again" \
   "$tmp/gone_output.err" || fail "no warning naming the damaged record: $(cat "$tmp/gone_output.err")"
 
+# 5b. The files a stage names only once it ran (--obj-sequence's frames,
+# --sequence's images and animation, the contact sheets' cells) are checked
+# as its others: one deleted or cut short runs its stage again.
+extras="$cheap --obj-sequence --sequence --out $tmp/extras"
+ran extras_first -q $extras
+obj="$tmp/extras/caches/coarse_walk_new_0000.obj"
+cell="$tmp/extras/previews/frames/coarse_walk_new_f0.png"
+[ -f "$obj" ] && [ -f "$cell" ] || fail "no $obj or $cell to damage: $(ls "$tmp/extras/caches" "$tmp/extras/previews/frames")"
+grep -q '"caches/coarse_walk_new_0000.obj"' "$tmp/extras/stages/simulate-coarse-walk_new.json" ||
+  fail "the coarse run's record lists no OBJ frame"
+size=$(wc -c < "$obj")
+head -c $((size - 1)) "$obj" > "$tmp/cut.obj" && mv "$tmp/cut.obj" "$obj"
+rm "$cell"
+ran extras_damaged $extras --resume
+grep -q "(2 stages run, 9 resumed)" "$tmp/extras_damaged.out" || fail "damaged extra files: $(cat "$tmp/extras_damaged.out")"
+grep -q "\[warn\] pipeline: .*/extras/caches/coarse_walk_new_0000.obj is not the file simulate-coarse-walk_new wrote (now $((size - 1)) bytes, then $size)" \
+  "$tmp/extras_damaged.err" || fail "no warning naming the cut OBJ frame: $(cat "$tmp/extras_damaged.err")"
+grep -q "\[warn\] pipeline: .*/extras/previews/frames/coarse_walk_new_f0.png, which previews wrote, is gone; running previews again" \
+  "$tmp/extras_damaged.err" || fail "no warning naming the deleted cell: $(cat "$tmp/extras_damaged.err")"
+[ "$(wc -c < "$obj")" -eq "$size" ] && [ -f "$cell" ] || fail "the damaged extra files were not written again"
+ran extras_whole -q $extras --resume
+grep -q "(0 stages run, 11 resumed)" "$tmp/extras_whole.out" || fail "a whole run with extras: $(cat "$tmp/extras_whole.out")"
+
 # 6. One run at a time per folder. A fresh run removes the report an earlier
 # run left before any stage (it would stand beside this run's outputs); a
 # second run on the folder is refused naming the first; killed (SIGKILL),

@@ -50,7 +50,7 @@ cp "$resources/characters/walk_new.bvh" "$tmp/$odd.bvh" || fail "cannot copy the
   --test "$tmp/$odd.bvh" --out "$tmp/odd" > "$tmp/odd.out" 2> "$tmp/odd.err" ||
   { fail "odd-name run exit code $?"; cat "$tmp/odd.err"; }
 [ -f "$tmp/odd/previews/sheet_$odd.png" ] || fail "no preview sheet named after the motion"
-grep -qF '![walk 1\|a\]\<!-- \*x\*: every model at three frames](previews/sheet_walk%201%7Ca%5D%3C!--%20*x*.png)' \
+grep -qF '![walk 1\|a\]\<!-- \*x\*: every model at frame 0](previews/sheet_walk%201%7Ca%5D%3C!--%20*x*.png)' \
   "$tmp/odd/report.md" || fail "report.md: the sheet's image link is not escaped: $(grep -F 'sheet_' "$tmp/odd/report.md")"
 grep -qxF '### walk 1\|a\]\<!-- \*x\*' "$tmp/odd/report.md" || fail "report.md: no escaped heading for the motion"
 grep -qF '| multires_d5 |' "$tmp/odd/report.md" || fail "report.md: no table row for multires_d5"
