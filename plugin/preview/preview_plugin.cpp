@@ -19,6 +19,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QImageReader>
 #include <QPainter>
 #include <QProcess>
 #include <QStandardPaths>
@@ -39,6 +40,7 @@ constexpr int kLeastImageSide = 16;   ///< pixels: a render's width and height
 constexpr int kMostImageSide = 8192;
 constexpr int kLeastChartSide = 100;  ///< pixels: a chart's (room for its axes and labels)
 constexpr int kMostSupersample = 4;   ///< samples per pixel along each side
+constexpr int kMostSheetSide = 16384; ///< pixels: a contact sheet's width and height (1 GiB of ARGB32)
 constexpr double kMarginBelow = 0.45; ///< a render's margin, a fraction of the image (exclusive)
 
 /// What one render call asks for.
@@ -347,6 +349,22 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
   });
 }
 
+namespace {
+
+/// An image for a contact sheet. Qt's readers refuse images over 128 MB by
+/// default, which renders and charts above about 5800 pixels square are:
+/// any image that fits in a sheet is read.
+QImage readSheetImage(const QString& path) {
+  QImageReader reader(path);
+  reader.setAllocationLimit(static_cast<int>(4LL * kMostSheetSide * kMostSheetSide / (1024 * 1024)));  // MB
+  const QImage image = reader.read();
+  if (image.isNull())
+    throw InputError(path.toStdString() + ": not an image Qt can read (" + reader.errorString().toStdString() + ")");
+  return image;
+}
+
+}  // namespace
+
 QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant options) {
   return guarded("contactSheet", [&] {
     const QVariantList list = script::toList(images, QStringLiteral("images"));
@@ -359,9 +377,7 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
       const QString image_path = options::existingInputFile(script::toString(list[k], QStringLiteral("images[%1]").arg(k)),
                                                            QStringLiteral("images[%1]").arg(k));
       if (cancelRequested()) stopCancelled("contactSheet", file.toStdString() + " was not written");
-      QImage image(image_path);
-      if (image.isNull()) throw InputError(image_path.toStdString() + ": not an image Qt can read");
-      pictures.push_back(image);
+      pictures.push_back(readSheetImage(image_path));
     }
     std::vector<QString> captions;
     if (fields.has(QStringLiteral("captions"))) {
@@ -375,6 +391,13 @@ QVariantMap PreviewPlugin::contactSheet(QVariant images, QVariant path, QVariant
     render::ContactSheetOptions sheet;
     sheet.columns = fields.integerAtLeast(QStringLiteral("columns"), 0, 0);
     sheet.title = fields.string(QStringLiteral("title"));
+    std::vector<QSize> sizes;
+    for (const QImage& picture : pictures) sizes.push_back(picture.size());
+    const QSize sheet_size = render::contact_sheet_layout(sizes, sheet).size;
+    if (std::max(sheet_size.width(), sheet_size.height()) > kMostSheetSide)
+      options::fail(QStringLiteral("the sheet of these %1 images would be %2x%3 pixels; expected at most %4 along each "
+                                   "side (fewer columns or rows, or smaller images)")
+                        .arg(pictures.size()).arg(sheet_size.width()).arg(sheet_size.height()).arg(kMostSheetSide));
     const QImage result = render::contact_sheet(pictures, captions, sheet);
     if (cancelRequested()) stopCancelled("contactSheet", file.toStdString() + " was not written");
     saveImage(result, file);
@@ -457,6 +480,7 @@ QVariantMap previewLimits() {
   return QVariantMap{{QStringLiteral("imageSide"), range(kLeastImageSide, kMostImageSide)},
                      {QStringLiteral("chartSide"), range(kLeastChartSide, kMostImageSide)},
                      {QStringLiteral("supersample"), range(1, kMostSupersample)},
+                     {QStringLiteral("sheetSide"), range(1, kMostSheetSide)},
                      {QStringLiteral("samples"), range(1, static_cast<double>(render::kMaxRenderSamples))}};
 }
 
@@ -490,8 +514,8 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
                        "animation: .gif (needs ImageMagick's convert) or .mp4 (needs ffmpeg) file = none, skipped "
                        "with a warning when the tool is missing; fps: number > 0 = 30 (the animation's rate)")}},
       {QStringLiteral("contactSheet(string[] images, string path, object options = {}) -> object"),
-       QStringLiteral("Composes images in a grid with captions and a title into one image; returns {file, width, "
-                      "height}."),
+       QStringLiteral("Composes images in a grid with captions and a title into one image of @sheetSide@ pixels "
+                      "along each side; returns {file, width, height}."),
        {QStringLiteral("images"), QStringLiteral("path"), QStringLiteral("options")},
        {QStringLiteral("image files (PNG, ...)"), QStringLiteral("image file to write (.png, .jpg/.jpeg, .bmp, .ppm)"),
         QStringLiteral("{columns: int >= 0 = 0 (0: about square), captions: string[] = none, title: string = none}")}},

@@ -1169,9 +1169,20 @@ function previewFiles(options, models, multiNames) {
   return files;
 }
 
+/// A contact sheet's cell: half the preview's size, or smaller (the same
+/// shape) where `rows` by `columns` of them would pass the sheet's bound, by
+/// contact_sheet.h's layout (10 pixels around each cell, 22 below it for its
+/// caption, 34 for the title).
+function sheetCell(size, rows, columns) {
+  const most = previewLimits("sheetSide")[1];
+  const half = {width: Math.max(64, Math.round(size.width / 2)), height: Math.max(64, Math.round(size.height / 2))};
+  const scale = Math.min(1, (Math.floor((most - 10) / columns) - 10) / half.width,
+                         (Math.floor((most - 44) / rows) - 32) / half.height);
+  return {width: Math.floor(half.width * scale), height: Math.floor(half.height * scale)};
+}
+
 function renderPreviews(options, out, models, multiNames, runs, multiRecord, modesRecord, highRecord) {
   const size = {width: options.size[0], height: options.size[1]};
-  const cellSize = {width: Math.max(64, Math.round(size.width / 2)), height: Math.max(64, Math.round(size.height / 2))};
   core.makePath(out + "/previews/frames");
   const images = [];
   const frameFiles = [];  // the cells and sequence frames: the record's extraOutputs
@@ -1197,7 +1208,9 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
     const frames = [...new Set([Math.floor(options.testFrames / 3), Math.floor(2 * options.testFrames / 3),
                                 options.testFrames - 1])];
     const cells = [], captions = [];
-    for (const run of runs.filter((r) => r.motion === motionName)) {
+    const motionRuns = runs.filter((r) => r.motion === motionName);
+    const cellSize = sheetCell(size, motionRuns.length, frames.length);
+    for (const run of motionRuns) {
       const id = core.loadObject(out + "/" + run.modelFile);
       for (const frame of frames) {
         const file = out + "/previews/frames/" + run.model + "_" + motionName + "_f" + frame + ".png";

@@ -61,7 +61,7 @@ for (const name of ["clusters", "restarts"])
 
 // The previews' bounds (preview.limits()), which the pipeline checks --size against.
 const P = preview.limits();
-expectEqual(Object.keys(P).sort().join(","), "chartSide,imageSide,samples,supersample", "the previews' bounds listed");
+expectEqual(Object.keys(P).sort().join(","), "chartSide,imageSide,samples,sheetSide,supersample", "the previews' bounds listed");
 const previewSpan = (name) => P[name][0] + " to " + P[name][1];
 const image = tmp + "/limits.png";
 for (const side of ["width", "height"]) {
@@ -83,5 +83,23 @@ const side = Math.floor(Math.sqrt(P.samples[1]) / P.supersample[1]);
 expectThrows(() => preview.render(grid, image, {width: side, height: side + 1, supersample: P.supersample[1]}),
              "ArgumentError", "expected at most " + P.samples[1]);
 expectEqual(core.fileExists(image), false, "nothing written by the refused renders");
+
+// The largest chart (256 MB of pixels: over Qt's default 128 MB reader
+// limit) goes into a contact sheet; two side by side would pass the sheet's bound
+// (10 pixels of spacing around each cell, 22 below it for its caption).
+core.makePath(tmp);
+const tall = tmp + "/limits_tall.png", wide = tmp + "/limits_wide.png", sheet = tmp + "/limits_sheet.png";
+preview.lineChart(tall, {series: [{name: "a", y: [1, 2]}], width: P.chartSide[1], height: P.chartSide[1]});
+const one = preview.contactSheet([tall], sheet);
+expectEqual(one.width, P.chartSide[1] + 20, "the sheet of the largest chart: its width (10 pixels each side)");
+preview.lineChart(wide, {series: [{name: "a", y: [1, 2]}], width: P.chartSide[1], height: P.chartSide[0]});
+core.removeFile(sheet);
+const beyondSheet = 3 * 10 + 2 * P.chartSide[1];
+expectEqual(beyondSheet > P.sheetSide[1] && beyondSheet - P.chartSide[1] <= P.sheetSide[1], true,
+            "two of the widest charts side by side pass the sheet's bound, one does not");
+expectThrows(() => preview.contactSheet([wide, wide], sheet, {columns: 2}), "ArgumentError",
+             "the sheet of these 2 images would be " + beyondSheet + "x" + (2 * 10 + 22 + P.chartSide[0]) +
+             " pixels; expected at most " + P.sheetSide[1] + " along each side");
+expectEqual(core.fileExists(sheet), false, "nothing written by the refused sheet");
 
 print("limits: ok");

@@ -57,6 +57,19 @@ grep -qF '| multires_d5 |' "$tmp/odd/report.md" || fail "report.md: no table row
 grep -F 'walk 1|' "$tmp/odd/report.md" && fail "report.md: the motion's name unescaped"
 grep -F ']<!--' "$tmp/odd/report.md" && fail "report.md: an HTML comment opened"
 
+# 1d. A tall --size: four models' cells at half of it (64x4096) would make a
+# contact sheet taller than preview.limits().sheetSide (16384): they shrink
+# to fit, keeping their shape.
+"$host" -q pipeline --levels 1 --instance-frames 2 --test-frames 1 --preroll 0.1 --size 64x8192 \
+  --test "$resources/characters/walk_new.bvh" --out "$tmp/tall" > "$tmp/tall.out" 2> "$tmp/tall.err" ||
+  { fail "tall run exit code $?"; cat "$tmp/tall.err"; }
+# png_size <file>: "WIDTH HEIGHT" from the PNG's header.
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{ print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4, $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }'; }
+[ "$(png_size "$tmp/tall/previews/frames/coarse_walk_new_f0.png")" = "63 4053" ] ||
+  fail "tall run's cell: $(png_size "$tmp/tall/previews/frames/coarse_walk_new_f0.png"), expected 63 4053"
+[ "$(png_size "$tmp/tall/previews/sheet_walk_new.png" | cut -d' ' -f2)" -le 16384 ] ||
+  fail "tall run's sheet: $(png_size "$tmp/tall/previews/sheet_walk_new.png")"
+
 # 2. The script through the public API, same options (the default mode
 # mapping spelled out) on two threads: same numbers.
 "$host" -q -b "$resources/scripts/pipeline.js" -- $small --map-modes index --threads 2 --out "$tmp/script" > "$tmp/script.out" 2> "$tmp/script.err" ||
