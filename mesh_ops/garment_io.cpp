@@ -937,7 +937,10 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
                                            "file as mrcloth writes it, whole"));
   }
   // The vertex layers later steps index by (a file saved before the
-  // checksum, damaged inside, crashed objectInfo through them).
+  // checksum, damaged inside, crashed objectInfo through them); eraseModes
+  // copies the computed modes into the mode layer.
+  OpenMesh::VPropHandleT<int> computed;
+  const bool has_computed = mesh.get_property_handle(computed, layer::computed_mode);
   for (const auto v : mesh.vertices()) {
     const OpenMesh::Vec2i ends = mesh.property(layers.parents, v);
     const bool none = ends[0] == -1 && ends[1] == -1;
@@ -945,6 +948,11 @@ void check_stored_forest(const std::string& path, const QuadMesh& mesh) {
     // with a larger index would be a cycle, which the polygons recurse along.
     const bool valid = ends[0] >= 0 && ends[0] < v.idx() && ends[1] >= 0 && ends[1] < v.idx() && ends[0] != ends[1];
     const int mode = mesh.property(layers.mode, v);
+    const int computed_mode = has_computed ? mesh.property(computed, v) : 0;
+    if (computed_mode < 0 || computed_mode > kLargestMode)
+      throw InputError(with_path(path, "the stored layers are damaged (vertex " + std::to_string(v.idx()) +
+                                           " has computed mode " + std::to_string(computed_mode) +
+                                           "); expected a .om file as mrcloth writes it, whole"));
     if ((!none && !valid) || mode < 0 || mode > kLargestMode)
       throw InputError(with_path(path, "the stored layers are damaged (vertex " + std::to_string(v.idx()) +
                                            (none || valid ? " has mode " + std::to_string(mode)

@@ -141,12 +141,16 @@ void set_computed_layer(QuadMesh& mesh, const std::vector<int>& modes) {
   if (modes.size() != mesh.n_vertices())
     throw ArgumentError("set_computed_layer: " + std::to_string(modes.size()) + " modes for " +
                         std::to_string(mesh.n_vertices()) + " vertices; expected one per vertex");
+  for (std::size_t v = 0; v < modes.size(); ++v)
+    if (modes[v] < 0 || modes[v] > kLargestMode)
+      throw ArgumentError("set_computed_layer: vertex " + std::to_string(v) + " has mode " + std::to_string(modes[v]) +
+                          "; expected modes from 0 to " + std::to_string(kLargestMode));
   const auto computed = computed_handle(mesh);
-  for (const auto v : mesh.vertices()) mesh.property(computed, v) = std::max(0, modes[static_cast<std::size_t>(v.idx())]);
+  for (const auto v : mesh.vertices()) mesh.property(computed, v) = modes[static_cast<std::size_t>(v.idx())];
 }
 
 std::vector<int> computed_modes(const QuadMesh& mesh) {
-  std::vector<int> modes(mesh.n_vertices(), 0);
+  std::vector<int> modes(mesh.n_vertices(), kDefaultMode);
   OpenMesh::VPropHandleT<int> handle;
   if (!mesh.get_property_handle(handle, layer::computed_mode)) return modes;
   for (const auto v : mesh.vertices()) modes[static_cast<std::size_t>(v.idx())] = mesh.property(handle, v);
@@ -182,9 +186,8 @@ std::vector<double> vertex_layer(const QuadMesh& mesh, const std::string& name) 
     for (const auto v : mesh.vertices()) values[static_cast<std::size_t>(v.idx())] = mesh.property(ints, v);
     return values;
   }
-  // Before any analysis every vertex has none (0), as computed_modes and
-  // the layers' CSV give it.
-  if (stored == layer::computed_mode) return values;
+  // Before any analysis: the default mode erasing goes back to, as the layers' CSV gives it.
+  if (stored == layer::computed_mode) return std::vector<double>(mesh.n_vertices(), kDefaultMode);
   OpenMesh::VPropHandleT<double> doubles;
   if (!mesh.get_property_handle(doubles, stored)) {
     const bool analysed = stored == layer::mean_curvature || stored == layer::curvature_deviation;
@@ -261,7 +264,7 @@ std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids) {
   const auto layer_handle = ensure_layers(mesh).mode;
   std::size_t changed = 0;
   const auto erase = [&](int v) {
-    const int target = computed[static_cast<std::size_t>(v)] > 0 ? computed[static_cast<std::size_t>(v)] : kDefaultMode;
+    const int target = computed[static_cast<std::size_t>(v)];
     int& mode = mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(v)));
     changed += mode != target;
     mode = target;

@@ -14,7 +14,8 @@
 namespace mrcloth {
 
 namespace layer {
-inline constexpr const char* computed_mode = "mrcloth:computed_mode";              ///< vertex int: the analysis's mode, 0 = none
+/// vertex int: the analysis's (or mapModes') mode, 0..kLargestMode; a mesh never analysed has no such layer
+inline constexpr const char* computed_mode = "mrcloth:computed_mode";
 inline constexpr const char* mean_curvature = "mrcloth:mean_curvature";            ///< vertex double, 1/m
 inline constexpr const char* curvature_deviation = "mrcloth:curvature_deviation";  ///< vertex double, 1/m
 }  // namespace layer
@@ -30,12 +31,14 @@ void ensure_analysis_layers(QuadMesh& mesh);
 /// Throws ArgumentError naming the first vertex out of range; nothing changes then.
 void set_computed_modes(QuadMesh& mesh, const std::vector<int>& modes);
 
-/// Sets only the computed modes (one per vertex, 0 = none; the current
-/// modes untouched): what eraseModes goes back to.
+/// Sets only the computed modes (one per vertex, 0..kLargestMode: a mode
+/// mapped from a painted 0 is 0; the current modes untouched): what
+/// eraseModes goes back to. ArgumentError naming the first vertex out of
+/// range; nothing changes then.
 void set_computed_layer(QuadMesh& mesh, const std::vector<int>& modes);
 
-/// The computed mode of every vertex (0 where none was computed; all 0 when
-/// the mesh has never been analysed).
+/// What erase_modes goes back to, per vertex: the computed modes, or
+/// kDefaultMode everywhere when the mesh has never been analysed.
 std::vector<int> computed_modes(const QuadMesh& mesh);
 
 /// Sets a persistent per-vertex double layer `name` (one value per vertex),
@@ -59,7 +62,7 @@ std::size_t paint_modes_geodesic(QuadMesh& mesh, const std::vector<int>& seeds, 
 std::size_t fill_modes_threshold(QuadMesh& mesh, const std::string& name, double threshold, int mode, bool above = true);
 
 /// Puts the given vertices (all of them when `vertex_ids` is empty) back to
-/// their computed modes (the default mode where none was computed).
+/// their computed modes (the default mode on a mesh never analysed).
 /// Returns how many changed.
 std::size_t erase_modes(QuadMesh& mesh, const std::vector<int>& vertex_ids = {});
 

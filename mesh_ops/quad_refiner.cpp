@@ -105,16 +105,11 @@ void QuadRefiner::inherit_from_fathers(int vertex, std::initializer_list<int> fa
   const auto vh = mesh_.vertex_handle(vertex);
   mesh_.property(layers_.r_value, vh) = r_sum / n;
   mesh_.property(layers_.mode, vh) = rounded_mean(mode_sum);
-  // The computed modes alike, where every father has one (0: none).
+  // The computed modes alike, where the mesh has them.
   if (!computed_.is_valid()) return;
   int computed_sum = 0;
-  bool all = true;
-  for (int f : fathers) {
-    const int c = mesh_.property(computed_, mesh_.vertex_handle(f));
-    all = all && c > 0;
-    computed_sum += c;
-  }
-  mesh_.property(computed_, vh) = all ? rounded_mean(computed_sum) : 0;
+  for (int f : fathers) computed_sum += mesh_.property(computed_, mesh_.vertex_handle(f));
+  mesh_.property(computed_, vh) = rounded_mean(computed_sum);
 }
 
 bool QuadRefiner::finish(const std::function<bool(int faces_added)>& progress) {

@@ -64,7 +64,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
        {QStringLiteral("id"), QStringLiteral("vertexIds")},
        {id_text, QStringLiteral("vertex indices; omitted: every vertex")}},
       {QStringLiteral("getLayer(int id, string name) -> number[]"),
-       QStringLiteral("A per-vertex layer, indexed by vertex: mode, computed_mode (0 = none), mean_curvature and "
+       QStringLiteral("A per-vertex layer, indexed by vertex: mode, computed_mode (what eraseModes goes back to: the default "
+                      "mode before any analysis), mean_curvature and "
                       "curvature_deviation (1/m, after extractModes)."),
        {QStringLiteral("id"), QStringLiteral("name")},
        {id_text, QStringLiteral("layer name; an unknown one lists those the mesh has")}},

@@ -114,6 +114,13 @@ TEST(ModeMapping, ErasingAfterMappingGoesBackToTheMappedModes) {
   EXPECT_EQ(get_modes(coarse)[5], 3);
   EXPECT_EQ(erase_modes(coarse), 0u);
   EXPECT_EQ(get_modes(coarse), mapped.modes);
+  // A painted 0 (never refine) maps as a mode: erased back to 0, not to the default.
+  set_modes(refined, {7}, 0);
+  const ModeMapReport zero = map_modes(refined, coarse, ModeMapping::stable_index);
+  ASSERT_EQ(zero.modes[7], 0);
+  set_modes(coarse, {7}, 4);
+  EXPECT_EQ(erase_modes(coarse, {7}), 1u);
+  EXPECT_EQ(get_modes(coarse)[7], 0);
 }
 
 TEST(ModeMapping, TiesGoToTheHigherMode) {

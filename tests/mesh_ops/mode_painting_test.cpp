@@ -94,9 +94,10 @@ TEST(ModePainting, EraseGoesBackToTheComputedModes) {
   EXPECT_EQ(get_modes(mesh)[3], kDefaultMode);
   EXPECT_EQ(get_modes(mesh)[4], 5);
 
-  // The computed-mode layer reads as none (0) before any analysis, as the
-  // layers' CSV writes it (getLayer refused it).
-  EXPECT_EQ(vertex_layer(mesh, "computed_mode"), std::vector<double>(49, 0.0));
+  // The computed-mode layer reads as the default mode before any analysis,
+  // what erasing goes back to, as the layers' CSV writes it (getLayer refused it).
+  EXPECT_EQ(vertex_layer(mesh, "computed_mode"), std::vector<double>(49, kDefaultMode));
+  EXPECT_EQ(computed_modes(mesh), std::vector<int>(49, kDefaultMode));
   EXPECT_EQ(vertex_layer_names(mesh), (std::vector<std::string>{"mode", "computed_mode"}));
 
   std::vector<int> computed(49);
@@ -132,11 +133,32 @@ TEST(ModePainting, EraseGoesBackToTheComputedModes) {
   EXPECT_EQ(get_modes(mesh), computed);
   set_computed_modes(mesh, std::vector<int>(49, kLargestMode));
   EXPECT_EQ(get_modes(mesh), std::vector<int>(49, kLargestMode));
+
+  // Mode 0 (never refine) is a computed mode like any other, not "none":
+  // erasing goes back to it (it went to the default mode).
+  std::vector<int> with_zero(49, 2);
+  with_zero[10] = 0;
+  set_computed_layer(mesh, with_zero);
+  set_modes(mesh, {10, 11}, 5);
+  EXPECT_EQ(erase_modes(mesh, {10, 11}), 2u);
+  EXPECT_EQ(get_modes(mesh)[10], 0);
+  EXPECT_EQ(get_modes(mesh)[11], 2);
+  EXPECT_EQ(vertex_layer(mesh, "computed_mode")[10], 0.0);
+  std::vector<int> negative = with_zero;
+  negative[7] = -1;
+  try {
+    set_computed_layer(mesh, negative);
+    ADD_FAILURE() << "a negative computed mode";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 7 has mode -1; expected modes from 0 to 1000"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(computed_modes(mesh), with_zero) << "nothing changed by the refused layer";
 }
 
 // New vertices inherit the computed modes as they inherit the modes (the
-// rounded mean of their fathers'), so erasing nothing painted on a refined
-// mesh changes nothing; a father without a computed mode leaves none.
+// rounded mean of their fathers', a computed 0 among them); a mesh without
+// computed modes gets none by refining.
 TEST(ModePainting, RefinementCarriesTheComputedModes) {
   QuadMesh mesh = test::make_grid(2, 1, 1.0);  // vertices 0 1 2 / 3 4 5
   set_computed_modes(mesh, {1, 2, 3, 2, 3, 3});
@@ -160,6 +182,15 @@ TEST(ModePainting, RefinementCarriesTheComputedModes) {
   uniform_refine(painted, 1);
   EXPECT_GT(erase_modes(painted), 1u) << "vertex 4 and the new ones around it";
   EXPECT_EQ(get_modes(painted), computed_modes(painted));
+  // A computed 0 (mapped from a painted 0) counts in the mean: the midpoint
+  // of 0 and 3 is 2, where it was "none" (and erased to the default mode).
+  QuadMesh zero = test::make_grid(2, 1, 1.0);
+  set_computed_layer(zero, {0, 3, 3, 3, 3, 3});
+  set_modes(zero, {0, 1, 2, 3, 4, 5}, 3);
+  set_modes(zero, {0}, 0);
+  uniform_refine(zero, 1);
+  EXPECT_EQ(computed_modes(zero), get_modes(zero));
+  EXPECT_EQ(erase_modes(zero), 0u) << "nothing painted";
   // A mesh with no computed modes gets none by refining.
   QuadMesh plain = test::make_grid(2, 1, 1.0);
   uniform_refine(plain, 1);

@@ -5,6 +5,7 @@
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/mode_layer.h"
+#include "mesh_ops/mode_painting.h"
 #include "mesh_ops/texture_coords.h"
 #include "mesh_ops/uniform_refine.h"
 
@@ -193,6 +194,13 @@ TEST(SaveLoad, AnOmFileWithAnyByteChangedIsRefused) {
   unchecked.property(layers.parents, vertex) = OpenMesh::Vec2i(-1, -1);
   unchecked.property(layers.mode, vertex) = 5000;
   expect_refused("vertex 3 has mode 5000");
+  unchecked.property(layers.mode, vertex) = 2;
+  set_computed_layer(unchecked, std::vector<int>(unchecked.n_vertices(), 1));
+  // set_computed_layer refuses -2: written into the layer directly.
+  OpenMesh::VPropHandleT<int> computed_layer;
+  ASSERT_TRUE(unchecked.get_property_handle(computed_layer, layer::computed_mode));
+  unchecked.property(computed_layer, vertex) = -2;
+  expect_refused("vertex 3 has computed mode -2");
 }
 
 /// Every proper prefix of `bytes` written to `cut` and loaded: the lengths that were not refused.
