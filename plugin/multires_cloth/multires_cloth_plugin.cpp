@@ -39,6 +39,7 @@
 #include <cassert>
 #include <iterator>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -123,6 +124,25 @@ QString selfContactWarning(const QString& slot, const QuadMesh& mesh, const Self
                         "body's collision, and torn the shared skirt refined twice on capsules (README, Known limits); "
                         "it is meant for garments refined at most once for now")
       .arg(slot).arg(1000.0 * mean_edge, 0, 'f', 1).arg(1000.0 * reach, 0, 'f', 1);
+}
+
+/// A PC2 cache keeps float32 positions: 24 bits, so a garment far from the
+/// origin (1 km: 0.06 mm steps) loses its wrinkles in the file however well
+/// it was simulated. Said where a step passes this many metres.
+constexpr double kLargestCacheStep = 1e-4;
+
+QString cachePrecisionWarning(const QString& slot, const QuadMesh& mesh, const SimulationOptions& settings) {
+  if (settings.cache_path.empty()) return {};
+  double farthest = 0.0;
+  for (const auto v : mesh.vertices())
+    for (int k = 0; k < 3; ++k) farthest = std::max(farthest, std::abs(mesh.point(v)[k]));
+  const double step = farthest * std::numeric_limits<float>::epsilon();
+  if (step <= kLargestCacheStep) return {};
+  return QStringLiteral("%1: the garment lies up to %2 m from the origin along an axis, where its PC2 cache (float32 "
+                        "positions) keeps steps of %3 mm: its wrinkles are rounded away in the file; move the garment "
+                        "to the origin (within %4 m) for a cache as fine as the simulation")
+      .arg(slot).arg(farthest, 0, 'g', 4).arg(1000.0 * step, 0, 'g', 2)
+      .arg(kLargestCacheStep / std::numeric_limits<float>::epsilon(), 0, 'f', 0);
 }
 
 }  // namespace
@@ -433,6 +453,9 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
         selfContactWarning(QStringLiteral("simulate"), *input.mesh, request.simulation.self_contact);
     if (!contact_warning.isEmpty()) warn(contact_warning);
     const SimulationOptions& settings = request.simulation;
+    if (const QString precision = cachePrecisionWarning(QStringLiteral("simulate"), *input.mesh, settings);
+        !precision.isEmpty())
+      warn(precision);
     // The job starts with the set-up (the model, then the factorisation),
     // which shows as it and can be cancelled between its phases.
     std::optional<JobScope> job;
@@ -833,6 +856,8 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                     const QuadMesh& garment, std::vector<LogLine>& lines) {
   const QString contact_warning = selfContactWarning(slot, garment, request.simulation.self_contact);
   if (!contact_warning.isEmpty()) lines.push_back({LOGWARN, contact_warning});
+  if (const QString precision = cachePrecisionWarning(slot, garment, request.simulation); !precision.isEmpty())
+    lines.push_back({LOGWARN, precision});
   const Motion& motion = *character.motion;
   const int pelvis = motion.skeleton.find(run.pelvis_joint);
   if (!model.pinned_vertices.empty()) {
