@@ -77,12 +77,27 @@ QSize legend_size(const std::vector<LegendEntry>& entries, const LegendStyle& st
                2 * style.padding + n * row_height(metrics, style) + (n - 1) * row_gap);
 }
 
-QRect draw_legend(QPainter& painter, const QRect& area, const std::vector<LegendEntry>& entries, Corner corner,
+std::vector<LegendEntry> legend_entries_that_fit(const std::vector<LegendEntry>& entries, int height,
+                                                const LegendStyle& style) {
+  if (entries.empty() || legend_size(entries, style).height() <= height) return entries;
+  require_gui_application("legend_entries_that_fit");
+  const QFontMetrics metrics(make_font(style.font_pixel_size));
+  const int row = row_height(metrics, style);
+  // Rows that fit, the last of them saying how many did not (at least that one).
+  const int rows = std::max(1, (height - 2 * style.padding + row_gap) / (row + row_gap));
+  const auto kept = static_cast<std::size_t>(std::min<int>(rows - 1, static_cast<int>(entries.size()) - 1));
+  std::vector<LegendEntry> fitted(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(kept));
+  fitted.push_back({QColor(), QStringLiteral("\u2026 and %1 more").arg(entries.size() - kept)});
+  return fitted;
+}
+
+QRect draw_legend(QPainter& painter, const QRect& area, const std::vector<LegendEntry>& all_entries, Corner corner,
                   const LegendStyle& style) {
-  if (entries.empty()) return {};
+  if (all_entries.empty()) return {};
   require_gui_application("draw_legend");
   const QFont font = make_font(style.font_pixel_size);
   const QFontMetrics metrics(font);
+  const std::vector<LegendEntry> entries = legend_entries_that_fit(all_entries, area.height() - 2 * style.margin, style);
   const QRect box = place(legend_size(entries, style), area, corner, style.margin);
   painter.save();
   painter.setRenderHint(QPainter::Antialiasing, false);
@@ -94,7 +109,7 @@ QRect draw_legend(QPainter& painter, const QRect& area, const std::vector<Legend
   for (const auto& e : entries) {
     const QRect swatch(box.left() + style.padding, y + (row - style.swatch_size) / 2, style.swatch_size,
                        style.swatch_size);
-    painter.fillRect(swatch, e.color);
+    if (e.color.isValid()) painter.fillRect(swatch, e.color);
     painter.setPen(style.text_color);
     const QRect text(swatch.right() + 1 + swatch_gap, y, box.right() - swatch.right() - swatch_gap, row);
     painter.drawText(text, Qt::AlignLeft | Qt::AlignVCenter, e.label);

@@ -30,7 +30,7 @@ struct LegendStyle {
 
 /// One categorical legend entry.
 struct LegendEntry {
-  QColor color;   ///< swatch colour
+  QColor color;   ///< swatch colour; invalid = no swatch
   QString label;  ///< text beside it
 };
 
@@ -47,8 +47,15 @@ struct ColorBar {
 /// Size the legend box for `entries` takes with `style` (empty for no entries).
 QSize legend_size(const std::vector<LegendEntry>& entries, const LegendStyle& style = {});
 
-/// Draws the legend in `corner` of `area` with painter. Returns the box
-/// drawn (empty for no entries).
+/// `entries` if their legend is at most `height` pixels tall, else as many
+/// as fit with the last row saying how many more there are ("… and 12
+/// more", without a swatch: an invalid colour).
+std::vector<LegendEntry> legend_entries_that_fit(const std::vector<LegendEntry>& entries, int height,
+                                                const LegendStyle& style = {});
+
+/// Draws the legend in `corner` of `area` with painter, its entries cut to
+/// those that fit in the area's height (legend_entries_that_fit). Returns
+/// the box drawn (empty for no entries).
 QRect draw_legend(QPainter& painter, const QRect& area, const std::vector<LegendEntry>& entries,
                   Corner corner = Corner::top_right, const LegendStyle& style = {});
 /// Same, in a corner of the whole image.

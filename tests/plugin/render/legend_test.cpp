@@ -49,6 +49,35 @@ TEST(RenderLegend, CategoricalLegendInEachCorner) {
   EXPECT_TRUE(draw_legend(image, {}, Corner::top_left).isEmpty());
 }
 
+// 1001 modes drew a legend past the image's bottom: now the rows that fit,
+// the last one saying how many more there are.
+TEST(RenderLegend, ALegendTallerThanTheImageIsCutWithACount) {
+  std::vector<LegendEntry> entries;
+  for (int k = 0; k < 60; ++k) entries.push_back({QColor(k, 200, 50), QStringLiteral("mode %1").arg(k + 1)});
+  const LegendStyle style;
+  QImage image = blank();
+  const int room = image.height() - 2 * style.margin;
+  // Brute force: the most rows whose legend fits.
+  std::size_t rows = 0;
+  while (rows < entries.size() &&
+         legend_size(std::vector<LegendEntry>(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(rows + 1)),
+                     style).height() <= room)
+    ++rows;
+  ASSERT_GT(rows, 2u);
+  ASSERT_LT(rows, entries.size());
+  const std::vector<LegendEntry> fitted = legend_entries_that_fit(entries, room, style);
+  ASSERT_EQ(fitted.size(), rows);
+  EXPECT_FALSE(fitted.back().color.isValid());
+  EXPECT_EQ(fitted.back().label, QStringLiteral("\u2026 and %1 more").arg(entries.size() - rows + 1));
+  const QRect box = draw_legend(image, entries, Corner::top_right, style);
+  EXPECT_TRUE(image.rect().contains(box));
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    EXPECT_EQ(count_color(image, box, entries[k].color), k + 1 < rows ? style.swatch_size * style.swatch_size : 0)
+        << "entry " << k;
+  // Legends that fit are drawn whole.
+  EXPECT_EQ(legend_entries_that_fit(entries, legend_size(entries, style).height(), style).size(), entries.size());
+}
+
 TEST(RenderLegend, ColorBarShowsTheMapEnds) {
   QImage image = blank();
   ColorBar bar;
