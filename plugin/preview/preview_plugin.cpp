@@ -272,8 +272,10 @@ QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) 
     if (cancelRequested()) stopCancelled("render", file.toStdString() + " was not written");
     saveImage(image, file);
     if (request.color_by == ColorBy::curvature && preview::largest_curvature(*object.mesh) <= 0.0)
-      emit log(LOGWARN, QStringLiteral("render: %1: the mean_curvature layer is zero everywhere: run "
-                                       "multirescloth.extractModes on this mesh first").arg(file));
+      // The layer exists (largest_curvature refuses a mesh without one): extractModes ran on an unbent cache.
+      emit log(LOGWARN, QStringLiteral("render: %1: the mean_curvature layer is zero everywhere (the cache "
+                                       "extractModes analysed shows no bending): the picture is one colour")
+                            .arg(file));
     return QVariantMap{{QStringLiteral("file"), file}, {QStringLiteral("width"), image.width()},
                        {QStringLiteral("height"), image.height()}, {QStringLiteral("frame"), frame}};
   });
