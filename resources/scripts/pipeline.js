@@ -760,8 +760,8 @@ class Stages {
     record.stageSeconds = (Date.now() - started) / 1000;
     record.outputs = outputs;
     // What resuming checks the files against: cut short, replaced or edited since.
-    record.files = outputs.concat(record.extraOutputs || []).map((file) => ({file: file, bytes: core.fileSize(this.out + "/" + file),
-                                           sha256: core.fileHash(this.out + "/" + file)}));
+    record.files = outputs.concat(record.extraOutputs || []).map((file) => ({
+      file: file, bytes: core.fileSize(this.out + "/" + file), sha256: core.fileHash(this.out + "/" + file)}));
     record.run = this.runId;
     core.writeTextFile(this.recordPath(name), JSON.stringify(record, null, 1) + "\n");
     this.ran.push(name);
