@@ -1235,8 +1235,10 @@ double triangle_area(const OpenMesh::Vec3d& a, const OpenMesh::Vec3d& b, const O
 /// a fan from a corner next to one gives a zero-area sliver; the fan starts
 /// at the corner whose smallest triangle is largest, and only when every
 /// corner makes a sliver is the polygon fanned around an added centre point
-/// (coloured like the polygon's first vertex).
-void triangulate(Surface& surface) {
+/// (coloured like the polygon's first vertex). The choices are made on
+/// `shape` (a point per surface point), so that every frame of one mesh,
+/// chosen on its rest shape, gets the same triangles.
+void triangulate(Surface& surface, const std::vector<OpenMesh::Vec3d>& shape) {
   std::vector<std::vector<int>> triangles;
   std::vector<std::vector<OpenMesh::Vec2d>> triangle_uvs;
   const bool textured = !surface.uvs.empty();
@@ -1254,16 +1256,15 @@ void triangulate(Surface& surface) {
     }
     double longest = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      longest = std::max(longest, (surface.points[polygon[(i + 1) % n]] - surface.points[polygon[i]]).norm());
+      longest = std::max(longest, (shape[polygon[(i + 1) % n]] - shape[polygon[i]]).norm());
     const double sliver = 1e-9 * longest * longest;
     std::size_t best_apex = 0;
     double best_smallest = -1.0;
     for (std::size_t apex = 0; apex < n; ++apex) {
       double smallest = std::numeric_limits<double>::infinity();
       for (std::size_t k = 1; k + 1 < n; ++k) {
-        smallest = std::min(smallest, triangle_area(surface.points[polygon[apex]],
-                                                    surface.points[polygon[(apex + k) % n]],
-                                                    surface.points[polygon[(apex + k + 1) % n]]));
+        smallest = std::min(smallest, triangle_area(shape[polygon[apex]], shape[polygon[(apex + k) % n]],
+                                                    shape[polygon[(apex + k + 1) % n]]));
       }
       if (smallest > best_smallest) {
         best_smallest = smallest;
@@ -1447,7 +1448,18 @@ void export_surface(const QuadMesh& mesh, const std::string& path, const ExportO
     const double largest = curvature.empty() ? 0.0 : *std::max_element(curvature.begin(), curvature.end());
     for (const double k : curvature) surface.colors.push_back(sequential_color(largest > 0.0 ? k / largest : 0.0));
   }
-  if (options.triangulate) triangulate(surface);
+  if (options.triangulate) {
+    const QuadMesh& shape = options.triangles_of ? *options.triangles_of : mesh;
+    if (shape.n_vertices() != mesh.n_vertices() || shape.n_faces() != mesh.n_faces())
+      throw ArgumentError("export_surface: the mesh to triangulate as has " + std::to_string(shape.n_vertices()) +
+                          " vertices and " + std::to_string(shape.n_faces()) + " faces, the mesh exported " +
+                          std::to_string(mesh.n_vertices()) + " and " + std::to_string(mesh.n_faces()) +
+                          "; expected the same mesh at other positions");
+    std::vector<OpenMesh::Vec3d> shape_points;
+    shape_points.reserve(shape.n_vertices());
+    for (const auto v : shape.all_vertices()) shape_points.push_back(shape.point(v));
+    triangulate(surface, shape_points);
+  }
   write_file_atomically(path, lower_extension(path),
                    [&](const std::string& file) { return write_text(file, surface, format); });
 }

@@ -45,6 +45,10 @@ struct ExportOptions {
   ColorBy color_by = ColorBy::none;  ///< vertex colours: by level (of the vertex), by mode, or by the
                                      ///< mean_curvature layer (sequential_color of value / the largest; needs the layer)
   bool triangulate = false;          ///< fan-split polygons; forced for formats that need triangles
+  /// Triangulate as this mesh does (the same mesh at its rest positions,
+  /// when the one exported is a simulated frame of it), so that every frame
+  /// gets the same triangles; null = as the exported mesh itself does.
+  const QuadMesh* triangles_of = nullptr;
 };
 
 /// Exports the active surface (faces with hanging vertices stay polygons

@@ -397,6 +397,9 @@ void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant opt
                         .arg(cache).arg(reader.num_points()).arg(describeObject(object))
                         .arg(object.mesh->n_vertices()));
     const FramePositions positions = reader.finite_frame(frame);
+    // Its triangles chosen on the object's own positions: every frame's the same (a DCC tool's
+    // sequence of frames needs one topology; the diagonals flipped from frame to frame).
+    settings.triangles_of = object.mesh.get();
     export_surface(mesh_at_positions(*object.mesh, positions), file.toStdString(), settings);
     emit log(LOGINFO, QStringLiteral("exportSurface: wrote %1 (%2 at frame %3 of %4)")
                           .arg(file, describeObject(object)).arg(frame).arg(QFileInfo(cache).fileName()));

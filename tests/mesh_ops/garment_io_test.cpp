@@ -909,6 +909,42 @@ TEST(GarmentSave, TextFormatsRoundTripDoublesExactly) {
   }
 }
 
+/// The `f` lines of an OBJ, as written.
+std::vector<std::string> obj_faces(const std::string& text) {
+  std::vector<std::string> faces;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("f ", 0) == 0) faces.push_back(line);
+  return faces;
+}
+
+// A simulated frame exported triangulated keeps the rest shape's triangles:
+// a square fans along its diagonal 1-3; in a frame where corner 2 has moved
+// next to that diagonal the frame alone would fan along 2-4 (the DCC tool
+// reading a sequence saw the diagonals flip from frame to frame).
+TEST(GarmentExport, FramesTriangulateAsTheirRestShape) {
+  ScratchDir dir;
+  const QuadMesh rest =
+      mrcloth::load_garment(write_file(dir.file("square.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")).mesh;
+  QuadMesh frame = rest;
+  frame.set_point(QuadMesh::VertexHandle(1), OpenMesh::Vec3d(0.45, 0.55, 0.2));
+  mrcloth::ExportOptions options;
+  options.triangulate = true;
+  mrcloth::export_surface(rest, dir.file("rest.obj"), options);
+  mrcloth::export_surface(frame, dir.file("alone.obj"), options);
+  options.triangles_of = &rest;
+  mrcloth::export_surface(frame, dir.file("frame.obj"), options);
+  const std::vector<std::string> rest_faces = obj_faces(read_file(dir.file("rest.obj")));
+  ASSERT_EQ(rest_faces.size(), 2u);
+  EXPECT_NE(obj_faces(read_file(dir.file("alone.obj"))), rest_faces) << "the frame alone fans the other way";
+  EXPECT_EQ(obj_faces(read_file(dir.file("frame.obj"))), rest_faces);
+  EXPECT_NE(read_file(dir.file("frame.obj")).find("v 0.45 0.55 0.2"), std::string::npos) << "the frame's positions";
+  // Another mesh to triangulate as is refused.
+  const QuadMesh other = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj())).mesh;
+  options.triangles_of = &other;
+  EXPECT_THROW(mrcloth::export_surface(frame, dir.file("wrong.obj"), options), mrcloth::ArgumentError);
+}
+
 TEST(GarmentSave, FailedSavesLeaveNoFileBehind) {
   ScratchDir dir;
   const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));

@@ -72,6 +72,17 @@ exported.forEach((p, i) => p.forEach((x, k) => { farthest = Math.max(farthest, M
 expectAtMost(farthest, 1e-5, "exported frame against the sequence's (m; the PC2 holds floats)");
 expectEqual(readObj(tmpDir + "/frame1.obj").texcoords.length, readObj(report.objFiles[1]).texcoords.length,
             "the exported frame's texture coordinates");
+// Triangulated, every frame has the rest mesh's triangles (a sequence for a
+// DCC tool needs one topology; the diagonals flipped from frame to frame).
+const faceLines = (path) => core.readTextFile(path).split("\n").filter((line) => line.startsWith("f "));
+multirescloth.exportSurface(fine, tmpDir + "/rest_tri.obj", {triangulate: true});
+const restTriangles = faceLines(tmpDir + "/rest_tri.obj");
+for (const frame of [0, 1]) {
+  multirescloth.exportSurface(fine, tmpDir + "/tri" + frame + ".obj", {cache: report.output, frame: frame, triangulate: true});
+  const triangles = faceLines(tmpDir + "/tri" + frame + ".obj");
+  expectEqual([triangles.length, triangles.filter((line, k) => line !== restTriangles[k]).length],
+              [restTriangles.length, 0], "frame " + frame + "'s triangles: how many, how many not the rest mesh's");
+}
 expectThrows(() => multirescloth.exportSurface(fine, tmpDir + "/x.obj", {frame: 1}), "ArgumentError",
              "option 'frame' needs option 'cache'");
 expectThrows(() => multirescloth.exportSurface(fine, tmpDir + "/x.obj", {cache: report.bodyCache}), "ArgumentError",
