@@ -317,11 +317,20 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     if (!QFileInfo(stem).absoluteDir().exists())
       throw OutputError(QStringLiteral("%1: folder '%2' does not exist").arg(stem, QFileInfo(stem).absolutePath()).toStdString());
 
-    // One camera for the whole sequence: framed on the garment over every frame drawn.
+    // One camera for the whole sequence: framed on the garment (with fit
+    // "all", and the body) over every frame drawn.
     render::BoundingBox framing;
     for (const int f : frames) {
       const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(object.mesh->n_vertices()));
       for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
+      if (request.fit_all && !request.body_cache.isEmpty()) {
+        const render::BoundingBox body = render::bounds(
+            preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), f));
+        if (!body.empty()) {
+          framing.add(body.min);
+          framing.add(body.max);
+        }
+      }
     }
     const QString animation = fields.string(QStringLiteral("animation"));
     // simulate's range; a GIF's delay (100 / fps hundredths of a second) then fits its counter.
@@ -330,6 +339,10 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     if (!animation.isEmpty() && !animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
         !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
       options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));
+    // Refused before any frame is drawn, as the images' own folder is.
+    if (!animation.isEmpty() && !QFileInfo(animation).absoluteDir().exists())
+      throw OutputError(QStringLiteral("option 'animation': %1: folder '%2' does not exist")
+                            .arg(animation, QFileInfo(animation).absolutePath()).toStdString());
     QVariantList files;
     JobScope job(*this, QStringLiteral("renderSequence"),
                  QStringLiteral("%1 frames of %2").arg(frames.size()).arg(QFileInfo(request.cache).fileName()),
@@ -342,7 +355,13 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
                                  " on) are kept, and no animation was made"
                            : "; nothing was written"));
       const QString file = QStringLiteral("%1_%2.png").arg(stem).arg(frames[k], digits, 10, QLatin1Char('0'));
-      saveImage(renderFrame(*object.mesh, request, frames[k], framing), file);
+      try {
+        saveImage(renderFrame(*object.mesh, request, frames[k], framing), file);
+      } catch (const OutputError& error) {
+        if (k == 0) throw;
+        throw OutputError(std::string(error.what()) + "; the " + std::to_string(k) + " images written before it (" +
+                          files.front().toString().toStdString() + " on) are kept, and no animation was made");
+      }
       files << file;
       job.progress(static_cast<int>(k + 1));
     }

@@ -180,6 +180,10 @@ expectNoFile(some + "_0003.png");
 const one = preview.renderSequence(grid, tmpDir + "/seq_one", side({cache: pc2, frames: [3]}));
 expectEqual(one, [tmpDir + "/seq_one_0003.png"], "frames [3]");
 if (!core.filesEqual(one[0], atFrame.file)) throw new Error("a one-frame sequence differs from render of that frame");
+// Likewise with fit "all": the body framed too (the sequence framed the garment alone).
+const oneAll = preview.renderSequence(grid, tmpDir + "/seq_one_all",
+                                      side({cache: pc2, frames: [3], fit: "all", body: {cache: bodyPc2}}));
+if (!core.filesEqual(oneAll[0], fitAll)) throw new Error("a one-frame sequence with fit all differs from render's");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", small), "ArgumentError", "missing option 'cache'");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache: pc2, frame: 1})), "ArgumentError",
              "unknown option 'frame'", "frames");
@@ -191,6 +195,14 @@ expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_bad", opts({cache
              "option 'fps' must be from 0.001 to 100000 frames per second, got the number 1e-300");
 expectThrows(() => preview.renderSequence(grid, tmpDir + "/no_such_folder/seq", opts({cache: pc2})), "OutputError",
              "no_such_folder");
+// An animation into a missing folder: refused before any frame is drawn (the frames were drawn, then it warned).
+expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_anim", opts({cache: pc2, animation: tmpDir + "/no_such/a.gif"})),
+             "OutputError", "option 'animation': ", "no_such/a.gif: folder '", "' does not exist");
+expectNoFile(tmpDir + "/seq_anim_0000.png");
+// A frame that cannot be written after others were: the error says which are kept.
+core.makePath(tmpDir + "/seq_blocked_0002.png");
+expectThrows(() => preview.renderSequence(grid, tmpDir + "/seq_blocked", opts({cache: pc2, frames: [0, 1, 2]})),
+             "OutputError", "seq_blocked_0002.png", "; the 2 images written before it (", "seq_blocked_0000.png on) are kept");
 // A body cache shorter than the frames drawn, or nothing to draw: refused
 // before any image is written.
 const shortBody = tmpDir + "/body_short.pc2";
