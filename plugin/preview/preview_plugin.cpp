@@ -23,6 +23,7 @@
 #include <QPainter>
 #include <QProcess>
 #include <QStandardPaths>
+#include <QTemporaryDir>
 
 #include <cmath>
 #include <optional>
@@ -214,17 +215,33 @@ void PreviewPlugin::writeAnimation(const QVariantList& frames, const QString& pa
   const QString temporary = QString::fromStdString(
       temporary_path_beside(path.toStdString(), "." + QFileInfo(path).suffix().toStdString()));
   QStringList arguments;
+  std::optional<QTemporaryDir> ordered;  // ffmpeg's numbered frames; removed on return
   if (gif) {
     arguments << QStringLiteral("-delay") << QString::number(std::max(1L, std::lround(100.0 / fps)))
               << QStringLiteral("-loop") << QStringLiteral("0");
     for (const QVariant& frame : frames) arguments << frame.toString();
     arguments << temporary;
   } else {
-    const QString first = frames.front().toString();
-    const QString pattern = first.left(first.lastIndexOf(QLatin1Char('_')) + 1) + QStringLiteral("%0") +
-                            QString::number(first.size() - first.lastIndexOf(QLatin1Char('_')) - 5) + QStringLiteral("d.png");
+    // ffmpeg reads numbered images, consecutive from a start: the frames as
+    // drawn (any list: [10, 5, 11]) linked in their order into a folder of
+    // its own. (A pattern on the images' names took whatever the prefix's
+    // folder held, from an earlier run too, and failed on gaps.)
+    ordered.emplace();
+    if (!ordered->isValid()) {
+      emit log(LOGWARN, QStringLiteral("renderSequence: %1 not written: no temporary folder for ffmpeg's frames (%2)")
+                            .arg(path, ordered->errorString()));
+      return;
+    }
+    for (qsizetype k = 0; k < frames.size(); ++k)
+      if (!QFile::link(QFileInfo(frames[k].toString()).absoluteFilePath(),
+                       ordered->filePath(QStringLiteral("%1.png").arg(k, 6, 10, QLatin1Char('0'))))) {
+        emit log(LOGWARN, QStringLiteral("renderSequence: %1 not written: cannot link its frames in %2")
+                              .arg(path, ordered->path()));
+        return;
+      }
     arguments << QStringLiteral("-y") << QStringLiteral("-loglevel") << QStringLiteral("error") << QStringLiteral("-framerate")
-              << QString::number(fps) << QStringLiteral("-i") << pattern << QStringLiteral("-pix_fmt")
+              << QString::number(fps) << QStringLiteral("-start_number") << QStringLiteral("0") << QStringLiteral("-i")
+              << ordered->filePath(QStringLiteral("%06d.png")) << QStringLiteral("-pix_fmt")
               << QStringLiteral("yuv420p") << QStringLiteral("-vf") << QStringLiteral("scale=trunc(iw/2)*2:trunc(ih/2)*2")
               << temporary;
   }
