@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +45,12 @@ std::vector<double> nice_ticks(double lo, double hi, int target_count) {
   };
   const double first = snap(lo / step, std::floor);
   const double last = snap(hi / step, std::ceil);
+  // At the ends of what a double holds the round ticks do not exist: a last
+  // tick past 1.8e308 is infinite, a step of denormals (1e-323) underflows
+  // to 0. Then the data's own ends are the ticks (the chart drew nothing).
+  if (!(step >= std::numeric_limits<double>::min()) || !std::isfinite(first * step) ||
+      !std::isfinite((last + 1.0) * step) || !(lo < hi))
+    return lo < hi && std::isfinite(hi - lo) ? std::vector<double>{lo, hi} : std::vector<double>{0.0, 1.0};
   std::vector<double> ticks;
   for (double k = first; k <= last && ticks.size() < 1000; k += 1.0) {
     const double v = k * step;  // from the index, so no error accumulates

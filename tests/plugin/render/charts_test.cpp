@@ -85,6 +85,24 @@ TEST(RenderCharts, BarChartEdgeCases) {
   EXPECT_THROW(draw_bar_chart(histogram, size(0, 300)), std::invalid_argument);
 }
 
+// Values at the ends of a double's range draw their bars and lines (no
+// bars, or no line and Qt's NaN warnings, before).
+TEST(RenderCharts, ValuesAtTheEndsOfADoublesRangeAreDrawn) {
+  const QColor color(200, 30, 30);
+  for (const std::vector<double>& values : {std::vector<double>{1e308, 1.7e308}, {5e-324, 1e-323}}) {
+    BarChart bars;
+    bars.series = {{"", values, color}};
+    int painted = 0;
+    for (int c : column_counts(draw_bar_chart(bars, size(300, 200)), color)) painted += c;
+    EXPECT_GT(painted, 100) << values[0];
+    LineChart line;
+    line.series = {{"", {{0, 0}, {1, values[0]}, {2, values[1]}}, color}};
+    painted = 0;
+    for (int c : column_counts(draw_line_chart(line, size(300, 200)), color)) painted += c;
+    EXPECT_GT(painted, 50) << values[0];
+  }
+}
+
 TEST(RenderCharts, LineChartDrawsEachSeries) {
   LineChart chart;
   chart.title = "time per frame";

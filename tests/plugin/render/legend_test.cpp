@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace mrcloth::render {
 namespace {
@@ -119,6 +120,23 @@ TEST(RenderLegend, NiceTicks) {
       EXPECT_LE(ticks.front(), lo);
       EXPECT_GE(ticks.back(), hi);
     }
+  }
+  // At the ends of a double's range: finite ticks covering the values (a
+  // last round tick past 1.8e308 was infinite; denormals' step was 0).
+  const double most = std::numeric_limits<double>::max();
+  for (auto [lo, hi] : {std::pair{0.0, most}, {-most, 0.0}, {1e308, 1.7e308}, {5e-324, 2e-323}, {0.0, 1e-323},
+                        {1e-320, 1e-320}}) {
+    const auto ticks = nice_ticks(lo, hi, 5);
+    ASSERT_GE(ticks.size(), 2u) << lo << " " << hi;
+    for (std::size_t k = 0; k < ticks.size(); ++k) {
+      EXPECT_TRUE(std::isfinite(ticks[k])) << lo << " " << hi << " tick " << k;
+      if (k > 0) {
+        EXPECT_LT(ticks[k - 1], ticks[k]) << lo << " " << hi << " tick " << k;
+      }
+    }
+    EXPECT_LE(ticks.front(), lo) << lo << " " << hi;
+    EXPECT_GE(ticks.back(), hi) << lo << " " << hi;
+    EXPECT_TRUE(std::isfinite(ticks.back() - ticks.front())) << lo << " " << hi;
   }
   EXPECT_EQ(format_tick(0.6000000000000001, 0.2), "0.6");
   EXPECT_EQ(format_tick(1500, 500), "1500");
