@@ -66,6 +66,15 @@ LegendStyle legend_style(const ChartOptions& options) {
   return style;
 }
 
+/// A legend's labels cut (in the middle, so both ends of a file path show)
+/// to a quarter of the chart's width: a long series name took the plot's
+/// room, down to nothing.
+void elide_legend(std::vector<LegendEntry>& legend, const ChartOptions& options) {
+  const QFontMetrics metrics(make_font(options.font_pixel_size));
+  const int widest = std::max(40, options.width / 4);
+  for (LegendEntry& entry : legend) entry.label = metrics.elidedText(entry.label, Qt::ElideMiddle, widest);
+}
+
 // Everything around the plot: title, axis labels, value ticks, legend. The
 // plot rectangle is what is left; it never collapses below one pixel, so
 // tiny images still draw (badly) instead of dividing by zero.
@@ -92,8 +101,9 @@ Layout layout_chart(const ChartOptions& options, const QString& title, const QSt
                      (x_tick_labels ? metrics.height() + tick_length + 2 : tick_length);
   Layout layout;
   layout.plot = QRect(QPoint(left, top), QPoint(std::max(left, right), std::max(top, bottom)));
+  // Down to the image's margin: a longer legend shows the entries that fit (draw_legend).
   layout.legend_area = QRect(layout.plot.right() + 2 * text_gap, top, legend_box.width(),
-                             std::max(legend_box.height(), layout.plot.height()));
+                             std::max(1, options.height - options.margin - top));
   return layout;
 }
 
@@ -187,6 +197,7 @@ QImage draw_line_chart(const LineChart& chart, const ChartOptions& options) {
   image.fill(options.background);
   QPainter painter(&image);
   painter.setRenderHint(QPainter::TextAntialiasing, true);
+  elide_legend(legend, options);
   const Layout layout = layout_chart(options, chart.title, chart.x_label, chart.y_label, y_axis, legend, true);
   const QRect& plot = layout.plot;
   draw_frame(painter, options, layout, chart.title, chart.x_label, chart.y_label, y_axis, legend);
@@ -269,6 +280,7 @@ QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
   image.fill(options.background);
   QPainter painter(&image);
   painter.setRenderHint(QPainter::TextAntialiasing, true);
+  elide_legend(legend, options);
   const Layout layout =
       layout_chart(options, chart.title, chart.category_label, chart.value_label, y_axis, legend, true);
   const QRect& plot = layout.plot;

@@ -103,6 +103,32 @@ TEST(RenderCharts, ValuesAtTheEndsOfADoublesRangeAreDrawn) {
   }
 }
 
+// A long series name (two cache paths) took the plot's room down to
+// nothing: legend labels are cut to a quarter of the width, so the plot
+// keeps the rest. The plot is the rectangle of the horizontal grid lines.
+TEST(RenderCharts, LongSeriesNamesLeaveThePlotItsRoom) {
+  const auto plot_width = [](const QString& name) {
+    LineChart chart;
+    chart.series = {{name, {{0, 1}, {1, 2}}, QColor(0, 90, 200)}};
+    ChartOptions options = size(600, 300);
+    const QImage image = draw_line_chart(chart, options);
+    // The widest run of grid colour on a row.
+    int widest = 0;
+    for (int y = 0; y < image.height(); ++y) {
+      int run = 0;
+      for (int x = 0; x < image.width(); ++x) {
+        run = QColor(image.pixel(x, y)) == options.grid_color ? run + 1 : 0;
+        widest = std::max(widest, run);
+      }
+    }
+    return widest;
+  };
+  const int short_name = plot_width("skirt");
+  const int long_name = plot_width(QString(120, QLatin1Char('x')));
+  EXPECT_GT(short_name, 400);
+  EXPECT_GE(long_name, short_name - 600 / 4) << "the plot keeps at least three quarters less the axis";
+}
+
 TEST(RenderCharts, LineChartDrawsEachSeries) {
   LineChart chart;
   chart.title = "time per frame";
