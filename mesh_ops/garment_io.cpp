@@ -1484,7 +1484,7 @@ std::array<unsigned char, 3> sequential_color(double t) {
 std::array<unsigned char, 3> palette_color(int value) {
   // Tableau 10 (matplotlib "tab10") without its grey, which is kept for
   // values <= 0 (unpainted / not a level). Qualitative and well separated;
-  // value 1 is blue, 2 orange, 3 green, 4 red, ...; values past 9 wrap around.
+  // value 1 is blue, 2 orange, 3 green, 4 red, ... 9 cyan; past 9, see below.
   static constexpr std::array<std::array<unsigned char, 3>, 9> kPalette{{
       {31, 119, 180},   // blue
       {255, 127, 14},   // orange
@@ -1497,7 +1497,24 @@ std::array<unsigned char, 3> palette_color(int value) {
       {23, 190, 207},   // cyan
   }};
   if (value <= 0) return {127, 127, 127};
-  return kPalette[static_cast<std::size_t>(value - 1) % kPalette.size()];
+  if (value <= static_cast<int>(kPalette.size())) return kPalette[static_cast<std::size_t>(value - 1)];
+  // Past 9 the colours wrapped (mode 10 drew as mode 1, in the legend too):
+  // hues a golden-ratio turn apart, so neighbouring values differ most, at
+  // two saturations and three brightnesses; every value up to kLargestMode
+  // has its own colour (tested), none grey.
+  const int k = value - static_cast<int>(kPalette.size()) - 1;
+  const double hue = 6.0 * std::fmod(0.07 + 0.6180339887498949 * k, 1.0);
+  static constexpr std::array<double, 2> kSaturation{0.8, 0.5};
+  static constexpr std::array<double, 3> kBrightness{0.9, 0.7, 0.5};
+  const double v = kBrightness[static_cast<std::size_t>((k / 2) % 3)];
+  const double c = v * kSaturation[static_cast<std::size_t>(k % 2)];
+  const double x = c * (1.0 - std::abs(std::fmod(hue, 2.0) - 1.0)), m = v - c;
+  const int sector = std::min(5, static_cast<int>(hue));
+  const std::array<std::array<double, 3>, 6> rgb{{{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}}};
+  std::array<unsigned char, 3> colour{};
+  for (std::size_t i = 0; i < 3; ++i)
+    colour[i] = static_cast<unsigned char>(std::lround(255.0 * (rgb[static_cast<std::size_t>(sector)][i] + m)));
+  return colour;
 }
 
 }  // namespace mrcloth

@@ -2,6 +2,7 @@
 // Fixtures are tiny text meshes written by the tests into a scratch folder.
 #include "mesh_ops/errors.h"
 #include "mesh_ops/garment_io.h"
+#include "mesh_ops/mode_layer.h"
 #include "mesh_ops/mode_painting.h"
 #include "mesh_ops/quad_refiner.h"
 #include "mesh_ops/quadtree_forest.h"
@@ -22,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1105,7 +1107,10 @@ TEST(GarmentExport, PaletteHasDistinctColoursAndGreyForUnset) {
     colours.push_back(colour);
   }
   EXPECT_EQ(mrcloth::palette_color(1), (std::array<unsigned char, 3>{31, 119, 180}));
-  EXPECT_EQ(mrcloth::palette_color(10), mrcloth::palette_color(1));  // wraps around
+  // Every mode a mesh may hold has its own colour (10 drew as 1 before).
+  std::set<std::array<unsigned char, 3>> all{grey};
+  for (int value = 1; value <= mrcloth::kLargestMode; ++value)
+    EXPECT_TRUE(all.insert(mrcloth::palette_color(value)).second) << "value " << value << " repeats a colour";
 }
 
 TEST(GarmentExport, PlyWithModeColoursReadsBackInOpenMesh) {
