@@ -112,6 +112,10 @@ void fit(Camera& camera, const BoundingBox& box, int width, int height, double m
   // usable * width / 2; solving for the distance D gives a bound per corner
   // and axis, and the largest bound is met with equality (the view touches).
   const double focal = 0.5 * height / half_fov_tan(camera);
+  // A garment smaller than the near plane (one loaded in the wrong units:
+  // 3 micrometres) was kept 2 mm away and drawn as a dot; the plane comes
+  // closer for it (never for anything over 10 cm, whose pictures stay as they were).
+  camera.near_plane = std::min(camera.near_plane, 0.01 * extent);
   double distance = -min_depth + 2.0 * camera.near_plane;
   for (const auto& c : corners) {
     distance = std::max(distance, 2.0 * focal * std::abs(c.x()) / (usable * width) - c.z());

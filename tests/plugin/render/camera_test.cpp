@@ -109,6 +109,17 @@ TEST(RenderCamera, FitFillsTheFrameWithTheMargin) {
     }
 }
 
+// A garment far smaller than the near plane's millimetre (loaded in the
+// wrong units) fills the frame too: it was drawn as a dot 2 mm away.
+TEST(RenderCamera, FitFillsTheFrameWithATinyModel) {
+  BoundingBox tiny;
+  tiny.add({0.0, 0.0, 0.0});
+  tiny.add({3e-6, 2e-6, 1e-6});
+  for (Preset preset : {Preset::front, Preset::side, Preset::three_quarter})
+    for (Projection projection : {Projection::perspective, Projection::orthographic})
+      expect_fitted(preset, projection, tiny, 320, 240, 0.05);
+}
+
 TEST(RenderCamera, FitOfAnEmptyBoxLeavesTheCamera) {
   Camera camera = preset_camera(Preset::front);
   const Camera before = camera;
