@@ -141,24 +141,18 @@ QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame
     scene.surfaces.push_back(
         preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), frame));
 
-  render::Camera camera = render::preset_camera(request.camera, request.projection);
-  const render::BoundingBox box = framing ? *framing : request.fit_all ? render::bounds(scene) : render::bounds(garment.surface);
-  render::fit(camera, box, request.width, request.height, request.margin);
-  render::RenderOptions options;
-  options.width = request.width;
-  options.height = request.height;
-  options.supersample = request.supersample;
-  QImage image = render::render(scene, camera, options);
-  // The legend goes below the title: on a narrow image they would overlap.
-  QRect below_title = image.rect();
-  if (!request.title.isEmpty()) below_title.setTop(render::draw_title(image, request.title).bottom() + 1);
-  // A legend needs room; on a thumbnail it would cover the garment.
-  if (request.legend && std::min(request.width, request.height) >= 240) {
-    QPainter painter(&image);
-    render::draw_legend(painter, below_title, garment.legend, render::Corner::top_right);
-    if (garment.color_bar) render::draw_color_bar(painter, below_title, *garment.color_bar, render::Corner::bottom_right);
-  }
-  return image;
+  preview::PictureOptions picture;
+  picture.width = request.width;
+  picture.height = request.height;
+  picture.supersample = request.supersample;
+  picture.camera = request.camera;
+  picture.projection = request.projection;
+  picture.margin = request.margin;
+  picture.title = request.title;
+  picture.legend = request.legend;
+  return preview::draw_picture(
+      scene, framing ? *framing : request.fit_all ? render::bounds(scene) : render::bounds(garment.surface), garment,
+      picture);
 }
 
 /// std::runtime_error / invalid_argument from the render library are the
@@ -531,8 +525,9 @@ QList<SlotDescription> PreviewPlugin::slotDescriptions() const {
       "{width, height: pixels @imageSide@ = 800, camera: \"front\" | \"back\" | \"side\" | \"three_quarter\" = \"front\", "
       "projection: \"perspective\" | \"orthographic\" = \"perspective\", colorBy: \"none\" | \"mode\" | \"level\" | "
       "\"curvature\" = \"none\" (with a legend or colour bar), wireframe: bool = true (the active faces' edges, "
-      "T-nodes included), legend: bool = true (drawn on images at least 240 pixels wide and high), title: string = none, cache: PC2 of this mesh = none (its frame "
-      "is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
+      "T-nodes included), legend: bool = true (drawn on images at least 240 pixels wide and high, in a column of "
+      "its own on the right where it fits in 45 % of the width), title: string = none, cache: PC2 of this mesh = "
+      "none (its frame is drawn), frame: int >= 0 = 0, body: {cache: body PC2 (simulate's bodyOutput), mesh: its OBJ = beside "
       "the cache}, fit: \"garment\" | \"all\" = \"garment\" (what the camera frames), margin: fraction from 0 to below ") +
       QString::number(kMarginBelow) + QStringLiteral(" = 0.08, supersample: @supersample@ = 2 (samples per pixel along each side; "
       "width x height x supersample^2 within @samples@)}");

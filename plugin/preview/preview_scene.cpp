@@ -2,7 +2,10 @@
 
 #include "mesh_ops/errors.h"
 #include "mesh_ops/mode_painting.h"
+#include "plugin/render/rasterize.h"
 #include "solver/point_cache.h"
+
+#include <QPainter>
 
 #include <algorithm>
 #include <map>
@@ -81,6 +84,43 @@ GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positio
     }
   }
   return result;
+}
+
+QImage draw_picture(const render::Scene& scene, const render::BoundingBox& box, const GarmentLayer& garment,
+                    const PictureOptions& options) {
+  const bool legend = options.legend && std::min(options.width, options.height) >= kLeastLegendSide &&
+                      (!garment.legend.empty() || garment.color_bar);
+  const render::LegendStyle style;
+  int column = 0;
+  if (legend) {
+    const int widest = std::max(render::legend_size(garment.legend, style).width(),
+                                garment.color_bar ? render::color_bar_size(*garment.color_bar, style).width() : 0);
+    column = widest + 2 * style.margin;
+    if (column > 0.45 * options.width) column = 0;
+  }
+  render::Camera camera = render::preset_camera(options.camera, options.projection);
+  render::fit(camera, box, options.width - column, options.height, options.margin);
+  render::RenderOptions rendering;
+  rendering.width = options.width - column;
+  rendering.height = options.height;
+  rendering.supersample = options.supersample;
+  QImage image = render::render(scene, camera, rendering);
+  if (column > 0) {
+    QImage whole(options.width, options.height, image.format());
+    whole.fill(scene.background);
+    QPainter(&whole).drawImage(0, 0, image);
+    image = whole;
+  }
+  // The legend goes below the title: on a narrow image they would overlap.
+  QRect below_title = image.rect();
+  if (!options.title.isEmpty()) below_title.setTop(render::draw_title(image, options.title).bottom() + 1);
+  if (legend) {
+    QPainter painter(&image);
+    render::draw_legend(painter, below_title, garment.legend, render::Corner::top_right, style);
+    if (garment.color_bar)
+      render::draw_color_bar(painter, below_title, *garment.color_bar, render::Corner::bottom_right, style);
+  }
+  return image;
 }
 
 double largest_curvature(const QuadMesh& mesh) {

@@ -5,8 +5,12 @@
 // cache (the rest OBJ and PC2 that simulate's bodyOutput writes).
 #include "mesh_ops/garment_io.h"
 #include "mesh_ops/quad_mesh.h"
+#include "plugin/render/camera.h"
 #include "plugin/render/legend.h"
 #include "plugin/render/scene.h"
+
+#include <QImage>
+#include <QString>
 
 #include <optional>
 #include <string>
@@ -28,6 +32,30 @@ struct GarmentLayer {
 /// Throws ArgumentError when positions do not match the vertex count, and
 /// when curvature is asked of a mesh without the mean_curvature layer.
 GarmentLayer garment_layer(const QuadMesh& mesh, const Eigen::MatrixX3d& positions, ColorBy color_by);
+
+/// How a picture of a scene is framed and annotated.
+struct PictureOptions {
+  int width = 800;                                             ///< pixels
+  int height = 800;                                            ///< pixels
+  int supersample = 2;                                         ///< samples per pixel along each side
+  render::Preset camera = render::Preset::front;               ///< where the camera looks from
+  render::Projection projection = render::Projection::perspective;
+  double margin = 0.08;                                        ///< fraction of the framed area left free
+  QString title;                                               ///< centred at the top; empty = none
+  bool legend = true;                                          ///< the garment's legend or colour bar, from 240 pixels
+};
+
+/// Smallest side (pixels) a picture draws its legend at: on a thumbnail it
+/// would cover the garment.
+inline constexpr int kLeastLegendSide = 240;
+
+/// `scene` seen by `options.camera` fitted to `box`, with the title and
+/// `garment`'s legend (top right) or colour bar (bottom right). The legend
+/// takes a column of its own on the right, the garment framed in the rest
+/// (it covered the garment on images of 240-450 pixels), unless that column
+/// would take more than 45 % of the width (then it is drawn over the picture).
+QImage draw_picture(const render::Scene& scene, const render::BoundingBox& box, const GarmentLayer& garment,
+                    const PictureOptions& options);
 
 /// The largest value of the mesh's mean_curvature layer (1/m); throws
 /// ArgumentError naming extractModes when the mesh has no such layer.

@@ -126,6 +126,11 @@ QRect draw_legend(QImage& image, const std::vector<LegendEntry>& entries, Corner
   return draw_legend(painter, image.rect(), entries, corner, style);
 }
 
+QSize color_bar_size(const ColorBar& bar, const LegendStyle& style) {
+  require_gui_application("color_bar_size");
+  return bar_layout(bar, QFontMetrics(make_font(style.font_pixel_size)), style).size;
+}
+
 QRect draw_color_bar(QPainter& painter, const QRect& area, const ColorBar& bar, Corner corner,
                      const LegendStyle& style) {
   require_gui_application("draw_color_bar");

@@ -62,6 +62,9 @@ QRect draw_legend(QPainter& painter, const QRect& area, const std::vector<Legend
 QRect draw_legend(QImage& image, const std::vector<LegendEntry>& entries, Corner corner = Corner::top_right,
                   const LegendStyle& style = {});
 
+/// Size the box of `bar` (label, bar and values) takes with `style`.
+QSize color_bar_size(const ColorBar& bar, const LegendStyle& style = {});
+
 /// Draws `bar` with its label and min/mid/max values in `corner` of `area`
 /// (of the whole image). Returns the box drawn.
 QRect draw_color_bar(QPainter& painter, const QRect& area, const ColorBar& bar, Corner corner = Corner::bottom_right,

@@ -176,6 +176,44 @@ TEST(PreviewGarmentLayer, ModeColoursEveryVertexAndListsTheModesPresent) {
   EXPECT_FALSE(layer.color_bar.has_value());
 }
 
+// The legend takes a column of its own: no garment pixel at or right of
+// the legend box's left edge (the garment, framed on the whole width, lay
+// under the legend on pictures of 240-450 pixels). The legend box is where
+// its grey outline is.
+TEST(PreviewPicture, TheLegendHasAColumnOfItsOwn) {
+  QuadMesh mesh = test::make_grid(4, 4);
+  set_modes(mesh, {0, 1, 2}, 3);
+  set_modes(mesh, {20, 21}, 5);
+  const GarmentLayer garment = garment_layer(mesh, {}, ColorBy::mode);
+  render::Scene scene;
+  scene.surfaces.push_back(garment.surface);
+  PictureOptions options;
+  options.width = options.height = 300;
+  options.supersample = 1;
+  const render::LegendStyle style;
+  for (const bool legend : {true, false}) {
+    options.legend = legend;
+    const QImage image = draw_picture(scene, render::bounds(garment.surface), garment, options);
+    ASSERT_EQ(image.size(), QSize(300, 300));
+    QRect box;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        if (QColor(image.pixel(x, y)) == style.border_color) box |= QRect(x, y, 1, 1);
+    EXPECT_EQ(box.isEmpty(), !legend);
+    int rightmost = -1;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        if (!box.contains(x, y) && QColor(image.pixel(x, y)) != scene.background) rightmost = std::max(rightmost, x);
+    if (legend) {
+      EXPECT_EQ(box.right(), 300 - 1 - style.margin);
+      EXPECT_LT(rightmost, box.left()) << "a garment pixel at or right of the legend's left edge";
+      EXPECT_GT(rightmost, box.left() / 2) << "the garment fills the rest";
+    } else {
+      EXPECT_GT(rightmost, 250) << "without a legend the garment has the whole width";
+    }
+  }
+}
+
 TEST(PreviewGarmentLayer, ModeOnARefinedMeshCoversTheNewVertices) {
   const QuadMesh mesh = two_level_grid();
   const GarmentLayer layer = garment_layer(mesh, {}, ColorBy::mode);
