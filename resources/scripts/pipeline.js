@@ -1234,7 +1234,8 @@ function renderPreviews(options, out, models, multiNames, runs, multiRecord, mod
     const sheet = "previews/sheet_" + motionName + ".png";
     const atFrames = (frames.length === 1 ? "frame " : "frames ") + frames.join(", ");
     preview.contactSheet(cells, out + "/" + sheet, {columns: frames.length, captions: captions,
-                                                    title: motionName + ": models (rows) at " + atFrames});
+                                                    title: motionName + ": models (rows) at " + atFrames +
+                                                           " (from 0: the cache's first sample is 0)"});
     images.push({file: sheet, title: motionName + ": every model at " + atFrames});
   }
 
