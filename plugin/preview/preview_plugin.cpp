@@ -46,19 +46,12 @@ constexpr double kMarginBelow = 0.45; ///< a render's margin, a fraction of the 
 
 /// What one render call asks for.
 struct RenderRequest {
-  int width = 800;
-  int height = 800;
-  render::Preset camera = render::Preset::front;
-  render::Projection projection = render::Projection::perspective;
+  preview::PictureOptions picture;  ///< size, camera, margin, title, legend
   ColorBy color_by = ColorBy::none;
   bool wireframe = true;
-  bool legend = true;
-  QString title;
   QString cache;            ///< garment cache; empty: the mesh's own points
   QString body_cache;       ///< body cache; empty: no body
   QString body_mesh;        ///< its rest OBJ (default: beside the cache)
-  int supersample = 2;
-  double margin = 0.08;
   bool fit_all = false;     ///< fit the body too (default: the garment only)
 };
 
@@ -76,11 +69,12 @@ QStringList presetNames() {
 
 RenderRequest parseRenderOptions(const Fields& fields) {
   RenderRequest request;
-  request.width = fields.integerBetween(QStringLiteral("width"), request.width, kLeastImageSide, kMostImageSide);
-  request.height = fields.integerBetween(QStringLiteral("height"), request.height, kLeastImageSide, kMostImageSide);
-  request.camera = render::parse_preset(
+  preview::PictureOptions& picture = request.picture;
+  picture.width = fields.integerBetween(QStringLiteral("width"), picture.width, kLeastImageSide, kMostImageSide);
+  picture.height = fields.integerBetween(QStringLiteral("height"), picture.height, kLeastImageSide, kMostImageSide);
+  picture.camera = render::parse_preset(
       fields.choice(QStringLiteral("camera"), QStringLiteral("front"), presetNames()).toStdString());
-  request.projection = fields.choice(QStringLiteral("projection"), QStringLiteral("perspective"),
+  picture.projection = fields.choice(QStringLiteral("projection"), QStringLiteral("perspective"),
                                      {QStringLiteral("perspective"), QStringLiteral("orthographic")}) ==
                                QLatin1String("orthographic")
                            ? render::Projection::orthographic
@@ -93,19 +87,20 @@ RenderRequest parseRenderOptions(const Fields& fields) {
                      : color_by == QLatin1String("curvature") ? ColorBy::curvature
                                                               : ColorBy::none;
   request.wireframe = fields.boolean(QStringLiteral("wireframe"), request.wireframe);
-  request.legend = fields.boolean(QStringLiteral("legend"), request.legend);
-  request.title = fields.string(QStringLiteral("title"));
-  request.supersample = fields.integerBetween(QStringLiteral("supersample"), request.supersample, 1, kMostSupersample);
-  const long long samples = static_cast<long long>(request.width) * request.height * request.supersample * request.supersample;
+  picture.legend = fields.boolean(QStringLiteral("legend"), picture.legend);
+  picture.title = fields.string(QStringLiteral("title"));
+  picture.supersample = fields.integerBetween(QStringLiteral("supersample"), picture.supersample, 1, kMostSupersample);
+  const long long samples =
+      static_cast<long long>(picture.width) * picture.height * picture.supersample * picture.supersample;
   if (samples > render::kMaxRenderSamples)
     options::fail(QStringLiteral("options 'width' x 'height' (%1 x %2) at 'supersample' %3 take %4 samples; expected at "
                                  "most %5 (for instance 5792 x 5792 at 2, 8192 x 4096 at 2, or 8192 x 8192 at 1)")
-                      .arg(request.width).arg(request.height).arg(request.supersample).arg(samples)
+                      .arg(picture.width).arg(picture.height).arg(picture.supersample).arg(samples)
                       .arg(render::kMaxRenderSamples));
-  request.margin = fields.numberFrom(QStringLiteral("margin"), request.margin, 0.0, false);
-  if (request.margin >= kMarginBelow)
+  picture.margin = fields.numberFrom(QStringLiteral("margin"), picture.margin, 0.0, false);
+  if (picture.margin >= kMarginBelow)
     options::fail(QStringLiteral("option 'margin' must be below %1 (a fraction of the image), got %2")
-                      .arg(kMarginBelow).arg(request.margin));
+                      .arg(kMarginBelow).arg(picture.margin));
   request.fit_all = fields.choice(QStringLiteral("fit"), QStringLiteral("garment"),
                                   {QStringLiteral("garment"), QStringLiteral("all")}) == QLatin1String("all");
   if (fields.has(QStringLiteral("cache")))
@@ -141,18 +136,9 @@ QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame
     scene.surfaces.push_back(
         preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), frame));
 
-  preview::PictureOptions picture;
-  picture.width = request.width;
-  picture.height = request.height;
-  picture.supersample = request.supersample;
-  picture.camera = request.camera;
-  picture.projection = request.projection;
-  picture.margin = request.margin;
-  picture.title = request.title;
-  picture.legend = request.legend;
   return preview::draw_picture(
       scene, framing ? *framing : request.fit_all ? render::bounds(scene) : render::bounds(garment.surface), garment,
-      picture);
+      request.picture);
 }
 
 /// std::runtime_error / invalid_argument from the render library are the
