@@ -81,9 +81,12 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
   const PromiseJobs promises(engine);
   QStringList stack;
   const QJSValue result = engine.evaluate(program, path, 1, &stack);
+  // The engine fills the stack exactly when the script threw (anything:
+  // `throw 42`, a syntax error too). The result being an Error is no sign:
+  // a script whose last statement's value is an error it caught ran to its
+  // end (it exited 1, and its promises' callbacks never ran).
+  const bool threw = !stack.isEmpty();
   stack = withoutSlotGuardFrames(stack);
-  // An uncaught `throw 42` is not an Error object, but it leaves a stack.
-  const bool threw = result.isError() || !stack.isEmpty();
   if (!threw) promises.drain([&] { return interrupted.load() || core.exitRequested(); });
   // Ctrl-C wins over everything the interrupted script did afterwards.
   if (interrupted.load()) {

@@ -455,11 +455,14 @@ bool ScriptCore::include(QVariant path) {
     included_.insert(key);
     QStringList stack;
     const QJSValue result = engine->evaluate(program, file, 1, &stack);
+    // Filled exactly when the file threw (see batch_runner.cpp): a file whose
+    // last value is an Error it caught was taken for a failed include.
+    const bool threw = !stack.isEmpty();
     stack = withoutSlotGuardFrames(stack);
     // exitApplication or Ctrl-C inside the file: the engine stays interrupted
     // and stops the including script too.
     if (engine->isInterrupted()) return true;
-    if (!result.isError() && stack.isEmpty()) return true;
+    if (!threw) return true;
 
     included_.remove(key);  // a failed include may be retried, and fails again
     // Stack frames read "function:line:column:file" (the file may contain ':').
