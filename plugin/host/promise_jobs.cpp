@@ -26,19 +26,58 @@ const char kTracker[] = R"JS(
     constructor(executor) {
       let self = null, early = null, settled = false;
       super((resolve, reject) => {
-        const fulfil = (value) => {
-          if (!settled && value instanceof Native)
-            Native.prototype.then.call(value, undefined, (reason) => note(self, reason));
-          settled = true;
-          resolve(value);
-        };
-        const fail = (reason) => {
-          if (!settled) {
-            settled = true;
-            if (self) note(self, reason);
-            else early = {reason: reason};
-          }
+        const rejected = (reason) => {
+          if (self) note(self, reason);
+          else early = {reason: reason};
           reject(reason);
+        };
+        // A value's resolution, as the language's resolve function does it,
+        // but a thenable's `then` is called here: Qt 6.4 crashed (SIGSEGV)
+        // when one threw, and missed its rejection as unhandled.
+        function adopt(value) {
+          if (value instanceof Native) {
+            Native.prototype.then.call(value, undefined, (reason) => note(self, reason));
+            resolve(value);
+            return;
+          }
+          let then;
+          try {
+            then = value !== null && (typeof value === "object" || typeof value === "function") ? value.then : undefined;
+          } catch (error) {
+            rejected(error);
+            return;
+          }
+          if (typeof then !== "function") {
+            resolve(value);
+            return;
+          }
+          // In a job of its own, as the language calls it.
+          Native.prototype.then.call(Native.resolve(), () => {
+            let called = false;
+            const once = (settle) => (outcome) => {
+              if (!called) {
+                called = true;
+                settle(outcome);
+              }
+            };
+            try {
+              then.call(value, once(adopt), once(rejected));
+            } catch (error) {
+              once(rejected)(error);
+            }
+          });
+        }
+        const fulfil = (value) => {
+          if (settled) return;
+          settled = true;
+          adopt(value);
+        };
+        // The first of the two calls wins, as the language's functions do
+        // (a reject after resolving with a thenable must not reject).
+        const fail = (reason) => {
+          if (settled) return;
+          settled = true;
+          rejected(reason);
         };
         try {
           executor(fulfil, fail);
