@@ -122,7 +122,10 @@ void HostLog::line(bool to_stdout, const QString& prefix, const QString& text) c
   const QByteArray bytes = (prefix + text + QLatin1Char('\n')).toUtf8();
   clearBar();
   if (to_stdout) {
-    if (!writeAll(bytes, stdout)) noteStdoutError(errno);
+    // Each line as it is printed: into a file or pipe stdout is block
+    // buffered, so a log showed nothing during a long run (with --quiet no
+    // stderr line flushed it) and lost everything on SIGKILL.
+    if (!writeAll(bytes, stdout) || std::fflush(stdout) != 0) noteStdoutError(errno);
   } else {
     // Flush script output first so a terminal shows both streams in order.
     if (std::fflush(stdout) != 0) noteStdoutError(errno);
