@@ -92,12 +92,24 @@ std::string whyNoFolder(const std::string& folder, const std::error_code& error)
   return error ? error.message() : std::string("it is not a folder after creating it");
 }
 
-/// A lock file naming no owner (empty or garbage) that has not changed for
-/// a few seconds: left by a process killed while creating it.
-bool ownerless(const QLockFile& lock, const QString& path) {
+/// Whether the lock at `path` names its owner.
+bool namesOwner(const QLockFile& lock) {
   qint64 pid = 0;
   QString host, application;
-  if (lock.getLockInfo(&pid, &host, &application) && pid > 0) return false;
+  return lock.getLockInfo(&pid, &host, &application) && pid > 0;
+}
+
+/// Whether the file holds nothing but white space (what a process killed
+/// while creating a lock leaves), read up to a lock's size.
+bool blankFile(const QString& path) {
+  QFile file(path);
+  return file.open(QIODevice::ReadOnly) && file.read(4096).trimmed().isEmpty();
+}
+
+/// A lock file naming no owner (empty) that has not changed for a few
+/// seconds: left by a process killed while creating it.
+bool ownerless(const QLockFile& lock, const QString& path) {
+  if (namesOwner(lock) || !blankFile(path)) return false;
   const QFileInfo file(path);
   return file.isFile() && file.lastModified().msecsTo(QDateTime::currentDateTime()) > kOwnerlessLockMs;
 }
@@ -395,7 +407,13 @@ QVariantMap ScriptCore::lockFile(QVariant path) {
     lock->setStaleLockTime(0);
     // Half a second of retries: two runs taking over one stale lock at once
     // settle on a winner, whose name the other then reads (it read the dead one's).
-    if (!lock->tryLock(kLockPatienceMs) && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
+    const bool free = lock->tryLock(kLockPatienceMs);
+    // Any other file there (a report, a mistyped path) is not a lock: it
+    // was taken over once 3 s old (written over, then removed by unlockFile).
+    if (!free && lock->error() == QLockFile::LockFailedError && !namesOwner(*lock) && !blankFile(name))
+      throw ArgumentError(name.toStdString() + " exists and is not a lock file (it names no process); expected a "
+                          "path kept for the lock alone");
+    if (!free && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
       // A process killed between creating the file and writing its owner
       // leaves it empty: no owner to ask, so it is taken over once it is
       // older than a writer needs.
@@ -599,7 +617,8 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "process that holds it (pid 0: the file names no process yet). A lock whose process is "
                       "gone (killed), or that has named no process for 3 s (killed while taking it), is taken "
                       "over; a held one never expires. OutputError if the path is a folder or its folder is "
-                      "missing, or the lock file cannot be created."),
+                      "missing, or the lock file cannot be created; ArgumentError if another file is there (not "
+                      "empty, naming no process)."),
        {QStringLiteral("path")},
        {QStringLiteral("lock file, e.g. \"out/stages/.lock\" (its folder must exist)")}},
       {QStringLiteral("unlockFile(string path) -> bool"),

@@ -80,6 +80,13 @@ core.writeTextFile(tmpDir + "/sub/.ownerless", "\n");
 const since = Date.now();
 while (Date.now() - since < 3200) {}
 expectEqual(core.lockFile(tmpDir + "/sub/.ownerless"), {locked: true}, "lockFile over an ownerless lock");
+// Another file (a report, a mistyped path) is no lock, however old: refused,
+// left as it was (it was written over, then removed by unlockFile).
+core.writeTextFile(tmpDir + "/sub/report.json", "{\"precious\": true}\n");
+while (Date.now() - since < 6500) {}
+expectThrows(() => core.lockFile(tmpDir + "/sub/report.json"), "ArgumentError", "core.lockFile: ", "sub/report.json",
+             " exists and is not a lock file (it names no process)");
+expectEqual(core.readTextFile(tmpDir + "/sub/report.json"), "{\"precious\": true}\n", "the file lockFile refused");
 // unlockFile releases (the file goes), once; a batch of locks one after the other holds one at a time.
 expectEqual(core.unlockFile(tmpDir + "/sub/.lock"), true, "unlockFile");
 expectEqual(core.fileExists(tmpDir + "/sub/.lock"), false, "the lock file after unlockFile");
