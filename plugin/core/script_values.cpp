@@ -141,9 +141,13 @@ bool toBool(const QVariant& value, const QString& what) {
   return value.toBool();
 }
 
-QString toString(const QVariant& value, const QString& what) {
+QString toText(const QVariant& value, const QString& what) {
   if (value.typeId() != QMetaType::QString) failType(what, QStringLiteral("a string"), value);
-  const QString text = value.toString();
+  return value.toString();
+}
+
+QString toString(const QVariant& value, const QString& what) {
+  const QString text = toText(value, what);
   if (text.isEmpty()) failType(what, QStringLiteral("a non-empty string"), value);
   return text;
 }

@@ -33,6 +33,8 @@ double toNumber(const QVariant& value, const QString& what);
 bool toBool(const QVariant& value, const QString& what);
 /// A non-empty string.
 QString toString(const QVariant& value, const QString& what);
+/// A string, empty too (a file's contents).
+QString toText(const QVariant& value, const QString& what);
 /// One of `choices` (case-sensitive).
 QString toChoice(const QVariant& value, const QString& what, const QStringList& choices);
 /// An array (a JS array, or an empty object-like value).

@@ -268,7 +268,7 @@ void ScriptCore::makePath(QVariant path) {
 void ScriptCore::writeTextFile(QVariant path, QVariant text) {
   guarded("writeTextFile", [&] {
     const std::string file = script::toString(path, QStringLiteral("path")).toStdString();
-    const QByteArray bytes = script::toString(text, QStringLiteral("text")).toUtf8();
+    const QByteArray bytes = script::toText(text, QStringLiteral("text")).toUtf8();  // empty: an empty file
     require_writable_target(file);
     write_file_atomically(file, "", [&](const std::string& temporary) {
       QFile out(QString::fromStdString(temporary));

@@ -66,6 +66,11 @@ expectEqual(core.removeTemporaries(tmpDir + "/no_such_folder"), [], "removeTempo
 // here with the name a save would use: saving succeeds, so leaves none).
 expectEqual(core.removeTemporaries(tmpDir), [], "a second sweep");
 
+// An empty text makes an empty file (it was refused as "a non-empty string").
+core.writeTextFile(tmpDir + "/empty.txt", "");
+expectEqual([core.fileSize(tmpDir + "/empty.txt"), core.readTextFile(tmpDir + "/empty.txt")], [0, ""], "an empty file");
+expectThrows(() => core.writeTextFile(tmpDir + "/x.txt", 42), "ArgumentError", "text must be a string");
+
 // lockFile: taken, taken again by the same run; the file exists while held.
 expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile");
 expectEqual(core.lockFile(tmpDir + "/sub/.lock"), {locked: true}, "lockFile again");
