@@ -29,15 +29,29 @@ QJSValue parameterLimits(QJSEngine& engine, const QObject& object) {
   return limits;
 }
 
+/// The names of the object's signals, QObject's included (the host's to
+/// listen to, not a script's to call).
+QJSValue signalNames(QJSEngine& engine, const QObject& object) {
+  QJSValue names = engine.newObject();
+  const QMetaObject& meta = *object.metaObject();
+  for (int k = 0; k < meta.methodCount(); ++k)
+    if (meta.method(k).methodType() == QMetaMethod::Signal)
+      names.setProperty(QString::fromLatin1(meta.method(k).name()), true);
+  return names;
+}
+
 }  // namespace
 
 void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   // The engine must not delete it: core lives on main's stack and plugins
   // belong to their loaders.
   QJSEngine::setObjectOwnership(object, QJSEngine::CppOwnership);
-  // A proxy, so that everything else (signals, properties) reads through.
+  // A proxy: its slots checked for extra arguments; its signals (log,
+  // startJob, ...: the host's to listen to) hidden, since a script calling
+  // them wrote fake log lines or left a job never finished; properties read through.
   static const char* const kGuard = R"JS(
-(function (target, limits, objectName, guardFile) {
+(function (target, limits, signals, objectName, guardFile) {
+  const own = (table, key) => typeof key === "string" && Object.prototype.hasOwnProperty.call(table, key);
   // An error made in this file (by the check, or by the slot it calls) is
   // the caller's: its file and line become the caller's. (Its stack keeps
   // this frame: V4's is fixed; the host's reports leave it out.)
@@ -55,7 +69,9 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   return new Proxy(target, {
     get(object, key) {
       const value = object[key];
-      if (typeof value !== "function" || typeof key !== "string" || !(key in limits)) return value;
+      if (typeof value !== "function") return value;
+      if (own(signals, key)) return undefined;
+      if (!own(limits, key)) return value;
       const most = limits[key];
       return function (...args) {
         if (args.length > most) {
@@ -74,8 +90,8 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   });
 }))JS";
   const QJSValue guard = engine.evaluate(QString::fromLatin1(kGuard), QString::fromLatin1(kSlotGuardFile));
-  const QJSValue proxy = guard.call({engine.newQObject(object), parameterLimits(engine, *object), name,
-                                     QString::fromLatin1(kSlotGuardFile)});
+  const QJSValue proxy = guard.call({engine.newQObject(object), parameterLimits(engine, *object),
+                                     signalNames(engine, *object), name, QString::fromLatin1(kSlotGuardFile)});
   engine.globalObject().setProperty(name, proxy.isError() ? engine.newQObject(object) : proxy);
 }
 
