@@ -211,9 +211,8 @@ void ScriptCore::deleteObject(QVariant id) {
 
 void ScriptCore::exitApplication(QVariant code) {
   guarded("exitApplication", [&] {
-    const int exit_code = code.isValid() ? script::toInt(code, QStringLiteral("code")) : 0;
-    if (exit_code < 0 || exit_code > 255)
-      throw ArgumentError("code must be an integer in [0, 255], got " + std::to_string(exit_code));
+    // One range for every value (1e12 was refused as beyond an int's).
+    const int exit_code = code.isValid() ? script::toIntBetween(code, QStringLiteral("code"), 0, 255) : 0;
     exit_requested_ = true;
     exit_code_ = exit_code;
     // An interrupt, unlike a thrown error, cannot be caught by the script's

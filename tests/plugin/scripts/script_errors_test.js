@@ -52,7 +52,8 @@ expectThrows(() => multirescloth.setModes(grid, "all", 2), "ArgumentError", "ver
 expectThrows(() => multirescloth.setModes(grid, [0, "1"], 2), "ArgumentError", "vertexIds[1] must be an integer");
 expectThrows(() => multirescloth.setModes(grid, [16], 2), "ArgumentError", "multirescloth.setModes: ", "16");
 expectThrows(() => multirescloth.setModes(grid, [0], -1), "ArgumentError", "multirescloth.setModes: ", "-1");
-expectThrows(() => core.exitApplication(256), "ArgumentError", "code must be an integer in [0, 255]");
+expectThrows(() => core.exitApplication(256), "ArgumentError", "code must be an integer from 0 to 255, got the number 256");
+expectThrows(() => core.exitApplication(1e12), "ArgumentError", "code must be an integer from 0 to 255, got the number 1e+12");
 
 // Options: unknown keys are named with the accepted ones; values are checked.
 expectThrows(() => multirescloth.refineAdaptive(grid, {delta: 8, maxlevel: 3}), "ArgumentError",
