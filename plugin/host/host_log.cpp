@@ -119,7 +119,11 @@ void HostLog::installMessageHandler() {
 }
 
 void HostLog::line(bool to_stdout, const QString& prefix, const QString& text) const {
-  const QByteArray bytes = (prefix + text + QLatin1Char('\n')).toUtf8();
+  // Every line of a message carries its prefix: `grep '^\[warn\]'` missed
+  // a warning's second line.
+  QString lines = text;
+  if (!prefix.isEmpty()) lines.replace(QLatin1Char('\n'), QLatin1Char('\n') + prefix);
+  const QByteArray bytes = (prefix + lines + QLatin1Char('\n')).toUtf8();
   clearBar();
   if (to_stdout) {
     // Each line as it is printed: into a file or pipe stdout is block
