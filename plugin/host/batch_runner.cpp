@@ -117,8 +117,15 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
       result.isError() ? result.toString() : QStringLiteral("uncaught exception: %1").arg(result.toString());
   log.raw(QStringLiteral("%1:%2: %3").arg(where, line, message));
   if (stack.size() > 1) {
-    for (const QString& frame : stack) {
-      const StackFrame parsed = parseFrame(frame, path);
+    // A runaway recursion's stack (a RangeError) ran to 1,238 lines: its
+    // innermost and outermost frames say where, the middle repeats.
+    constexpr qsizetype kInnermost = 12, kOutermost = 4;
+    for (qsizetype k = 0; k < stack.size(); ++k) {
+      if (k == kInnermost && stack.size() > kInnermost + kOutermost + 1) {
+        log.raw(QStringLiteral("    ... %1 more frames").arg(stack.size() - kInnermost - kOutermost));
+        k = stack.size() - kOutermost;
+      }
+      const StackFrame parsed = parseFrame(stack[k], path);
       log.raw(QStringLiteral("    at %1 (%2:%3)").arg(parsed.function, parsed.file, parsed.line));
     }
   }
