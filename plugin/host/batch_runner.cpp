@@ -45,7 +45,7 @@ StackFrame parseFrame(const QString& frame, const QString& fallback_file) {
 /// ("function@url:line" each; the promise tracking's own left out).
 void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog& log) {
   if (!reason.isError()) {
-    log.raw(QStringLiteral("%1:?: uncaught (in promise): rejected with %2").arg(path, reason.toString()));
+    log.raw(QStringLiteral("%1:?: uncaught (in promise): rejected with %2").arg(path, thrownValueText(reason)));
     return;
   }
   log.raw(QStringLiteral("%1:%2: uncaught (in promise) %3")
@@ -114,7 +114,7 @@ int runBatchScript(const QString& path, QJSEngine& engine, const ScriptCore& cor
     line = QStringLiteral("?");
   }
   const QString message =
-      result.isError() ? result.toString() : QStringLiteral("uncaught exception: %1").arg(result.toString());
+      result.isError() ? result.toString() : QStringLiteral("uncaught exception: %1").arg(thrownValueText(result));
   log.raw(QStringLiteral("%1:%2: %3").arg(where, line, message));
   if (stack.size() > 1) {
     // A runaway recursion's stack (a RangeError) ran to 1,238 lines: its

@@ -494,7 +494,7 @@ bool ScriptCore::include(QVariant path) {
     failure_message = QStringLiteral("core.include: %1:%2: %3")
                           .arg(where, line,
                                result.isError() ? result.toString()
-                                                : QStringLiteral("uncaught exception: %1").arg(result.toString()));
+                                                : QStringLiteral("uncaught exception: %1").arg(thrownValueText(result)));
     return false;
   });
   if (!failure_message.isEmpty()) throwScriptError(this, failure_name, failure_message);

@@ -95,6 +95,17 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
   engine.globalObject().setProperty(name, proxy.isError() ? engine.newQObject(object) : proxy);
 }
 
+QString thrownValueText(const QJSValue& value) {
+  if (value.isObject() && !value.isCallable()) {
+    const QJSValue message = value.property(QStringLiteral("message"));
+    const QJSValue name = value.property(QStringLiteral("name"));
+    if (message.isString())
+      return (name.isString() && !name.toString().isEmpty() ? name.toString() + QStringLiteral(": ") : QString()) +
+             message.toString();
+  }
+  return value.toString();
+}
+
 QStringList withoutSlotGuardFrames(QStringList stack) {
   stack.removeIf([](const QString& frame) { return frame.contains(QLatin1String(kSlotGuardFile)); });
   return stack;

@@ -1,5 +1,6 @@
 #pragma once
 // Plugin objects as scripts see them.
+#include <QJSValue>
 #include <QString>
 #include <QStringList>
 
@@ -23,5 +24,10 @@ inline constexpr const char* kSlotGuardFile = "mrcloth-slot-guard";
 /// `stack` (QJSEngine's "function:line:column:file" frames) without the
 /// check's frames.
 QStringList withoutSlotGuardFrames(QStringList stack);
+
+/// A thrown value that is not an Error, as an uncaught-exception report
+/// names it: an object's `name: message` when it has a string message
+/// (`throw {message: "..."}` printed "[object Object]"), else its text.
+QString thrownValueText(const QJSValue& value);
 
 }  // namespace mrcloth
