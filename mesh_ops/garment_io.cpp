@@ -1433,11 +1433,29 @@ void save_mesh(const QuadMesh& mesh, const std::string& path) {
   write_file_atomically(path, extension, [&](const std::string& file) { return write_text(file, surface, format); });
 }
 
+/// Per vertex, the finest level among the active faces around it, as the
+/// previews colour faces: a coarse vertex inside a refined region is that
+/// region's level (by the level that made it, it was a coarse speck there).
+/// A vertex in no face keeps the level that made it.
+std::vector<int> finest_face_levels(const QuadMesh& mesh) {
+  std::vector<int> levels = vertex_levels(mesh);
+  std::vector<int> finest(levels.size(), 0);
+  const auto level = get_layers(mesh).level;
+  for (const auto f : mesh.faces())
+    for (const auto v : f.vertices()) {
+      int& most = finest[static_cast<std::size_t>(v.idx())];
+      most = std::max(most, mesh.property(level, f));
+    }
+  for (std::size_t v = 0; v < levels.size(); ++v)
+    if (finest[v] > 0) levels[v] = finest[v];
+  return levels;
+}
+
 void export_surface(const QuadMesh& mesh, const std::string& path, const ExportOptions& options) {
   const Format format = output_format(path, false);
   Surface surface = active_surface(mesh);
   if (options.color_by == ColorBy::level) {
-    const std::vector<int> levels = vertex_levels(mesh);
+    const std::vector<int> levels = finest_face_levels(mesh);
     for (std::size_t v = 0; v < surface.points.size(); ++v)
       surface.colors.push_back(palette_color(v < levels.size() ? levels[v] : 0));
   } else if (options.color_by == ColorBy::mode) {

@@ -106,7 +106,8 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "surface at a frame of that simulation."),
        {QStringLiteral("id"), QStringLiteral("path"), QStringLiteral("options")},
        {id_text, QStringLiteral("output file; the extension picks the format"),
-        QStringLiteral("{colorBy: \"level\" | \"mode\" | \"curvature\" (mean curvature after extractModes, viridis "
+        QStringLiteral("{colorBy: \"level\" (the finest of each vertex's faces) | \"mode\" | \"curvature\" (mean "
+                       "curvature after extractModes, viridis "
                        "from 0 to the largest) | \"none\" = \"none\", triangulate: bool = false, cache: PC2 of "
                        "this object (simulate's output) = none, frame: int >= 0 = 0 (of the cache)}")}},
       {QStringLiteral("limits() -> object"),

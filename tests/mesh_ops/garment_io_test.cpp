@@ -1167,6 +1167,37 @@ TEST(GarmentExport, ObjTriangulatedWithLevelColours) {
   EXPECT_EQ(triangles, 2u * kGridFaces);
 }
 
+// Level colours follow the faces, as the previews show them: a vertex takes
+// the finest level of its faces. Two quads side by side, the left one split:
+// every vertex but the right quad's two far corners is level 2 (its corners
+// and the shared edge's ends were level 1, coarse specks in the refined quad).
+TEST(GarmentExport, LevelColoursAreTheFinestOfEachVertexsFaces) {
+  ScratchDir dir;
+  QuadMesh mesh = mrcloth::load_garment(write_file(dir.file("two.obj"),
+                                                   "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
+                                                   "f 1 2 5 4\nf 2 3 6 5\n")).mesh;
+  mrcloth::QuadRefiner refiner(mesh);
+  refiner.split(0);
+  ASSERT_TRUE(refiner.finish());
+  const std::string path = dir.file("levels.obj");
+  mrcloth::export_surface(mesh, path, {mrcloth::ColorBy::level, false});
+  std::istringstream text(read_file(path));
+  std::vector<std::array<long, 3>> colours;
+  for (std::string line; std::getline(text, line);) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream words(line.substr(2));
+    std::vector<double> numbers;
+    for (double x; words >> x;) numbers.push_back(x);
+    ASSERT_EQ(numbers.size(), 6u) << line;
+    colours.push_back({std::lround(numbers[3] * 255.0), std::lround(numbers[4] * 255.0), std::lround(numbers[5] * 255.0)});
+  }
+  ASSERT_EQ(colours.size(), mesh.n_vertices());
+  const auto as_long = [](const std::array<unsigned char, 3>& c) { return std::array<long, 3>{c[0], c[1], c[2]}; };
+  const auto level1 = as_long(mrcloth::palette_color(1)), level2 = as_long(mrcloth::palette_color(2));
+  for (std::size_t v = 0; v < colours.size(); ++v)
+    EXPECT_EQ(colours[v], v == 2 || v == 5 ? level1 : level2) << "vertex " << v;
+}
+
 TEST(GarmentExport, UncolouredPlyHasNoColourProperties) {
   ScratchDir dir;
   const mrcloth::LoadResult loaded = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj()));
