@@ -34,7 +34,10 @@ QString withoutFileScheme(const QString& file) {
 StackFrame parseFrame(const QString& frame, const QString& fallback_file) {
   StackFrame parsed{frame.section(QLatin1Char(':'), 0, 0), frame.section(QLatin1Char(':'), 1, 1),
                     frame.section(QLatin1Char(':'), 3)};
-  if (parsed.function.isEmpty() || parsed.function == QLatin1String("%entry")) parsed.function = QStringLiteral("<script>");
+  // The script's own code is "%entry"; a function without a name (an arrow
+  // passed to map) is anonymous, not the script (it printed as <script> too).
+  if (parsed.function == QLatin1String("%entry")) parsed.function = QStringLiteral("<script>");
+  else if (parsed.function.isEmpty()) parsed.function = QStringLiteral("<anonymous>");
   parsed.file = withoutFileScheme(parsed.file);
   if (parsed.file.isEmpty()) parsed.file = fallback_file;
   return parsed;
@@ -60,7 +63,8 @@ void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog&
   for (const QString& frame : frames) {
     const qsizetype at = frame.indexOf(QLatin1Char('@'));
     QString function = frame.left(at);
-    if (function.isEmpty() || function == QLatin1String("%entry")) function = QStringLiteral("<script>");
+    if (function == QLatin1String("%entry")) function = QStringLiteral("<script>");
+    else if (function.isEmpty()) function = QStringLiteral("<anonymous>");
     log.raw(QStringLiteral("    at %1 (%2)").arg(function, withoutFileScheme(frame.mid(at + 1))));
   }
 }

@@ -92,11 +92,13 @@ std::string whyNoFolder(const std::string& folder, const std::error_code& error)
   return error ? error.message() : std::string("it is not a folder after creating it");
 }
 
-/// Whether the lock at `path` names its owner.
+/// Whether the lock at `path` names its owner as QLockFile writes it: a
+/// process id, an application and a host name on lines of their own (a
+/// file whose first line was a number, "42", passed for a lock).
 bool namesOwner(const QLockFile& lock) {
   qint64 pid = 0;
   QString host, application;
-  return lock.getLockInfo(&pid, &host, &application) && pid > 0;
+  return lock.getLockInfo(&pid, &host, &application) && pid > 0 && !host.isEmpty();
 }
 
 /// Whether the file holds nothing but white space (what a process killed
@@ -406,12 +408,14 @@ QVariantMap ScriptCore::lockFile(QVariant path) {
     lock->setStaleLockTime(0);
     // Half a second of retries: two runs taking over one stale lock at once
     // settle on a winner, whose name the other then reads (it read the dead one's).
-    const bool free = lock->tryLock(kLockPatienceMs);
-    // Any other file there (a report, a mistyped path) is not a lock: it
-    // was taken over once 3 s old (written over, then removed by unlockFile).
-    if (!free && lock->error() == QLockFile::LockFailedError && !namesOwner(*lock) && !blankFile(name))
+    // Any other file there (a report, a mistyped path) is not a lock, and is
+    // refused before trying: Qt takes a file naming no running process of
+    // its application for a stale lock and writes over it (then unlockFile
+    // removed it); one naming no process was taken over once 3 s old.
+    if (QFileInfo(name).isFile() && !namesOwner(*lock) && !blankFile(name))
       throw ArgumentError(name.toStdString() + " exists and is not a lock file (it names no process); expected a "
                           "path kept for the lock alone");
+    const bool free = lock->tryLock(kLockPatienceMs);
     if (!free && lock->error() == QLockFile::LockFailedError && ownerless(*lock, name)) {
       // A process killed between creating the file and writing its owner
       // leaves it empty: no owner to ask, so it is taken over once it is
@@ -617,7 +621,7 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
                       "gone (killed), or that has named no process for 3 s (killed while taking it), is taken "
                       "over; a held one never expires. OutputError if the path is a folder or its folder is "
                       "missing, or the lock file cannot be created; ArgumentError if another file is there (not "
-                      "empty, naming no process)."),
+                      "blank, naming no process as a lock does)."),
        {QStringLiteral("path")},
        {QStringLiteral("lock file, e.g. \"out/stages/.lock\" (its folder must exist)")}},
       {QStringLiteral("unlockFile(string path) -> bool"),

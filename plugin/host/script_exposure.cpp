@@ -67,6 +67,16 @@ void exposeToScripts(QJSEngine& engine, const QString& name, QObject* object) {
     return error;
   }
   return new Proxy(target, {
+    // Hidden from `in`, for...in and Object.keys too, not only from calls.
+    has(object, key) {
+      return !own(signals, key) && key in object;
+    },
+    ownKeys(object) {
+      return Reflect.ownKeys(object).filter((key) => !own(signals, key));
+    },
+    getOwnPropertyDescriptor(object, key) {
+      return own(signals, key) ? undefined : Reflect.getOwnPropertyDescriptor(object, key);
+    },
     get(object, key) {
       const value = object[key];
       if (typeof value !== "function") return value;

@@ -98,22 +98,26 @@ QImage draw_picture(const render::Scene& scene, const render::BoundingBox& box, 
     column = widest + 2 * style.margin;
     if (column > 0.45 * options.width) column = 0;
   }
+  // Likewise the title's band at the top (it covered the garment's top on
+  // short pictures), unless it would take half the height.
+  int band = render::title_band(options.title, style);
+  if (band > options.height / 2) band = 0;
   render::Camera camera = render::preset_camera(options.camera, options.projection);
-  render::fit(camera, box, options.width - column, options.height, options.margin);
+  render::fit(camera, box, options.width - column, options.height - band, options.margin);
   render::RenderOptions rendering;
   rendering.width = options.width - column;
-  rendering.height = options.height;
+  rendering.height = options.height - band;
   rendering.supersample = options.supersample;
   QImage image = render::render(scene, camera, rendering);
-  if (column > 0) {
+  if (column > 0 || band > 0) {
     QImage whole(options.width, options.height, image.format());
     whole.fill(scene.background);
-    QPainter(&whole).drawImage(0, 0, image);
+    QPainter(&whole).drawImage(0, band, image);
     image = whole;
   }
   // The legend goes below the title: on a narrow image they would overlap.
   QRect below_title = image.rect();
-  if (!options.title.isEmpty()) below_title.setTop(render::draw_title(image, options.title).bottom() + 1);
+  if (!options.title.isEmpty()) below_title.setTop(render::draw_title(image, options.title, style).bottom() + 1);
   if (legend) {
     QPainter painter(&image);
     render::draw_legend(painter, below_title, garment.legend, render::Corner::top_right, style);

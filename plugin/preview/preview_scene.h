@@ -51,9 +51,10 @@ inline constexpr int kLeastLegendSide = 240;
 
 /// `scene` seen by `options.camera` fitted to `box`, with the title and
 /// `garment`'s legend (top right) or colour bar (bottom right). The legend
-/// takes a column of its own on the right, the garment framed in the rest
-/// (it covered the garment on images of 240-450 pixels), unless that column
-/// would take more than 45 % of the width (then it is drawn over the picture).
+/// takes a column of its own on the right and the title a band at the top,
+/// the garment framed in the rest (they covered it on small pictures),
+/// unless the column would take more than 45 % of the width or the band
+/// half the height (then they are drawn over the picture).
 QImage draw_picture(const render::Scene& scene, const render::BoundingBox& box, const GarmentLayer& garment,
                     const PictureOptions& options);
 

@@ -174,6 +174,12 @@ QRect draw_color_bar(QImage& image, const ColorBar& bar, Corner corner, const Le
   return draw_color_bar(painter, image.rect(), bar, corner, style);
 }
 
+int title_band(const QString& title, const LegendStyle& style) {
+  if (title.isEmpty()) return 0;
+  require_gui_application("title_band");
+  return style.margin + QFontMetrics(make_font(style.font_pixel_size + 3, true)).height() + 2 * style.padding;
+}
+
 QRect draw_title(QImage& image, const QString& title, const LegendStyle& style) {
   if (title.isEmpty() || image.isNull()) return {};
   require_gui_application("draw_title");

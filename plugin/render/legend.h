@@ -77,4 +77,8 @@ QRect draw_color_bar(QImage& image, const ColorBar& bar, Corner corner = Corner:
 /// for an empty title).
 QRect draw_title(QImage& image, const QString& title, const LegendStyle& style = {});
 
+/// Pixels from the image's top to the bottom of the box draw_title draws
+/// for `title` (0 for no title).
+int title_band(const QString& title, const LegendStyle& style = {});
+
 }  // namespace mrcloth::render

@@ -214,6 +214,32 @@ TEST(PreviewPicture, TheLegendHasAColumnOfItsOwn) {
   }
 }
 
+// The title takes a band at the top: no garment pixel in it beside the
+// (narrow) title box (on short pictures the garment's top lay under it).
+TEST(PreviewPicture, TheTitleHasABandOfItsOwn) {
+  const QuadMesh mesh = test::make_grid(4, 4);
+  const GarmentLayer garment = garment_layer(mesh, {}, ColorBy::none);
+  render::Scene scene;
+  scene.surfaces.push_back(garment.surface);
+  PictureOptions options;
+  options.width = 600;
+  options.height = 300;
+  options.supersample = 1;
+  options.title = "t";
+  const int band = render::title_band(options.title);
+  ASSERT_GT(band, 0.08 * options.height) << "the band reaches below the margin: the test can fail";
+  const QImage image = draw_picture(scene, render::bounds(garment.surface), garment, options);
+  int garment_rows_in_band = 0, lowest = -1;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      if (QColor(image.pixel(x, y)) == scene.background || std::abs(x - image.width() / 2) < 40) continue;
+      garment_rows_in_band += y < band;
+      lowest = std::max(lowest, y);
+    }
+  EXPECT_EQ(garment_rows_in_band, 0);
+  EXPECT_GT(lowest, image.height() * 3 / 4) << "the garment fills the rest";
+}
+
 TEST(PreviewGarmentLayer, ModeOnARefinedMeshCoversTheNewVertices) {
   const QuadMesh mesh = two_level_grid();
   const GarmentLayer layer = garment_layer(mesh, {}, ColorBy::mode);

@@ -92,6 +92,10 @@ while (Date.now() - since < 6500) {}
 expectThrows(() => core.lockFile(tmpDir + "/sub/report.json"), "ArgumentError", "core.lockFile: ", "sub/report.json",
              " exists and is not a lock file (it names no process)");
 expectEqual(core.readTextFile(tmpDir + "/sub/report.json"), "{\"precious\": true}\n", "the file lockFile refused");
+// A file whose first line is a number (a live process's, 1) is no lock either: it passed for one.
+core.writeTextFile(tmpDir + "/sub/count.txt", "1\n");
+expectThrows(() => core.lockFile(tmpDir + "/sub/count.txt"), "ArgumentError", " exists and is not a lock file");
+expectEqual(core.readTextFile(tmpDir + "/sub/count.txt"), "1\n", "the counted file lockFile refused");
 // unlockFile releases (the file goes), once; a batch of locks one after the other holds one at a time.
 expectEqual(core.unlockFile(tmpDir + "/sub/.lock"), true, "unlockFile");
 expectEqual(core.fileExists(tmpDir + "/sub/.lock"), false, "the lock file after unlockFile");

@@ -10,6 +10,12 @@ for (const [name, object] of [["multirescloth", multirescloth], ["preview", prev
   for (const signal of ["log", "startJob", "setJobState", "finishJob", "objectNameChanged", "destroyed"])
     expectEqual(typeof object[signal], "undefined", name + "." + signal);
 for (const signal of ["objectNameChanged", "destroyed"]) expectEqual(typeof core[signal], "undefined", "core." + signal);
+// Not listed either: `in`, for...in and Object.keys show the calls alone.
+const listed = [];
+for (const key in multirescloth) listed.push(key);
+expectEqual([listed.includes("startJob"), "log" in preview, Object.keys(multirescloth).includes("log")], [false, false, false],
+            "signals listed");
+expectEqual([listed.includes("refineUniform"), "render" in preview], [true, true], "calls listed");
 expectEqual(typeof core.log, "function", "core.log (a call of core's, not a signal)");
 expectEqual([typeof core.print, typeof multirescloth.refineUniform, typeof preview.render], ["function", "function", "function"],
             "the calls");
