@@ -375,6 +375,12 @@ namespace {
 QImage readSheetImage(const QString& path) {
   QImageReader reader(path);
   reader.setAllocationLimit(static_cast<int>(4LL * kMostSheetSide * kMostSheetSide / (1024 * 1024)));  // MB
+  // Said by its size, before reading (beyond the limit Qt says only "Unable to read image data").
+  if (const QSize size = reader.size(); size.isValid() && std::max(size.width(), size.height()) > kMostSheetSide)
+    throw ArgumentError(QStringLiteral("%1 is %2x%3 pixels; expected images a sheet can hold, at most %4 along each "
+                                       "side")
+                            .arg(path).arg(size.width()).arg(size.height()).arg(kMostSheetSide)
+                            .toStdString());
   const QImage image = reader.read();
   if (image.isNull())
     throw InputError(path.toStdString() + ": not an image Qt can read (" + reader.errorString().toStdString() + ")");

@@ -101,5 +101,13 @@ expectThrows(() => preview.contactSheet([wide, wide], sheet, {columns: 2}), "Arg
              "the sheet of these 2 images would be " + beyondSheet + "x" + (2 * 10 + 22 + P.chartSide[0]) +
              " pixels; expected at most " + P.sheetSide[1] + " along each side");
 expectEqual(core.fileExists(sheet), false, "nothing written by the refused sheet");
+// An image wider than a sheet can hold is refused by its size (Qt said only
+// "Unable to read image data"): a one-row text PPM one pixel too wide.
+const wideImage = tmp + "/limits_wide.ppm";
+core.writeTextFile(wideImage, "P3\n" + (P.sheetSide[1] + 1) + " 1\n255\n" + "255 255 255\n".repeat(P.sheetSide[1] + 1));
+expectThrows(() => preview.contactSheet([wideImage], sheet), "ArgumentError",
+             "limits_wide.ppm is " + (P.sheetSide[1] + 1) + "x1 pixels; expected images a sheet can hold, at most " +
+             P.sheetSide[1] + " along each side");
+expectEqual(core.fileExists(sheet), false, "nothing written for the refused image");
 
 print("limits: ok");
