@@ -42,8 +42,9 @@ void save_mesh(const QuadMesh& mesh, const std::string& path);
 enum class ColorBy { none, level, mode, curvature };
 
 struct ExportOptions {
-  ColorBy color_by = ColorBy::none;  ///< vertex colours: by level (the finest of the vertex's faces), by mode, or by the
-                                     ///< mean_curvature layer (sequential_color of value / the largest; needs the layer)
+  ColorBy color_by = ColorBy::none;  ///< vertex colours: by level (the finest of the vertex's faces), by
+                                     ///< mode, or by the mean_curvature layer (sequential_color of value /
+                                     ///< the largest; needs the layer)
   bool triangulate = false;          ///< fan-split polygons; forced for formats that need triangles
   /// Triangulate as this mesh does (the same mesh at its rest positions,
   /// when the one exported is a simulated frame of it), so that every frame
