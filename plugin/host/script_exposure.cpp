@@ -112,6 +112,8 @@ QString thrownValueText(const QJSValue& value) {
     if (message.isString())
       return (name.isString() && !name.toString().isEmpty() ? name.toString() + QStringLiteral(": ") : QString()) +
              message.toString();
+    // Object.create(null) has no toString: its text was the conversion's own TypeError.
+    if (value.prototype().isNull()) return QStringLiteral("an object without a prototype or message");
   }
   return value.toString();
 }
