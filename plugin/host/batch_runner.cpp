@@ -31,13 +31,17 @@ QString withoutFileScheme(const QString& file) {
   return file.startsWith(QLatin1String("file:")) ? file.mid(5) : file;
 }
 
+/// A frame's function as reports name it: the script's own code is
+/// "%entry"; a function without a name (an arrow passed to map) is
+/// anonymous, not the script (it printed as <script> too).
+QString shownFunction(const QString& function) {
+  if (function == QLatin1String("%entry")) return QStringLiteral("<script>");
+  return function.isEmpty() ? QStringLiteral("<anonymous>") : function;
+}
+
 StackFrame parseFrame(const QString& frame, const QString& fallback_file) {
-  StackFrame parsed{frame.section(QLatin1Char(':'), 0, 0), frame.section(QLatin1Char(':'), 1, 1),
+  StackFrame parsed{shownFunction(frame.section(QLatin1Char(':'), 0, 0)), frame.section(QLatin1Char(':'), 1, 1),
                     frame.section(QLatin1Char(':'), 3)};
-  // The script's own code is "%entry"; a function without a name (an arrow
-  // passed to map) is anonymous, not the script (it printed as <script> too).
-  if (parsed.function == QLatin1String("%entry")) parsed.function = QStringLiteral("<script>");
-  else if (parsed.function.isEmpty()) parsed.function = QStringLiteral("<anonymous>");
   parsed.file = withoutFileScheme(parsed.file);
   if (parsed.file.isEmpty()) parsed.file = fallback_file;
   return parsed;
@@ -62,10 +66,7 @@ void reportUnhandled(const QJSValue& reason, const QString& path, const HostLog&
   if (frames.size() < 2) return;
   for (const QString& frame : frames) {
     const qsizetype at = frame.indexOf(QLatin1Char('@'));
-    QString function = frame.left(at);
-    if (function == QLatin1String("%entry")) function = QStringLiteral("<script>");
-    else if (function.isEmpty()) function = QStringLiteral("<anonymous>");
-    log.raw(QStringLiteral("    at %1 (%2)").arg(function, withoutFileScheme(frame.mid(at + 1))));
+    log.raw(QStringLiteral("    at %1 (%2)").arg(shownFunction(frame.left(at)), withoutFileScheme(frame.mid(at + 1))));
   }
 }
 

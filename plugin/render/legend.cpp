@@ -174,19 +174,31 @@ QRect draw_color_bar(QImage& image, const ColorBar& bar, Corner corner, const Le
   return draw_color_bar(painter, image.rect(), bar, corner, style);
 }
 
+namespace {
+
+QFont title_font(const LegendStyle& style) { return make_font(style.font_pixel_size + 3, true); }
+
+/// The title's box, centred at the top of an image `image_width` wide.
+QRect title_box(const QString& title, int image_width, const LegendStyle& style) {
+  const QFontMetrics metrics(title_font(style));
+  const int width = std::min(metrics.horizontalAdvance(title) + 2 * style.padding, image_width);
+  return QRect((image_width - width) / 2, style.margin, width, metrics.height() + 2 * style.padding);
+}
+
+}  // namespace
+
 int title_band(const QString& title, const LegendStyle& style) {
   if (title.isEmpty()) return 0;
   require_gui_application("title_band");
-  return style.margin + QFontMetrics(make_font(style.font_pixel_size + 3, true)).height() + 2 * style.padding;
+  return title_box(title, 1, style).bottom() + 1;
 }
 
 QRect draw_title(QImage& image, const QString& title, const LegendStyle& style) {
   if (title.isEmpty() || image.isNull()) return {};
   require_gui_application("draw_title");
-  const QFont font = make_font(style.font_pixel_size + 3, true);
+  const QFont font = title_font(style);
   const QFontMetrics metrics(font);
-  const int width = std::min(metrics.horizontalAdvance(title) + 2 * style.padding, image.width());
-  const QRect box((image.width() - width) / 2, style.margin, width, metrics.height() + 2 * style.padding);
+  const QRect box = title_box(title, image.width(), style);
   QPainter painter(&image);
   painter.setRenderHint(QPainter::TextAntialiasing, true);
   painter.setFont(font);

@@ -103,6 +103,9 @@ TEST(RenderLegend, TitleIsCentredAtTheTop) {
   EXPECT_LE(std::abs(box.center().x() - image.width() / 2), 1);
   EXPECT_LT(box.bottom(), image.height() / 3);
   EXPECT_TRUE(draw_title(image, "").isEmpty());
+  // The band a picture leaves for it ends where the box does.
+  EXPECT_EQ(title_band("skirt, walk 07_06, frame 120"), box.bottom() + 1);
+  EXPECT_EQ(title_band(""), 0);
 }
 
 TEST(RenderLegend, NiceTicks) {
