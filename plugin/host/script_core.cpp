@@ -16,6 +16,7 @@
 #include "solver/json_lite.h"
 #include "solver/material.h"
 
+#include <QCoreApplication>
 #include <QCryptographicHash>
 #include <QDateTime>
 #include <QDir>
@@ -136,7 +137,14 @@ auto ScriptCore::guarded(const char* slot, Body&& body) -> decltype(body()) {
 
 QString ScriptCore::resourceFolder() {
   const QString overridden = qEnvironmentVariable("MRCLOTH_RESOURCES");
-  return QDir::cleanPath(overridden.isEmpty() ? QStringLiteral(MRCLOTH_RESOURCES_DIR) : overridden);
+  if (!overridden.isEmpty()) return QDir::cleanPath(overridden);
+  // An installed host has its resources beside it (relocatable: found from
+  // the host's own folder); in the build tree that folder does not exist and
+  // the source tree's resources are read, so edited scripts need no rebuild.
+  const QString installed = QDir::cleanPath(
+      QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral(MRCLOTH_INSTALLED_RESOURCES_FROM_HOST)));
+  if (QFileInfo(installed + QStringLiteral("/scripts/pipeline.js")).isFile()) return installed;
+  return QDir::cleanPath(QStringLiteral(MRCLOTH_RESOURCES_DIR));
 }
 
 int ScriptCore::loadObject(QVariant path, QVariant options) {
@@ -553,8 +561,8 @@ QList<SlotDescription> ScriptCore::slotDescriptions() const {
        {QStringLiteral("value")},
        {QStringLiteral("anything; converted with String(value)")}},
       {QStringLiteral("resourcePath() -> string"),
-       QStringLiteral("Returns the resources folder (garments/, scripts/): $MRCLOTH_RESOURCES, else the source "
-                      "tree's resources/."),
+       QStringLiteral("Returns the resources folder (garments/, scripts/): $MRCLOTH_RESOURCES, else the installed "
+                      "share/mrcloth beside an installed host, else the source tree's resources/."),
        {},
        {}},
       {QStringLiteral("scriptArguments() -> string[]"),
