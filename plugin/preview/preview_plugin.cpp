@@ -120,9 +120,16 @@ RenderRequest parseRenderOptions(const Fields& fields) {
   return request;
 }
 
-/// One picture: the garment (and body) at `frame`, framed by `framing`
-/// when given (a steady camera across a sequence), else by the garment.
-QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame,
+/// The request's body, its rest mesh read once; none when no body is drawn.
+std::optional<preview::BodyFrames> bodyFramesOf(const RenderRequest& request) {
+  if (request.body_cache.isEmpty()) return std::nullopt;
+  return preview::BodyFrames(request.body_mesh.toStdString(), request.body_cache.toStdString());
+}
+
+/// One picture: the garment (and `body`, when given) at `frame`, framed by
+/// `framing` when given (a steady camera across a sequence), else by the
+/// garment (with fit "all", and the body).
+QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame, const preview::BodyFrames* body,
                    const std::optional<render::BoundingBox>& framing = std::nullopt) {
   const Eigen::MatrixX3d positions =
       request.cache.isEmpty()
@@ -132,9 +139,7 @@ QImage renderFrame(const QuadMesh& mesh, const RenderRequest& request, int frame
   garment.surface.wireframe = request.wireframe;
   render::Scene scene;
   scene.surfaces.push_back(garment.surface);
-  if (!request.body_cache.isEmpty())
-    scene.surfaces.push_back(
-        preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), frame));
+  if (body) scene.surfaces.push_back(body->at(frame));
 
   return preview::draw_picture(
       scene, framing ? *framing : request.fit_all ? render::bounds(scene) : render::bounds(garment.surface), garment,
@@ -263,7 +268,8 @@ QVariantMap PreviewPlugin::render(QVariant id, QVariant path, QVariant options) 
     const int frame = fields.integerAtLeast(QStringLiteral("frame"), 0, 0);
     if (fields.has(QStringLiteral("frame")) && request.cache.isEmpty())
       options::fail(QStringLiteral("option 'frame' needs option 'cache' (the PC2 the frame is read from)"));
-    const QImage image = renderFrame(*object.mesh, request, frame);
+    const std::optional<preview::BodyFrames> body = bodyFramesOf(request);
+    const QImage image = renderFrame(*object.mesh, request, frame, body ? &*body : nullptr);
     // A large image takes seconds to draw (no check inside): Ctrl-C then
     // still stops before anything is written.
     if (cancelRequested()) stopCancelled("render", file.toStdString() + " was not written");
@@ -316,16 +322,16 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
 
     // One camera for the whole sequence: framed on the garment (with fit
     // "all", and the body) over every frame drawn.
+    const std::optional<preview::BodyFrames> body = bodyFramesOf(request);
     render::BoundingBox framing;
     for (const int f : frames) {
       const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(object.mesh->n_vertices()));
       for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
-      if (request.fit_all && !request.body_cache.isEmpty()) {
-        const render::BoundingBox body = render::bounds(
-            preview::body_surface(request.body_mesh.toStdString(), request.body_cache.toStdString(), f));
-        if (!body.empty()) {
-          framing.add(body.min);
-          framing.add(body.max);
+      if (request.fit_all && body) {
+        const render::BoundingBox box = render::bounds(body->at(f));
+        if (!box.empty()) {
+          framing.add(box.min);
+          framing.add(box.max);
         }
       }
     }
@@ -353,7 +359,7 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
                            : "; nothing was written"));
       const QString file = QStringLiteral("%1_%2.png").arg(stem).arg(frames[k], digits, 10, QLatin1Char('0'));
       try {
-        saveImage(renderFrame(*object.mesh, request, frames[k], framing), file);
+        saveImage(renderFrame(*object.mesh, request, frames[k], body ? &*body : nullptr, framing), file);
       } catch (const OutputError& error) {
         if (k == 0) throw;
         throw OutputError(std::string(error.what()) + "; the " + std::to_string(k) + " images written before it (" +

@@ -149,14 +149,22 @@ Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expec
 
 int cache_frames(const std::string& cache_path) { return Pc2Reader(cache_path).num_frames(); }
 
-render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame) {
-  const ObjMesh mesh = read_obj(obj_path);
-  render::Surface surface;
-  surface.positions = cache_frame(cache_path, frame, static_cast<int>(mesh.positions.rows()));
-  surface.faces = mesh.faces;
-  surface.color = kBodyColor;
-  surface.wireframe = false;
+BodyFrames::BodyFrames(const std::string& obj_path, const std::string& cache_path) : cache_path_(cache_path) {
+  ObjMesh mesh = read_obj(obj_path);
+  rest_.positions = std::move(mesh.positions);
+  rest_.faces = std::move(mesh.faces);
+  rest_.color = kBodyColor;
+  rest_.wireframe = false;
+}
+
+render::Surface BodyFrames::at(int frame) const {
+  render::Surface surface = rest_;
+  surface.positions = cache_frame(cache_path_, frame, static_cast<int>(rest_.positions.rows()));
   return surface;
+}
+
+render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame) {
+  return BodyFrames(obj_path, cache_path).at(frame);
 }
 
 }  // namespace mrcloth::preview

@@ -70,8 +70,22 @@ Eigen::MatrixX3d cache_frame(const std::string& cache_path, int frame, int expec
 /// Number of frames in a PC2 cache.
 int cache_frames(const std::string& cache_path);
 
-/// A body drawn in grey without wireframe: the faces of `obj_path` (a rest
-/// OBJ written beside a body cache) at frame `frame` of `cache_path`.
+/// A body cache's frames drawn in grey without wireframe: the faces of its
+/// rest OBJ, read once (a skinned body's is megabytes: reading it took
+/// most of a sequence's time per frame), at any frame of the cache.
+class BodyFrames {
+ public:
+  /// obj_path: the rest OBJ written beside the body cache; cache_path: the PC2.
+  BodyFrames(const std::string& obj_path, const std::string& cache_path);
+  /// The body at frame `frame` (0-based); ArgumentError when out of range.
+  render::Surface at(int frame) const;
+
+ private:
+  std::string cache_path_;
+  render::Surface rest_;
+};
+
+/// BodyFrames(obj_path, cache_path).at(frame), for a single picture.
 render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame);
 
 }  // namespace mrcloth::preview

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -401,6 +402,27 @@ TEST_F(PreviewFiles, BodySurfaceIsTheObjFacesAtTheCacheFrame) {
     EXPECT_TRUE(body.face_colors.empty());
   }
   expect_throws<ArgumentError>([&] { body_surface(obj, pc2, 4); }, {pc2, "frame 4"});
+}
+
+TEST_F(PreviewFiles, BodyFramesReadTheRestMeshOnceAndEveryFrameFromTheCache) {
+  const std::string obj = path("body.obj");
+  const std::string pc2 = path("body.pc2");
+  const std::vector<std::vector<int>> faces{{0, 1, 2}, {1, 3, 4, 2}, {4, 5, 2}};
+  write_obj(obj, frame_values(6, 0), faces);
+  write_cache(pc2, 6, 4);
+  const BodyFrames body(obj, pc2);
+  // A sequence reads the rest OBJ once: gone afterwards, every frame still draws.
+  std::filesystem::remove(obj);
+  for (const int frame : {3, 0, 2}) {
+    const render::Surface surface = body.at(frame);
+    EXPECT_EQ(surface.faces, faces);
+    EXPECT_EQ(surface.positions, Eigen::MatrixX3d(frame_values(6, frame))) << "frame " << frame;
+    EXPECT_FALSE(surface.wireframe);
+  }
+  expect_throws<ArgumentError>([&] { (void)body.at(4); }, {pc2, "frame 4"});
+  // The cache is read per frame: a frame rewritten since is drawn as it is now.
+  write_cache(pc2, 6, 2);
+  expect_throws<ArgumentError>([&] { (void)body.at(3); }, {pc2, "frame 3"});
 }
 
 TEST_F(PreviewFiles, BodySurfaceRefusesACacheOfAnotherPointCount) {
