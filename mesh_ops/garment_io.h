@@ -2,6 +2,7 @@
 // Reading garments and writing refined meshes. Every write goes to a
 // temporary file in the target folder that is renamed into place only when
 // complete, so no half-written file is ever left behind.
+#include "colors.h"  // palette_color, sequential_color: the colours export_surface writes
 #include "quad_mesh.h"
 
 #include <string>
@@ -56,12 +57,5 @@ struct ExportOptions {
 /// unless triangulated) to OBJ or PLY (PLY stores vertex colours; OBJ writes
 /// them as `v x y z r g b`). Atomic. Throws OutputError / ArgumentError.
 void export_surface(const QuadMesh& mesh, const std::string& path, const ExportOptions& options = {});
-
-/// Fixed, distinguishable colour for a mode or level value (RGB, 0..255).
-std::array<unsigned char, 3> palette_color(int value);
-
-/// Perceptually ordered colour for t in [0, 1] (viridis: dark purple at 0,
-/// yellow at 1; clamped outside), RGB 0..255.
-std::array<unsigned char, 3> sequential_color(double t);
 
 }  // namespace mrcloth

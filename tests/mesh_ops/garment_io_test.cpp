@@ -944,7 +944,16 @@ TEST(GarmentExport, FramesTriangulateAsTheirRestShape) {
   // Another mesh to triangulate as is refused.
   const QuadMesh other = mrcloth::load_garment(write_file(dir.file("grid.obj"), grid_obj())).mesh;
   options.triangles_of = &other;
-  EXPECT_THROW(mrcloth::export_surface(frame, dir.file("wrong.obj"), options), mrcloth::ArgumentError);
+  try {
+    mrcloth::export_surface(frame, dir.file("wrong.obj"), options);
+    ADD_FAILURE() << "another mesh to triangulate as was taken";
+  } catch (const mrcloth::ArgumentError& error) {
+    EXPECT_EQ(std::string(error.what()), dir.file("wrong.obj") + ": the mesh to triangulate as has " +
+                                             std::to_string(other.n_vertices()) + " vertices and " +
+                                             std::to_string(other.n_faces()) +
+                                             " faces, the mesh exported 4 and 1; expected the same mesh at other positions");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("wrong.obj")));
 }
 
 TEST(GarmentSave, FailedSavesLeaveNoFileBehind) {
