@@ -16,8 +16,10 @@
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
+#include "mode_report.h"
 #include "option_limits.h"
 #include "run_checks.h"
+#include "run_report.h"
 #include "simulation_options.h"
 #include "plugin/core/option_fields.h"
 #include "solver/character_fit.h"
@@ -46,12 +48,6 @@
 namespace mrcloth {
 namespace {
 
-/// Below this many times the curvature float rounding alone gives
-/// (CurvatureFeatures::rounding_curvature) a cache shows no bending (a still
-/// 2 cm grid 100 m off: 0.02-0.06 1/m of noise modes against 4 of rounding;
-/// a walking skirt's modes: 30-120 against about 1).
-constexpr double kLeastBending = 2.0;
-
 double millisecondsSince(const QElapsedTimer& timer) { return static_cast<double>(timer.nsecsElapsed()) / 1e6; }
 
 QString describeObject(const StoredObject& object) {
@@ -65,10 +61,10 @@ ColorBy toColorBy(const QString& name) {
   return ColorBy::none;
 }
 
-QString restMeshPath(const std::string& cache_path) { return mrcloth::restMeshPath(QString::fromStdString(cache_path)); }
-
 /// The mesh a cache animates, as OBJ beside it (Blender's Mesh Cache
 /// modifier goes on this mesh); empty when there is no cache.
+QString restMeshPath(const std::string& cache_path) { return mrcloth::restMeshPath(QString::fromStdString(cache_path)); }
+
 /// The active faces' corner texture coordinates for an OBJ sequence (none
 /// for a mesh without them).
 FaceUVs faceUVs(const QuadMesh& mesh) {
@@ -79,6 +75,19 @@ FaceUVs faceUVs(const QuadMesh& mesh) {
     uvs.push_back(std::move(corners));
   }
   return uvs;
+}
+
+/// The OBJ sequence `request` asks for (objSequence), one file per frame of
+/// `frames` with `mesh`'s active faces and texture coordinates; none when
+/// it asks for none.
+QStringList writeObjSequence(const SimulationRequest& request, const std::vector<Positions>& frames,
+                             const QuadMesh& mesh) {
+  QStringList files;
+  if (request.objSequence.isEmpty()) return files;
+  for (const std::string& file :
+       write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(mesh), faceUVs(mesh)))
+    files << QString::fromStdString(file);
+  return files;
 }
 
 /// The rest mesh written beside its path before the run, put in place
@@ -362,6 +371,13 @@ void MultiresClothPlugin::warn(const QString& text) {
   run_warnings_ << text;
 }
 
+void MultiresClothPlugin::logLines(const std::vector<LogLine>& lines) {
+  for (const LogLine& line : lines) {
+    if (line.type == LOGWARN) warn(line.text);
+    else emit log(line.type, line.text);
+  }
+}
+
 void MultiresClothPlugin::exportSurface(QVariant id, QVariant path, QVariant options) {
   guarded("exportSurface", [&] {
     const StoredObject& object = store().get(script::toInt(id, QStringLiteral("id")));
@@ -451,51 +467,18 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     const bool complete = !report.cancelled && !report.non_finite;
 
     // Like the PC2 cache, the other outputs exist only for a complete run.
-    QStringList obj_files;
-    if (complete && !request.objSequence.isEmpty())
-      for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*input.mesh),
-                                                      faceUVs(*input.mesh)))
-        obj_files << QString::fromStdString(file);
-    const QString rest_mesh = commitRestMesh(staged_rest_mesh, complete);
-    int result = 0;
+    RunOutputs outputs;
+    if (complete) outputs.obj_files = writeObjSequence(request, frames, *input.mesh);
+    outputs.rest_mesh = commitRestMesh(staged_rest_mesh, complete);
     if (complete && request.updateObject) {
       auto simulated = std::make_shared<QuadMesh>(
           mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
-      result = store().add(simulated, QStringLiteral("%1 simulated").arg(input.name));
+      outputs.result = store().add(simulated, QStringLiteral("%1 simulated").arg(input.name));
     }
 
     last_report_ = simulationReportMap(report, model);
-    last_report_.insert({{QStringLiteral("operation"), QStringLiteral("simulate")},
-                         {QStringLiteral("source"), input.id},
-                         {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
-                         {QStringLiteral("objFiles"), obj_files},
-                         {QStringLiteral("restMesh"), rest_mesh}});
-    if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
-
-    if (report.initial_penetration > 0.0)
-      warn(QStringLiteral("simulate: the cloth starts %1 mm inside a collider (or its thickness); "
-                                       "it is pushed out on the first step, which stretches it: move the "
-                                       "colliders or the garment so they start apart")
-                            .arg(1000.0 * report.initial_penetration, 0, 'f', 1));
-    const QString pinned_warning = pinnedDepthWarning(QStringLiteral("simulate"), report, request);
-    if (!pinned_warning.isEmpty()) warn(pinned_warning);
-    if (report.cancelled)
-      warn(QStringLiteral("simulate: cancelled after %1 of %2 frames; nothing was written")
-                            .arg(report.frames).arg(settings.frames));
-    else if (report.non_finite)
-      warn(QStringLiteral("simulate: the simulation became non-finite (NaN or infinity) in frame %1 "
-                                       "of %2; nothing was written (try more substeps or a softer material)")
-                            .arg(report.frames + 1).arg(settings.frames));
-    else
-      emit log(LOGINFO, QStringLiteral("simulate: object %1: %2 frames, %3 steps, %4 ms/frame (dynamics %5, "
-                                       "collision %6), %7, %8%9")
-                            .arg(input.id).arg(report.frames).arg(report.steps)
-                            .arg(report.mean_frame.total_ms(), 0, 'f', 2).arg(report.mean_frame.dynamics_ms, 0, 'f', 2)
-                            .arg(report.mean_frame.collision_ms, 0, 'f', 2).arg(stretchSummary(report))
-                            .arg(penetrationSummary(report))
-                            .arg(report.cache_path.empty() ? QString()
-                                                           : QStringLiteral(" -> ") +
-                                                                 QString::fromStdString(report.cache_path)));
+    last_report_.insert(runOutputsReportMap(QStringLiteral("simulate"), input.id, request, outputs));
+    logLines(simulationOutcomeLines(input.id, request, report));
     last_report_.insert(QStringLiteral("warnings"), run_warnings_);
     return last_report_;
   });
@@ -542,18 +525,7 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
       throw Error("extractModes: cancelled after " + std::to_string(features.frames) + " frames; the modes are unchanged");
     // What the modes would be made of, said before they are: a cache that
     // does not fit the mesh's rest lengths, or one with no bending in it.
-    if (!(features.first_frame_stretch > 0.8 && features.first_frame_stretch < 1.25))
-      emit log(LOGWARN, QStringLiteral("extractModes: in frame %1 of %2 the mesh's neighbouring vertices lie %3 times their "
-                                       "rest distance apart (median): a cache in other units, with its vertices in "
-                                       "another order, or of another mesh of as many vertices? The curvature reads "
-                                       "stretched pairs as flat")
-                            .arg(features.first_frame).arg(path).arg(features.first_frame_stretch, 0, 'g', 3));
-    const double most_bent = features.mean.size() ? features.mean.maxCoeff() : 0.0;
-    if (most_bent < kLeastBending * features.rounding_curvature)
-      emit log(LOGWARN, QStringLiteral("extractModes: %1 shows no bending: the largest mean curvature is %2 1/m, what "
-                                       "single-precision rounding of its positions alone gives (%3 1/m here); the "
-                                       "modes would split noise (clusters: 1 says so)")
-                            .arg(path).arg(most_bent, 0, 'g', 3).arg(features.rounding_curvature, 0, 'g', 3));
+    for (const LogLine& line : curvatureCacheWarnings(path, features)) emit log(line.type, line.text);
     ModeReport report;
     try {
       // Each restart is a whole k-means run (2,000 of 50 clusters on 175k
@@ -587,38 +559,8 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
     set_vertex_layer(*input.mesh, layer::curvature_deviation,
                      std::vector<double>(features.deviation.data(), features.deviation.data() + features.deviation.size()));
 
-    const auto rows = [](const Eigen::MatrixXd& matrix) {
-      QVariantList list;
-      for (Eigen::Index r = 0; r < matrix.rows(); ++r) list.append(QVariant(QVariantList{matrix(r, 0), matrix(r, 1)}));
-      return list;
-    };
-    QVariantList sizes;
-    for (const int size : report.sizes) sizes.append(size);
-    last_report_ = {{QStringLiteral("operation"), QStringLiteral("extractModes")},
-                    {QStringLiteral("source"), input.id},
-                    {QStringLiteral("cache"), path},
-                    {QStringLiteral("frames"), features.frames},
-                    {QStringLiteral("firstFrame"), features.first_frame},
-                    {QStringLiteral("vertices"), pairs.num_vertices},
-                    {QStringLiteral("clusters"), modes.modes},
-                    {QStringLiteral("normalize"), QString::fromStdString(normalization_name(report.normalization))},
-                    {QStringLiteral("seed"), static_cast<qulonglong>(report.seed)},
-                    {QStringLiteral("restarts"), modes.restarts},
-                    {QStringLiteral("restartKept"), report.restart},
-                    {QStringLiteral("iterations"), report.iterations},
-                    {QStringLiteral("inertia"), report.inertia},
-                    {QStringLiteral("sizes"), sizes},
-                    {QStringLiteral("centroids"), rows(report.centroids)},
-                    {QStringLiteral("normalizedCentroids"), rows(report.normalized_centroids)},
-                    {QStringLiteral("offset"), QVariantList{report.offset[0], report.offset[1]}},
-                    {QStringLiteral("scale"), QVariantList{report.scale[0], report.scale[1]}},
-                    {QStringLiteral("maxMeanCurvature"), features.mean.size() ? features.mean.maxCoeff() : 0.0},
-                    {QStringLiteral("milliseconds"), millisecondsSince(timer)}};
-    QStringList counts;
-    for (const int size : report.sizes) counts << QString::number(size);
-    emit log(LOGINFO, QStringLiteral("extractModes: %1, %2 frames: %3 modes of %4 vertices (%5)")
-                          .arg(describeObject(input)).arg(features.frames).arg(modes.modes).arg(pairs.num_vertices)
-                          .arg(counts.join(QStringLiteral(", "))));
+    last_report_ = modeReportMap(input.id, path, features, pairs.num_vertices, modes, report, millisecondsSince(timer));
+    emit log(LOGINFO, modesFoundLine(describeObject(input), features, modes, pairs.num_vertices, report));
     return last_report_;
   });
 }
@@ -769,12 +711,8 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   CharacterRequest wanted = *request.character;  // its units resolved by loadCharacter
   ClipChanges changes;
   Character character = loadCharacter(wanted, *input.mesh, &changes);
-  const JointRenaming& renamed = changes.renamed;
   const Motion& motion = *character.motion;
-  for (const LogLine& line : clipChangeLines(slot, wanted, changes)) {
-    if (line.type == LOGWARN) warn(line.text);
-    else emit log(line.type, line.text);
-  }
+  logLines(clipChangeLines(slot, wanted, changes));
 
   // One job over the set-up (placing the garment, the model, the checks,
   // the factorisation), the pre-roll's frames and the motion's, so that a
@@ -819,10 +757,7 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
 
   std::vector<LogLine> checks;
   const QVariantMap fit = checkBeforeCharacterRun(slot, request, character, run, model, *garment, checks);
-  for (const LogLine& line : checks) {
-    if (line.type == LOGWARN) warn(line.text);
-    else emit log(line.type, line.text);
-  }
+  logLines(checks);
 
   stop_if_cancelled();
   emit log(LOGINFO, QStringLiteral("%1: setting up: factorising the system of %2 unknowns (free vertices)")
@@ -843,89 +778,25 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
   const bool complete = !motion_report.cancelled && !motion_report.non_finite;
 
   // Like the PC2 cache, the other outputs exist only for a complete run.
-  QStringList obj_files;
-  if (complete && !request.objSequence.isEmpty())
-    for (const std::string& file : write_obj_sequence(request.objSequence.toStdString(), frames, active_face_polygons(*garment),
-                                                      faceUVs(*garment)))
-      obj_files << QString::fromStdString(file);
-  const QString rest_mesh = commitRestMesh(staged_rest_mesh, complete);
-  QString body_mesh;
+  RunOutputs outputs;
+  if (complete) outputs.obj_files = writeObjSequence(request, frames, *garment);
+  outputs.rest_mesh = commitRestMesh(staged_rest_mesh, complete);
   if (complete && !wanted.bodyOutput.isEmpty()) {
-    body_mesh = restMeshPath(wanted.bodyOutput.toStdString());
-    write_body_cache(motion, *character.body, run, wanted.bodyOutput.toStdString(), body_mesh.toStdString());
+    outputs.body_mesh = restMeshPath(wanted.bodyOutput.toStdString());
+    write_body_cache(motion, *character.body, run, wanted.bodyOutput.toStdString(), outputs.body_mesh.toStdString());
   }
-  int result = 0;
   if (complete && request.updateObject) {
     auto simulated = std::make_shared<QuadMesh>(
         mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
-    result = store().add(simulated, QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
+    outputs.result =
+        store().add(simulated, QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
   }
 
   last_report_ = simulationReportMap(motion_report, model);
   last_report_.insert(characterReportMap(report, wanted, character, run));
-  QVariantMap joints;
-  for (const auto& [from, to] : renamed) joints.insert(QString::fromStdString(from), QString::fromStdString(to));
-  last_report_.insert(QStringLiteral("jointsRenamed"), joints);
-  last_report_.insert(QStringLiteral("axesTurned"), QString::fromStdString(changes.turned.describe()));
-  last_report_.insert({{QStringLiteral("operation"), slot},
-                       {QStringLiteral("source"), input.id},
-                       {QStringLiteral("material"), QString::fromStdString(request.dynamics.material.name)},
-                       {QStringLiteral("objFiles"), obj_files}});
-  last_report_.insert(QStringLiteral("restMesh"), rest_mesh);
-  if (!fit.isEmpty()) last_report_.insert(QStringLiteral("fit"), fit);
-  last_report_.insert(QStringLiteral("garmentCleared"),
-                      QVariantMap{{QStringLiteral("vertices"), placed.clearance.moved},
-                                  {QStringLiteral("largestMove"), placed.clearance.largest_move}});
-  if (!body_mesh.isEmpty())
-    last_report_.insert({{QStringLiteral("bodyCache"), wanted.bodyOutput}, {QStringLiteral("bodyMesh"), body_mesh}});
-  if (result > 0) last_report_.insert(QStringLiteral("resultId"), result);
-
-  // Like the fit, where the pins go is the garment's and the motion's, the
-  // same for every refinement of one garment (the pipeline says it once).
-  const QString pinned_warning = pinnedDepthWarning(slot, motion_report, request);
-  if (!pinned_warning.isEmpty() && request.character->fitWarning) warn(pinned_warning);
-  // Where the garment starts is its own and the body's, the same for every
-  // refinement of it, so it is said with the fit (the pipeline: once per
-  // motion; the report has initialPenetration either way). Capsules are
-  // shrunk to the garment and the skinned mesh clears it before the run,
-  // so what is left is cloth modelled within the thickness (the MakeHuman
-  // trousers on fitted capsules: 4.3 mm, 0.3 mm past a capsule): said with
-  // both depths rather than as a misplacement.
-  const double initial = report.preroll.initial_penetration, thickness = wanted.setup.thickness;
-  if (initial > 1e-6 && request.character->fitWarning)  // clearing leaves round-off
-    warn(QStringLiteral("%1: in the rest pose the cloth starts %2 mm inside the body's surface and its %3 mm "
-                                     "thickness (%4 mm past the surface); it is pushed out on the first step")
-                          .arg(slot).arg(1000.0 * initial, 0, 'f', 1).arg(1000.0 * thickness, 0, 'f', 1)
-                          .arg(1000.0 * std::max(0.0, initial - thickness), 0, 'f', 1));
-  if (report.preroll.cancelled)
-    warn(QStringLiteral("%1: cancelled during the pre-roll, after %2 of its %3 frames; nothing was written")
-                          .arg(slot).arg(report.preroll.frames).arg(preroll_frame_count(run)));
-  else if (motion_report.cancelled)
-    warn(QStringLiteral("%1: cancelled after %2 of %3 frames; nothing was written")
-                          .arg(slot).arg(motion_report.frames).arg(run.frames));
-  else if (motion_report.non_finite)
-    warn(QStringLiteral("%1: the simulation became non-finite (NaN or infinity) %2; nothing was written "
-                                     "(try a higher stepRate, a longer preroll or a softer material)")
-                          .arg(slot)
-                          .arg(report.preroll.non_finite ? QStringLiteral("during the pre-roll")
-                                                         : QStringLiteral("in frame %1 of %2")
-                                                               .arg(motion_report.frames + 1).arg(run.frames)));
-  else
-    emit log(LOGINFO, QStringLiteral("%1: object %2 on %3: pre-roll %4 frames, %5 frames, %6 ms/frame (dynamics %7, "
-                                     "collision %8), %9, %10, max waist error %11 "
-                                     "m%12%13")
-                          .arg(slot).arg(input.id).arg(QFileInfo(wanted.motionPath).fileName())
-                          .arg(report.preroll.frames).arg(motion_report.frames)
-                          .arg(motion_report.mean_frame.total_ms(), 0, 'f', 2)
-                          .arg(motion_report.mean_frame.dynamics_ms, 0, 'f', 2)
-                          .arg(motion_report.mean_frame.collision_ms, 0, 'f', 2)
-                          .arg(stretchSummary(motion_report))
-                          .arg(penetrationSummary(motion_report))
-                          .arg(report.max_waist_error, 0, 'g', 3)
-                          .arg(motion_report.cache_path.empty()
-                                   ? QString()
-                                   : QStringLiteral(" -> ") + QString::fromStdString(motion_report.cache_path))
-                          .arg(rest_mesh.isEmpty() ? QString() : QStringLiteral(" + ") + rest_mesh));
+  last_report_.insert(characterRunReportMap(wanted, changes, fit, placed.clearance, outputs));
+  last_report_.insert(runOutputsReportMap(slot, input.id, request, outputs));
+  logLines(characterOutcomeLines(slot, input.id, request, wanted, report, run, outputs.rest_mesh));
   last_report_.insert(QStringLiteral("warnings"), run_warnings_);
   return last_report_;
 }

@@ -16,8 +16,11 @@
 #include <QVariantList>
 #include <QVariantMap>
 
+#include <vector>
+
 namespace mrcloth {
 
+struct LogLine;
 struct StoredObject;
 struct SimulationRequest;
 
@@ -84,6 +87,9 @@ class MultiresClothPlugin : public QObject,
   /// Logs a warning of the running simulate / recordInstance and keeps it
   /// for its report's `warnings` (a batch script can act on them).
   void warn(const QString& text);
+  /// Emits `lines` in order, the warnings through warn() so the run's
+  /// report keeps them.
+  void logLines(const std::vector<LogLine>& lines);
   /// A run stopped before its first frame, in its set-up (building the
   /// model, factorising its system: 5.5 s at 175k vertices, 45 s at 700k):
   /// says so as a warning and throws.

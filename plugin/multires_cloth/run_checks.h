@@ -6,7 +6,7 @@
 // too narrow for the motion, a motion shorter than the frames). The plugin
 // emits them; the numbers come from the solver's checks.
 #include "character_options.h"
-#include "plugin/interfaces/logging_interface.h"
+#include "log_line.h"
 #include "simulation_options.h"
 #include "solver/character_setup.h"
 #include "solver/character_sim.h"
@@ -19,12 +19,6 @@
 #include <vector>
 
 namespace mrcloth {
-
-/// A line for the log, kept until the slot emits it.
-struct LogLine {
-  Logtype type;
-  QString text;
-};
 
 /// A warning for cloth-cloth contact on a mesh whose edges are on average
 /// shorter than its reach (thickness + gathering reach), empty otherwise.
