@@ -141,9 +141,13 @@ QString ScriptCore::resourceFolder() {
   // An installed host has its resources beside it (relocatable: found from
   // the host's own folder); in the build tree that folder does not exist and
   // the source tree's resources are read, so edited scripts need no rebuild.
-  const QString installed = QDir::cleanPath(
-      QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral(MRCLOTH_INSTALLED_RESOURCES_FROM_HOST)));
-  if (QFileInfo(installed + QStringLiteral("/scripts/pipeline.js")).isFile()) return installed;
+  // (Without an application object the host's folder is unknown: a
+  // relative path would then be read from the working folder.)
+  if (QCoreApplication::instance()) {
+    const QString installed = QDir::cleanPath(
+        QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral(MRCLOTH_INSTALLED_RESOURCES_FROM_HOST)));
+    if (QFileInfo(installed + QStringLiteral("/scripts/pipeline.js")).isFile()) return installed;
+  }
   return QDir::cleanPath(QStringLiteral(MRCLOTH_RESOURCES_DIR));
 }
 
