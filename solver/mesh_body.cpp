@@ -1,10 +1,11 @@
 // MeshBody: collision with a moving closed triangle mesh (the skinned
-// body): a bounding-volume hierarchy refit every pose, closest point and
-// inside/outside, and the response of a cloth point. Split from
-// body_skinned_mesh.cpp, which loads, binds and skins the body.
+// body): a bounding-volume hierarchy refit every pose (TriangleTree4),
+// closest point and inside/outside, and the response of a cloth point.
+// Split from body_skinned_mesh.cpp, which loads, binds and skins the body.
 #include "mesh_body.h"
 
 #include "mesh_ops/errors.h"
+#include "triangle_tree4.h"
 
 #include <Eigen/Geometry>
 
@@ -17,10 +18,6 @@
 #include <unordered_map>
 #include <utility>
 #include <vector>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace mrcloth {
 namespace {
@@ -98,22 +95,8 @@ TrianglePoint closest_on_triangle(const Vector3d& p, const Vector3d& a, const Ve
 
 // ---------------------------------------------------------------------------
 // MeshBody
-//
-// Our own BVH, not CGAL's AABB tree: CGAL's tree cannot be refit, so the
-// body would be rebuilt every step. Measured on the 26,756-triangle body in
-// a walk (Release, one thread of a shared 2-core Xeon VM): CGAL 5.5
-// AABB_tree build + accelerate_distance_queries 22 ms (10 ms without the
-// kd-tree), ours refit 0.3 ms (build once ~30 ms); closest point for points
-// 0-1 cm from the body ~4 us ours vs ~6 us CGAL, 1-5 cm 7 vs 9 us, 5-15 cm
-// 8-9 vs 12 us. The surface-area heuristic's splits (instead of medians)
-// then took points within 3 mm from 2.7-3.2 to 2.2 us, within 3 cm from 5.0
-// to 4.0 us (walk frame 100, 20,000 points, same machine).
 
 struct MeshBody::Impl {
-  static constexpr int kLeafSize = 4;
-  static constexpr int kStackSize = 96;
-  static constexpr int kStackSize4 = 3 * kStackSize;  ///< a 4-wide node pushes up to 3 more than it pops, at half the binary depth
-  static constexpr int kMaxSahDepth = 40;  ///< below this the build splits at medians (depth stays < 40 + log2 n < kStackSize)
   static constexpr int kMaxSweeps = 8;
   /// Beyond thickness, how far the bounded search looks (metres): only a
   /// cost trade-off (points farther than this outside are clear, deeper
@@ -128,15 +111,6 @@ struct MeshBody::Impl {
   /// surface for triangles the point is behind, so it vouches for the
   /// point's side at most this far (SurfaceNearby::flip).
   static constexpr double kFlipReach = 0.0025;
-
-  /// An internal node holding both children's boxes (one 64-byte line
-  /// decides both), stored as floats rounded outwards: a box can only grow,
-  /// so pruning stays conservative and results exact, at half the memory.
-  struct Node {
-    float lo[2][3], hi[2][3];
-    int index[2] = {-1, -1};  ///< child k: node index if internal, first triangle if a leaf, -1 if none
-    int count[2] = {0, 0};    ///< child k: triangles in the leaf, 0 if internal (or none)
-  };
 
   struct Closest {
     double d2 = std::numeric_limits<double>::infinity();
@@ -167,38 +141,7 @@ struct MeshBody::Impl {
     }
   };
 
-  std::vector<Node> nodes;
-  /// Per node, its children's boxes over both of the last two poses (what
-  /// each subtree swept through between the last two updates, if its
-  /// vertices moved in straight lines), rounded outwards as Node's.
-  struct SweptBoxes {
-    float lo[2][3], hi[2][3];
-  };
-  std::vector<SweptBoxes> swept;
-  /// Four boxes, per axis (an empty one: lo +inf, hi -inf, never near).
-  struct Boxes4 {
-    float lo[3][4], hi[3][4];
-  };
-  /// The same tree with every other level skipped, for the proximity
-  /// searches: a node holds its grandchildren's boxes (or a child's, where
-  /// that child is a leaf), axis by axis, so one pass over four lanes
-  /// measures all of them: half the levels and a quarter of the branches.
-  /// Segment walks use the binary tree (with its swept boxes).
-  struct alignas(64) Node4 {
-    Boxes4 boxes;  ///< each child's box
-    int index[4];  ///< child k: Node4 index if internal, first triangle if a leaf, -1 if none
-    int count[4];  ///< child k: triangles in the leaf, 0 if internal (or none)
-  };
-  std::vector<Node4> nodes4;
-  /// Per leaf, its triangles' boxes in the current pose, rounded outwards,
-  /// four side by side, so a visited leaf tests them together (one pass
-  /// over four lanes, as a node's children) instead of one after another;
-  /// per triangle (leaf order), its box's place there: 4 * block + lane.
-  std::vector<Boxes4> leaf_boxes;
-  std::vector<int> box_slot;
-  /// Per Node4 child, the binary node and side whose child box it copies
-  /// at each refit ({-1, 0}: none).
-  std::vector<std::array<std::pair<int, int>, 4>> source4;
+  TriangleTree4 tree;                          ///< over the triangles, in this pose; names them in leaf order
   std::vector<Eigen::Vector3i> triangles;      ///< in leaf order
   std::vector<int> leaf_of_input;              ///< per triangle in construction order, its leaf-order index
   std::vector<char> ignored;                   ///< per triangle (leaf order): unseen in this pose (turned over)
@@ -211,7 +154,6 @@ struct MeshBody::Impl {
   std::vector<std::pair<int, int>> ring;       ///< (triangle, corner) around each vertex
   std::vector<Vector3d> x, x_previous;         ///< vertex positions now and at the previous update (in number_vertices_by_leaf's order)
   std::vector<int> input_vertex;               ///< per vertex, its row in the input (empty: the input's order)
-  Vector3d root_lo{0, 0, 0}, root_hi{0, 0, 0};  ///< the whole mesh's box
   double thickness = 0.0, friction = 0.0;
   unsigned long long serial = 0;  ///< counts update() calls: a memo is only good for the pose it was made in
   /// (thickness + kWholeMeshSideBeyond)^2: how far depths() looks for the
@@ -255,245 +197,6 @@ struct MeshBody::Impl {
     x = std::move(reordered);
   }
 
-  /// Builds the subtree of order[begin, end) and returns it as a child
-  /// (index, count): a leaf of at most kLeafSize triangles, or a node.
-  /// A triangle's box, and the box of a set of them.
-  struct Box {
-    Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Vector3d hi = Vector3d::Constant(-std::numeric_limits<double>::infinity());
-    void add(const Box& b) {
-      lo = lo.cwiseMin(b.lo);
-      hi = hi.cwiseMax(b.hi);
-    }
-    double half_area() const {
-      const Vector3d e = (hi - lo).cwiseMax(0.0);
-      return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
-    }
-  };
-
-  /// Builds the subtree of order[begin, end) and returns it as a child
-  /// (index, count): a leaf of at most kLeafSize triangles, or a node. The
-  /// split is the surface-area heuristic's best of 16 bins per axis (the
-  /// expected number of boxes a query opens), falling back to the median
-  /// along the widest axis when no bin split separates the triangles or
-  /// the tree grows deep (the query's stack is fixed).
-  std::pair<int, int> build(std::vector<int>& order, const std::vector<Vector3d>& centroid,
-                            const std::vector<Box>& box, int begin, int end, int depth) {
-    if (end - begin <= kLeafSize) return {begin, end - begin};
-    const auto at = [&](int i) { return static_cast<std::size_t>(order[static_cast<std::size_t>(i)]); };
-    Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (int i = begin; i < end; ++i) {
-      lo = lo.cwiseMin(centroid[at(i)]);
-      hi = hi.cwiseMax(centroid[at(i)]);
-    }
-    constexpr int kBins = 16;
-    int best_axis = -1, best_split = 0;
-    double best_cost = std::numeric_limits<double>::infinity();
-    const auto bin_of = [&](std::size_t t, int axis) {
-      const double extent = hi(axis) - lo(axis);
-      return std::min(kBins - 1, static_cast<int>(kBins * (centroid[t](axis) - lo(axis)) / extent));
-    };
-    for (int axis = 0; axis < 3 && depth < kMaxSahDepth; ++axis) {
-      if (!(hi(axis) - lo(axis) > 0.0)) continue;
-      Box bins[kBins];
-      int counts[kBins] = {0};
-      for (int i = begin; i < end; ++i) {
-        const int b = bin_of(at(i), axis);
-        bins[b].add(box[at(i)]);
-        ++counts[b];
-      }
-      // Right-to-left areas and counts, then one left-to-right sweep.
-      double right_area[kBins];
-      int right_count[kBins];
-      Box right;
-      int count = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        right.add(bins[b]);
-        count += counts[b];
-        right_area[b] = right.half_area();
-        right_count[b] = count;
-      }
-      Box left;
-      count = 0;
-      for (int split = 1; split < kBins; ++split) {
-        left.add(bins[split - 1]);
-        count += counts[split - 1];
-        if (count == 0 || right_count[split] == 0) continue;
-        const double cost = left.half_area() * count + right_area[split] * right_count[split];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best_axis = axis;
-          best_split = split;
-        }
-      }
-    }
-    int mid = 0;
-    if (best_axis >= 0) {
-      mid = static_cast<int>(std::partition(order.begin() + begin, order.begin() + end,
-                                            [&](int t) { return bin_of(static_cast<std::size_t>(t), best_axis) < best_split; }) -
-                             order.begin());
-    }
-    if (best_axis < 0 || mid == begin || mid == end) {
-      int axis = 0;
-      (hi - lo).maxCoeff(&axis);
-      mid = begin + (end - begin) / 2;
-      std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](int a, int b) {
-        return centroid[static_cast<std::size_t>(a)](axis) < centroid[static_cast<std::size_t>(b)](axis);
-      });
-    }
-    const int index = static_cast<int>(nodes.size());
-    nodes.emplace_back();
-    const std::pair<int, int> left = build(order, centroid, box, begin, mid, depth + 1);
-    const std::pair<int, int> right = build(order, centroid, box, mid, end, depth + 1);
-    Node& node = nodes[static_cast<std::size_t>(index)];
-    node.index[0] = left.first;
-    node.count[0] = left.second;
-    node.index[1] = right.first;
-    node.count[1] = right.second;
-    return {index, 0};
-  }
-
-  /// Makes the Node4 of binary node b (and, recursively, of the binary
-  /// nodes below it at every other level); returns its index. Called once
-  /// the binary tree is built.
-  int build4(int b) {
-    const int index = static_cast<int>(nodes4.size());
-    nodes4.emplace_back();
-    source4.emplace_back();
-    int slot = 0;
-    const auto place = [&](int node, int k) {
-      const Node& n = nodes[static_cast<std::size_t>(node)];
-      source4[static_cast<std::size_t>(index)][static_cast<std::size_t>(slot)] = {node, k};
-      nodes4[static_cast<std::size_t>(index)].count[slot] = n.count[k];
-      nodes4[static_cast<std::size_t>(index)].index[slot] = n.index[k];
-      const int at = slot++;
-      if (n.count[k] > 0) {
-        for (int lane = 0; lane < n.count[k]; ++lane)
-          box_slot[static_cast<std::size_t>(n.index[k] + lane)] = 4 * static_cast<int>(leaf_boxes.size()) + lane;
-        leaf_boxes.push_back(empty_boxes4());
-      } else {
-        const int child = build4(n.index[k]);  // after this nodes4 may have moved
-        nodes4[static_cast<std::size_t>(index)].index[at] = child;
-      }
-    };
-    for (int k = 0; k < 2; ++k) {
-      const Node& n = nodes[static_cast<std::size_t>(b)];
-      if (n.count[k] == 0 && n.index[k] < 0) continue;
-      if (n.count[k] > 0) {
-        place(b, k);
-        continue;
-      }
-      const int c = n.index[k];
-      for (int k2 = 0; k2 < 2; ++k2) {
-        const Node& m = nodes[static_cast<std::size_t>(c)];
-        if (m.count[k2] == 0 && m.index[k2] < 0) continue;
-        place(c, k2);
-      }
-    }
-    for (; slot < 4; ++slot) {
-      source4[static_cast<std::size_t>(index)][static_cast<std::size_t>(slot)] = {-1, 0};
-      nodes4[static_cast<std::size_t>(index)].index[slot] = -1;
-      nodes4[static_cast<std::size_t>(index)].count[slot] = 0;
-    }
-    return index;
-  }
-
-  static Boxes4 empty_boxes4() {
-    Boxes4 b;
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 4; ++c) {
-        b.lo[a][c] = std::numeric_limits<float>::infinity();
-        b.hi[a][c] = -std::numeric_limits<float>::infinity();
-      }
-    return b;
-  }
-
-  /// Copies the binary tree's refit boxes into nodes4.
-  void refit4() {
-    for (std::size_t i = 0; i < nodes4.size(); ++i) {
-      Node4& node = nodes4[i];
-      for (int slot = 0; slot < 4; ++slot) {
-        const auto [b, k] = source4[i][static_cast<std::size_t>(slot)];
-        for (int a = 0; a < 3; ++a) {
-          node.boxes.lo[a][slot] = b < 0 ? std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].lo[k][a];
-          node.boxes.hi[a][slot] = b < 0 ? -std::numeric_limits<float>::infinity() : nodes[static_cast<std::size_t>(b)].hi[k][a];
-        }
-      }
-    }
-  }
-
-  // Outward by 4e-7 relative before the conversion, which rounds by at most
-  // 6e-8 relative: the float always lies on the safe side (branch-free; the
-  // boxes grow by 0.4 micrometre per metre).
-  static float round_down(double v) { return static_cast<float>(v - (std::abs(v) * 4e-7 + 1e-30)); }
-  static float round_up(double v) { return static_cast<float>(v + (std::abs(v) * 4e-7 + 1e-30)); }
-
-  /// Children after parents in `nodes`, so one backward pass refits: O(n).
-  /// `first`: no earlier pose (x_previous is x), so the swept boxes are
-  /// the boxes.
-  void refit(bool first = false) {
-    swept.resize(nodes.size());
-    for (std::size_t i = nodes.size(); i-- > 0;) {
-      Node& node = nodes[i];
-      SweptBoxes& sweep = swept[i];
-      for (int k = 0; k < 2; ++k) {
-        if (node.count[k] == 0 && node.index[k] < 0) {
-          // No child (a root holding a single leaf): a box nothing is near.
-          for (int a = 0; a < 3; ++a) {
-            node.lo[k][a] = sweep.lo[k][a] = std::numeric_limits<float>::infinity();
-            node.hi[k][a] = sweep.hi[k][a] = -std::numeric_limits<float>::infinity();
-          }
-          continue;
-        }
-        Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        if (node.count[k] > 0) {
-          for (int t = node.index[k]; t < node.index[k] + node.count[k]; ++t) {
-            Vector3d triangle_lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), triangle_hi = -triangle_lo;
-            for (int c = 0; c < 3; ++c) {
-              const Vector3d& q = corner(t, c);
-              triangle_lo = triangle_lo.cwiseMin(q);
-              triangle_hi = triangle_hi.cwiseMax(q);
-            }
-            const int slot = box_slot[static_cast<std::size_t>(t)];
-            Boxes4& block = leaf_boxes[static_cast<std::size_t>(slot >> 2)];
-            for (int a = 0; a < 3; ++a) {
-              block.lo[a][slot & 3] = round_down(triangle_lo(a));
-              block.hi[a][slot & 3] = round_up(triangle_hi(a));
-            }
-            lo = lo.cwiseMin(triangle_lo);
-            hi = hi.cwiseMax(triangle_hi);
-          }
-        } else {
-          const Node& child = nodes[static_cast<std::size_t>(node.index[k])];
-          for (int a = 0; a < 3; ++a) {
-            // Float to double is exact: the union of the child's boxes.
-            lo(a) = std::min(child.lo[0][a], child.lo[1][a]);
-            hi(a) = std::max(child.hi[0][a], child.hi[1][a]);
-          }
-        }
-        // The box over both poses is the union of this box and the last:
-        // rounding outwards is monotonic, so these are the floats that
-        // rounding the union of both poses' corners (or of the children's
-        // swept boxes) gives.
-        for (int a = 0; a < 3; ++a) {
-          const float new_lo = round_down(lo(a)), new_hi = round_up(hi(a));
-          sweep.lo[k][a] = first ? new_lo : std::min(node.lo[k][a], new_lo);
-          sweep.hi[k][a] = first ? new_hi : std::max(node.hi[k][a], new_hi);
-          node.lo[k][a] = new_lo;
-          node.hi[k][a] = new_hi;
-        }
-      }
-    }
-    refit4();
-    root_lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
-    root_hi = -root_lo;
-    for (int k = 0; k < 2; ++k)
-      for (int a = 0; a < 3; ++a) {
-        root_lo(a) = std::min(root_lo(a), static_cast<double>(nodes[0].lo[k][a]));
-        root_hi(a) = std::max(root_hi(a), static_cast<double>(nodes[0].hi[k][a]));
-      }
-  }
-
   const Vector3d& corner(int t, int k) const {
     return x[static_cast<std::size_t>(triangles[static_cast<std::size_t>(t)](k))];
   }
@@ -505,19 +208,10 @@ struct MeshBody::Impl {
     return length > 0.0 ? Vector3d(n / length) : Vector3d::Zero();
   }
 
-  double root_distance2(const Vector3d& p) const {
-    const Vector3d e = (root_lo - p).cwiseMax(p - root_hi).cwiseMax(0.0);
-    return e.squaredNorm();
-  }
-
-  bool inside_root(const Vector3d& p) const {
-    return (p.array() >= root_lo.array()).all() && (p.array() <= root_hi.array()).all();
-  }
-
   /// Tests seen triangle t against the closest so far (`best`, its squared
   /// distance, and `out`); its own box first, which rejects most.
   void consider(const Vector3d& p, int t, double& best, Closest& out) const {
-    consider(p, t, triangle_box_distance2(p, t), best, out);
+    consider(p, t, tree.triangle_box_distance2(p, t), best, out);
   }
   /// The same with t's box distance `box2` already known.
   void consider(const Vector3d& p, int t, double box2, double& best, Closest& out) const {
@@ -532,94 +226,12 @@ struct MeshBody::Impl {
     }
   }
 
-  /// The four children's squared distances from p (0 inside), in double
-  /// (the boxes' floats are exact in it): per axis the gap below or above
-  /// the box, squared and summed in axis order, two lanes at a time.
-  static void box_distances4(const Boxes4& node, const Vector3d& p, double d[4]) {
-#if defined(__SSE2__)
-    const __m128d zero = _mm_setzero_pd();
-    for (int h = 0; h < 4; h += 2) {
-      __m128d sum = zero;
-      for (int a = 0; a < 3; ++a) {
-        const __m128d at = _mm_set1_pd(p(a));
-        const __m128d lo = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&node.lo[a][h]))));
-        const __m128d hi = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&node.hi[a][h]))));
-        const __m128d e = _mm_max_pd(zero, _mm_max_pd(_mm_sub_pd(lo, at), _mm_sub_pd(at, hi)));
-        sum = _mm_add_pd(sum, _mm_mul_pd(e, e));
-      }
-      _mm_storeu_pd(d + h, sum);
-    }
-#else
-    for (int c = 0; c < 4; ++c) d[c] = 0.0;
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 4; ++c) {
-        const double below = static_cast<double>(node.lo[a][c]) - p(a);
-        const double above = p(a) - static_cast<double>(node.hi[a][c]);
-        const double e = std::max(0.0, std::max(below, above));
-        d[c] += e * e;
-      }
-#endif
-  }
-
-  /// triangle_box_distance2(p, t) of the leaf's triangles, t from `first`
-  /// (the leaf's first triangle) on, together.
-  void leaf_box_distances(int first, const Vector3d& p, double d[4]) const {
-    box_distances4(leaf_boxes[static_cast<std::size_t>(box_slot[static_cast<std::size_t>(first)] >> 2)], p, d);
-  }
-
-  /// Visits the leaves whose box lies nearer to p than sqrt(limit()) (a
-  /// bound that may shrink as they are visited), nearer child first, each
-  /// leaf as visit(first, count), walking the 4-wide tree; inner nodes wait
-  /// on a fixed stack, the nearer on top. No allocation. (Against the
-  /// binary tree: the shared skirt refined twice on 07_06, 1.3 million
-  /// first-round resolves replayed from a recorded run, 0.87 us each
-  /// against 1.23, the same answers but for which of two triangles meeting
-  /// at a closest point is named, in 1,752 of them.)
-  template <typename Limit, typename Visit>
-  void leaves_near(const Vector3d& p, Limit limit, Visit visit) const {
-    struct Item {
-      int node;
-      double d2;
-    };
-    Item stack[kStackSize4];
-    int top = 0;
-    const double root_d2 = root_distance2(p);
-    if (!(root_d2 < limit())) return;
-    stack[top++] = {0, root_d2};
-    while (top > 0) {
-      const Item item = stack[--top];
-      if (!(item.d2 < limit())) continue;
-      const Node4& node = nodes4[static_cast<std::size_t>(item.node)];
-      double d[4];
-      box_distances4(node.boxes, p, d);
-      // The children within the bound, nearest first (insertion: few are):
-      // leaves visited in that order (the bound may shrink as they are),
-      // inner nodes pushed farthest first.
-      const double bound = limit();
-      int order[4], n = 0;
-      for (int c = 0; c < 4; ++c) {
-        if (!(d[c] < bound)) continue;
-        int k = n++;
-        for (; k > 0 && d[c] < d[order[k - 1]]; --k) order[k] = order[k - 1];
-        order[k] = c;
-      }
-      for (int i = 0; i < n; ++i) {
-        const int c = order[i];
-        if (node.count[c] > 0 && d[c] < limit()) visit(node.index[c], node.count[c]);
-      }
-      for (int i = n; i-- > 0;) {
-        const int c = order[i];
-        if (node.count[c] == 0 && node.index[c] >= 0 && d[c] < limit()) stack[top++] = {node.index[c], d[c]};
-      }
-    }
-  }
-
   /// Closest seen triangle to p closer than sqrt(max_d2); false when none is.
   bool closest(const Vector3d& p, double max_d2, Closest& out) const {
     double best = max_d2;
-    leaves_near(p, [&] { return best; }, [&](int first, int count) {
+    tree.leaves_near(p, [&] { return best; }, [&](int first, int count) {
       double box2[4];
-      leaf_box_distances(first, p, box2);
+      tree.leaf_box_distances(first, p, box2);
       for (int t = first; t < first + count; ++t)
         if (!(any_ignored && ignored[static_cast<std::size_t>(t)])) consider(p, t, box2[t - first], best, out);
     });
@@ -678,9 +290,9 @@ struct MeshBody::Impl {
         out.at = at;
       }
     };
-    leaves_near(p, [&] { return limit2; }, [&](int leaf, int count) {
+    tree.leaves_near(p, [&] { return limit2; }, [&](int leaf, int count) {
       double box2[4];
-      leaf_box_distances(leaf, p, box2);
+      tree.leaf_box_distances(leaf, p, box2);
       for (int t = leaf; t < leaf + count; ++t) visit(t, box2[t - leaf]);
     });
     if (candidates) {
@@ -768,67 +380,10 @@ struct MeshBody::Impl {
     }
     // Nothing within reach: outside (no contact), or deep inside. Only a
     // point inside the root box can be inside; search without bound.
-    if (!deep || !inside_root(p)) return false;
+    if (!deep || !tree.inside_root(p)) return false;
     if (!closest(p, std::numeric_limits<double>::infinity(), c)) return false;
     out = signed_contact(p, c);
     return out.distance < 0.0;
-  }
-
-  /// Squared distance from p to the bounding box of triangle t (0 inside):
-  /// branch-free, and a fraction of the exact test's cost.
-  double triangle_box_distance2(const Vector3d& p, int t) const {
-    const int slot = box_slot[static_cast<std::size_t>(t)];
-    const Boxes4& block = leaf_boxes[static_cast<std::size_t>(slot >> 2)];
-    double box2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double below = static_cast<double>(block.lo[k][slot & 3]) - p(k);
-      const double above = p(k) - static_cast<double>(block.hi[k][slot & 3]);
-      const double e = std::max(0.0, std::max(below, above));
-      box2 += e * e;
-    }
-    return box2;
-  }
-
-  /// Whether segment a-b meets the box [lo, hi] (slab test).
-  static bool segment_meets_box(const Vector3d& a, const Vector3d& d, const float lo[3], const float hi[3]) {
-    double enter = 0.0, leave = 1.0;
-    for (int k = 0; k < 3; ++k) {
-      const double l = lo[k], h = hi[k];
-      if (d(k) == 0.0) {
-        if (a(k) < l || a(k) > h) return false;
-        continue;
-      }
-      double t0 = (l - a(k)) / d(k), t1 = (h - a(k)) / d(k);
-      if (t0 > t1) std::swap(t0, t1);
-      enter = std::max(enter, t0);
-      leave = std::min(leave, t1);
-      if (enter > leave) return false;
-    }
-    return true;
-  }
-
-  /// Visits the leaves whose box meets the segment a + t d, t in [0, 1]:
-  /// their current boxes, or with `over_last_two` their boxes over the last
-  /// two poses. `visit(first, count)` (the leaf's triangles) returns false
-  /// to stop; the result is false when it stopped.
-  template <typename Visit>
-  bool leaves_on_segment(const Vector3d& a, const Vector3d& d, bool over_last_two, Visit visit) const {
-    int stack[kStackSize];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const auto i = static_cast<std::size_t>(stack[--top]);
-      const Node& node = nodes[i];
-      for (int k = 0; k < 2; ++k) {
-        if (node.count[k] == 0 && node.index[k] < 0) continue;
-        const float* lo = over_last_two ? swept[i].lo[k] : node.lo[k];
-        const float* hi = over_last_two ? swept[i].hi[k] : node.hi[k];
-        if (!segment_meets_box(a, d, lo, hi)) continue;
-        if (node.count[k] == 0) stack[top++] = node.index[k];
-        else if (!visit(node.index[k], node.count[k])) return false;
-      }
-    }
-    return true;
   }
 
   /// Whether no triangle can have crossed the segment a-b since the last
@@ -836,7 +391,7 @@ struct MeshBody::Impl {
   /// it while the surface moved (straight) between those poses then stayed
   /// on its side. Conservative: a false "no" only costs a query.
   bool segment_clear(const Vector3d& a, const Vector3d& b) const {
-    return leaves_on_segment(a, b - a, true, [](int, int) { return false; });
+    return tree.leaves_on_segment(a, b - a, true, [](int, int) { return false; });
   }
 
   /// Whether p is inside the closed mesh, every triangle counted (the
@@ -847,17 +402,17 @@ struct MeshBody::Impl {
   /// face: out of a leg through its front or back, not up through the torso
   /// (a third of the boxes to open on a walking body).
   bool inside_whole_mesh(const Vector3d& p) const {
-    if (!inside_root(p)) return false;
+    if (!tree.inside_root(p)) return false;
     int axis = 0;
     double sign = 1.0, reach = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
-      if (p(k) - root_lo(k) < reach) {
-        reach = p(k) - root_lo(k);
+      if (p(k) - tree.root_lo()(k) < reach) {
+        reach = p(k) - tree.root_lo()(k);
         axis = k;
         sign = -1.0;
       }
-      if (root_hi(k) - p(k) < reach) {
-        reach = root_hi(k) - p(k);
+      if (tree.root_hi()(k) - p(k) < reach) {
+        reach = tree.root_hi()(k) - p(k);
         axis = k;
         sign = 1.0;
       }
@@ -868,7 +423,7 @@ struct MeshBody::Impl {
     d(axis) = sign;
     d *= reach + 1e-3;
     int crossings = 0;
-    leaves_on_segment(p, d, false, [&](int first, int count) {
+    tree.leaves_on_segment(p, d, false, [&](int first, int count) {
       for (int t = first; t < first + count; ++t) {
         SegmentHit hit;
         if (segment_meets_triangle(p, d, t, hit) && hit.s > 0.0) ++crossings;
@@ -907,7 +462,7 @@ struct MeshBody::Impl {
     const Vector3d d = b - a;
     double best = std::numeric_limits<double>::infinity();
     // One-sided: only crossings into the body.
-    leaves_on_segment(a, d, false, [&](int first, int count) {
+    tree.leaves_on_segment(a, d, false, [&](int first, int count) {
       for (int t = first; t < first + count; ++t) {
         if (any_ignored && ignored[static_cast<std::size_t>(t)]) continue;
         const Vector3d n = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
@@ -936,7 +491,7 @@ struct MeshBody::Impl {
   /// there the seen surface is open, and a side read off it may be wrong.
   bool near_fold(const Vector3d& p, double radius2) const {
     for (int t : ignored_list)
-      if (triangle_box_distance2(p, t) < radius2) return true;
+      if (tree.triangle_box_distance2(p, t) < radius2) return true;
     return false;
   }
 
@@ -984,7 +539,7 @@ struct MeshBody::Impl {
       return true;
     }
     if (recently_outside(memo) && segment_clear(memo->centre, p)) return false;
-    if (!inside_root(p)) return false;
+    if (!tree.inside_root(p)) return false;
     // Beyond reach, with triangles left out, the side is the whole mesh's
     // parity (signed_contact's rule): outside needs no nearest search.
     if (any_ignored && !inside_whole_mesh(p)) return false;
@@ -1094,26 +649,9 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
     }
   }
 
-  // The tree: surface-area-heuristic splits (built once, on the first
-  // pose), depth-first node order (left child next, parents before
-  // children, so a reverse pass refits), triangles stored in leaf order.
-  std::vector<Vector3d> centroid(triangles.size());
-  std::vector<Impl::Box> boxes(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    centroid[t] = (m.x[static_cast<std::size_t>(triangles[t](0))] + m.x[static_cast<std::size_t>(triangles[t](1))] +
-                   m.x[static_cast<std::size_t>(triangles[t](2))]) / 3.0;
-    for (int k = 0; k < 3; ++k) boxes[t].add({m.x[static_cast<std::size_t>(triangles[t](k))], m.x[static_cast<std::size_t>(triangles[t](k))]});
-  }
-  std::vector<int> order(triangles.size());
-  for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<int>(t);
-  m.nodes.reserve(2 * triangles.size() / Impl::kLeafSize + 2);
-  const std::pair<int, int> top = m.build(order, centroid, boxes, 0, static_cast<int>(order.size()), 0);
-  if (top.second > 0) {
-    // Few enough triangles for one leaf: a root node holding it alone.
-    m.nodes.emplace_back();
-    m.nodes[0].index[0] = top.first;
-    m.nodes[0].count[0] = top.second;
-  }
+  // The tree (built once, on the first pose), the triangles stored in its
+  // leaf order.
+  const std::vector<int> order = m.tree.build(triangles, m.x);
   m.triangles.resize(triangles.size());
   m.leaf_of_input.resize(triangles.size());
   for (std::size_t t = 0; t < order.size(); ++t) {
@@ -1161,17 +699,14 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
     for (int k = 0; k < 3; ++k)
       m.ring[static_cast<std::size_t>(fill[static_cast<std::size_t>(m.triangles[t](k))]++)] = {static_cast<int>(t), k};
 
-  m.nodes4.reserve(m.nodes.size());
-  m.box_slot.assign(m.triangles.size(), -1);
-  m.build4(0);
   m.x_previous = m.x;
-  m.refit(/*first=*/true);
+  m.tree.refit(m.triangles, m.x, /*first=*/true);
   double volume = 0.0;
   for (const Eigen::Vector3i& tri : m.triangles)
     volume += m.x[static_cast<std::size_t>(tri(0))].dot(m.x[static_cast<std::size_t>(tri(1))].cross(m.x[static_cast<std::size_t>(tri(2))]));
   if (!(volume > 0.0))
     throw ArgumentError("MeshBody: the triangles enclose a negative volume; expected them ordered counter-clockwise seen from outside");
-  const double diagonal = (m.root_hi - m.root_lo).norm();
+  const double diagonal = (m.tree.root_hi() - m.tree.root_lo()).norm();
   m.normal_floor = 1e-10 * std::max(1.0, diagonal);
 }
 
@@ -1211,7 +746,7 @@ void MeshBody::update(const Eigen::MatrixX3d& vertices, const std::vector<char>&
   ++m.serial;
   std::swap(m.x, m.x_previous);
   m.set_positions(vertices);
-  m.refit();
+  m.tree.refit(m.triangles, m.x);
 }
 
 double MeshBody::resolve(const Eigen::Vector3d& start, Eigen::Vector3d& position, bool friction,
@@ -1327,7 +862,7 @@ PointDepths MeshBody::depths(const Eigen::Vector3d& p, int* hint) const {
   Impl::Closest nearest = seed.d2 < m.depth_reach2 ? seed : Impl::Closest{};
   bool within = m.closest(p, nearest.triangle >= 0 ? nearest.d2 : m.depth_reach2, nearest);
   if (!within) {
-    if (!m.inside_root(p)) return {};
+    if (!m.tree.inside_root(p)) return {};
     // Beyond reach, with triangles left out, the side is the whole mesh's
     // parity (signed_contact's rule beyond kWholeMeshSideBeyond): a point
     // outside needs no search for its nearest triangle.
