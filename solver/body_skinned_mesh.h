@@ -1,7 +1,9 @@
 #pragma once
 // A skinned body mesh driven by a BVH skeleton: the MakeHuman base mesh with
 // its CMU rig and weights, linear-blend skinned. Collision with it is
-// MeshBody's (mesh_body.h).
+// MeshBody's (mesh_body.h); reading MakeHuman's files into one,
+// makehuman_body.h (included here).
+#include "makehuman_body.h"
 #include "skeleton.h"
 
 #include <Eigen/Core>
@@ -41,31 +43,6 @@ struct SkinnedBody {
   /// same way. Metres.
   Eigen::Vector3d obj_offset{0, 0, 0};
 };
-
-struct MakeHumanOptions {
-  std::string base_obj;        ///< bodies/makehuman/base.obj (group "body" is the body)
-  std::string skeleton_file;   ///< rigs/cmu_mb.mhskel (JSON)
-  std::string weights_file;    ///< rigs/default_weights.mhw (JSON)
-  double metres_per_unit = 0.1;  ///< base.obj's units (MakeHuman exports decimetres)
-};
-
-/// The three files of a MakeHuman folder laid out as the shared data's
-/// bodies/makehuman: `folder`/base.obj, rigs/cmu_mb.mhskel and
-/// rigs/default_weights.mhw (not checked for existence).
-MakeHumanOptions makehuman_files(const std::string& folder);
-
-/// Loads the MakeHuman body and binds it to `skeleton` (a CMU skeleton in
-/// metres, rest pose = T-pose): a CMU bone's weight is the sum of its
-/// mhskel `weights_reference` bones' weights (`reference` when it has none);
-/// default bones no CMU bone lists go to the CMU bone whose weights overlap
-/// theirs most. The mesh is translated so its hip joints' midpoint meets the
-/// skeleton's, and every bone with a direction in the skeleton gets a rest
-/// correction rotation taking its mesh (A-pose) direction to the skeleton's
-/// rest direction, applied once, so the bound rest mesh is in T-pose with
-/// the mesh's own bone lengths. Names the file and the problem on failure
-/// (InputError); a body not 0.5-3 m tall is refused as one read in other
-/// units, with the units it would have in.
-SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton);
 
 /// Linear-blend skinning: vertices of the body in `pose` (#V x 3). Each
 /// bone takes the rotation of its skeleton joint relative to the mesh's own
