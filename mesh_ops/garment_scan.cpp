@@ -1,6 +1,7 @@
 #include "garment_scan.h"
 
 #include "errors.h"
+#include "little_endian.h"
 #include "obj_tokens.h"
 #include "ply_layout.h"
 #include "text_words.h"
@@ -225,11 +226,7 @@ TextScan scan_binary_off(const std::string& path, const std::string& magic, cons
     throw InputError(with_path(path, "the binary OFF has no line end after 'OFF BINARY'; expected the counts and data "
                                      "on the bytes after it"));
   const std::size_t data = line_end + 1;
-  const auto read_u32 = [&](std::size_t at) {
-    std::uint32_t value = 0;
-    for (int k = 0; k < 4; ++k) value |= std::uint32_t{static_cast<unsigned char>(text[at + k])} << (8 * k);
-    return value;
-  };
+  const auto read_u32 = [&](std::size_t at) { return static_cast<std::uint32_t>(little_endian_at(text, at, 4)); };
   const std::size_t size = text.size();
   if (size < data + 12)
     throw InputError(with_path(path, "the binary OFF ends before its vertex, face and edge counts; expected three "

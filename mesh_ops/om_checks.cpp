@@ -2,6 +2,7 @@
 
 #include "errors.h"
 #include "garment_formats.h"
+#include "little_endian.h"
 #include "mode_layer.h"
 #include "mode_painting.h"
 #include "quadtree_forest.h"
@@ -90,9 +91,7 @@ ChecksumPlace checksum_place(const std::string& bytes) {
   if (type_at >= bytes.size()) return damaged;
   const std::size_t size_at = type_at + 1 + static_cast<unsigned char>(bytes[type_at]);
   if (size_at + 4 + 8 > bytes.size()) return damaged;
-  std::uint32_t block = 0;
-  for (std::size_t k = 0; k < 4; ++k) block |= std::uint32_t{static_cast<unsigned char>(bytes[size_at + k])} << (8 * k);
-  return block == 8 ? ChecksumPlace{true, false, size_at + 4} : damaged;
+  return little_endian_at(bytes, size_at, 4) == 8 ? ChecksumPlace{true, false, size_at + 4} : damaged;
 }
 
 std::uint64_t file_checksum(const std::string& bytes, std::size_t skip) {
@@ -107,10 +106,7 @@ std::uint64_t file_checksum(const std::string& bytes, std::size_t skip) {
 void check_om_checksum(const std::string& path, const std::string& bytes) {
   const ChecksumPlace place = checksum_place(bytes);
   if (!place.present) return;
-  std::uint64_t stored = 0;
-  if (!place.damaged)
-    for (std::size_t k = 0; k < 8; ++k)
-      stored |= std::uint64_t{static_cast<unsigned char>(bytes[place.offset + k])} << (8 * k);
+  const std::uint64_t stored = place.damaged ? 0 : little_endian_at(bytes, place.offset, 8);
   if (place.damaged || stored != file_checksum(bytes, place.offset))
     throw InputError(with_path(path, "the file is damaged or cut short (its bytes do not match the checksum mrcloth "
                                      "wrote into it); expected a .om file as mrcloth writes it, whole"));
@@ -118,11 +114,7 @@ void check_om_checksum(const std::string& path, const std::string& bytes) {
 
 void check_om_counts(const std::string& path, const std::string& bytes, const QuadMesh& mesh) {
   if (bytes.size() < 16 || bytes.compare(0, 2, "OM") != 0) return;  // the reader refused it already
-  const auto count = [&](std::size_t at) {
-    std::uint32_t value = 0;
-    for (std::size_t k = 0; k < 4; ++k) value |= std::uint32_t{static_cast<unsigned char>(bytes[at + k])} << (8 * k);
-    return value;
-  };
+  const auto count = [&](std::size_t at) { return static_cast<std::uint32_t>(little_endian_at(bytes, at, 4)); };
   const std::uint32_t vertices = count(4), faces = count(8);
   if (mesh.n_vertices() != vertices || mesh.n_faces() != faces)
     throw InputError(with_path(path, "the file is cut short or damaged (its header counts " + std::to_string(vertices) +

@@ -1,5 +1,6 @@
 #include "om_structure.h"
 #include "errors.h"
+#include "little_endian.h"
 #include "quad_mesh.h"
 #include "texture_coords.h"
 #include <OpenMesh/Core/IO/OMFormat.hh>
@@ -39,9 +40,7 @@ class OmWalk {
 
   std::uint64_t read_unsigned(std::size_t width, const char* what) {
     if (left() < width) refuse(std::string("is cut off in its ") + what);
-    std::uint64_t value = 0;
-    for (std::size_t k = 0; k < width; ++k)
-      value |= std::uint64_t{static_cast<unsigned char>(bytes_[at_ + k])} << (8 * k);
+    const std::uint64_t value = little_endian_at(bytes_, at_, width);
     at_ += width;
     return value;
   }
