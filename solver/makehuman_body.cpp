@@ -500,51 +500,31 @@ Binding bind_skeleton(const Skeleton& skeleton, const Pose& rest, const std::vec
   return binding;
 }
 
-}  // namespace
+/// Rig bone <-> skeleton joint, by name. A joint the rig has no bone for
+/// (a DAZ skeleton's eyes and finger links) carries no skin and follows
+/// its parent; a bone the skeleton has no joint for (DAZ has no Spine,
+/// Neck1 or toes) hands its skin to its nearest ancestor that has one.
+struct RigMatch {
+  std::vector<const RigBone*> bone_of;           ///< per skeleton joint: its rig bone, null if none
+  std::map<std::string, int> joint_of_rig_bone;  ///< per rig bone with a joint: that joint
+};
 
-MakeHumanOptions makehuman_files(const std::string& folder) {
-  MakeHumanOptions files;
-  files.base_obj = folder + "/base.obj";
-  files.skeleton_file = folder + "/rigs/cmu_mb.mhskel";
-  files.weights_file = folder + "/rigs/default_weights.mhw";
-  return files;
-}
-
-// ---------------------------------------------------------------------------
-// load_makehuman_body
-
-SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton) {
-  if (!(files.metres_per_unit > 0.0 && std::isfinite(files.metres_per_unit)))
-    throw ArgumentError("load_makehuman_body: metres_per_unit must be a finite number > 0 (got " +
-                        std::to_string(files.metres_per_unit) + ")");
-  const ObjData obj = read_obj_group(files.base_obj, "body");
-  std::vector<Vector3d> all_vertices = obj.vertices;
-  for (Vector3d& v : all_vertices) v *= files.metres_per_unit;
-  const double height = body_height(obj, all_vertices);
-  check_body_height(files, height);
-  check_body_closed(files.base_obj, obj);
-
-  const JsonValue rig = read_json(files.skeleton_file);
-  const JsonValue mhw = read_json(files.weights_file);
-  const std::map<std::string, Vector3d> joints = rig_joints(rig, all_vertices);
-  const std::map<std::string, RigBone> bones = rig_bones(rig, joints);
-
-  // Rig bone <-> skeleton joint, by name. A joint the rig has no bone for
-  // (a DAZ skeleton's eyes and finger links) carries no skin and follows
-  // its parent; a bone the skeleton has no joint for (DAZ has no Spine,
-  // Neck1 or toes) hands its skin to its nearest ancestor that has one.
+/// Matches `bones` (the rig's) to `skeleton`'s joints by name; InputError
+/// naming `files`' rig when the root or a leg joint has no bone.
+RigMatch match_rig_bones(const MakeHumanOptions& files, const Skeleton& skeleton,
+                         const std::map<std::string, RigBone>& bones) {
   const std::size_t n = skeleton.joints.size();
   if (n == 0) throw InputError(files.skeleton_file + ": the skeleton to bind to has no joints; expected a CMU skeleton");
-  std::vector<const RigBone*> bone_of(n, nullptr);
-  std::map<std::string, int> joint_of_rig_bone;
+  RigMatch match;
+  match.bone_of.assign(n, nullptr);
   for (std::size_t j = 0; j < n; ++j) {
     if (skeleton.joints[j].end_site) continue;
     const auto found = bones.find(rig_name(skeleton.joints[j].name));
     if (found == bones.end()) continue;
-    bone_of[j] = &found->second;
-    joint_of_rig_bone[found->first] = static_cast<int>(j);
+    match.bone_of[j] = &found->second;
+    match.joint_of_rig_bone[found->first] = static_cast<int>(j);
   }
-  if (!bone_of[0]) {
+  if (!match.bone_of[0]) {
     std::string root_bone;
     for (const auto& [name, bone] : bones)
       if (bone.parent.empty()) root_bone = name;
@@ -557,64 +537,69 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   // joint above, a thigh following the hip, and the hips unaligned.
   for (const char* leg : kCmuLegJoints) {
     const int j = skeleton.find(leg);
-    if (j >= 0 && !bone_of[static_cast<std::size_t>(j)])
+    if (j >= 0 && !match.bone_of[static_cast<std::size_t>(j)])
       throw InputError(files.skeleton_file + ": the rig has no bone \"" + leg +
                        "\" for the skeleton's joint of that name; expected a bone for each joint of the legs, named "
                        "as the skeleton's (the CMU MotionBuilder names): without it the skin of that part of the leg "
                        "would follow the joint above it");
   }
+  return match;
+}
+
+/// The translation taking the mesh onto the skeleton: the mesh's hip
+/// joints' midpoint on the skeleton's (leg lengths agree within 1 %, so the
+/// feet meet the skeleton's ground; the two Hips joints do not: the CMU one
+/// sits 9.8 cm above its hip joints, MakeHuman's 2.4 cm). Without both hip
+/// joints, the roots are aligned. `joints`: the rig's joint positions (m).
+Vector3d hip_alignment(const Skeleton& skeleton, const Pose& rest, const RigMatch& match,
+                       const std::map<std::string, Vector3d>& joints, const std::map<std::string, RigBone>& bones) {
+  const int left_hip = skeleton.find("LeftUpLeg"), right_hip = skeleton.find("RightUpLeg");
+  const int root = 0;
+  const auto& bone_of = match.bone_of;
+  if (left_hip >= 0 && right_hip >= 0 && bone_of[static_cast<std::size_t>(left_hip)] && bone_of[static_cast<std::size_t>(right_hip)]) {
+    const Vector3d mesh_mid = 0.5 * (joints.at(bone_of[static_cast<std::size_t>(left_hip)]->head) +
+                                     joints.at(bone_of[static_cast<std::size_t>(right_hip)]->head));
+    return 0.5 * (rest.position(left_hip) + rest.position(right_hip)) - mesh_mid;
+  }
+  return rest.position(root) - joints.at(bone_of[root] ? bone_of[root]->head : bones.begin()->second.head);
+}
+
+/// Per skin-weight bone of the .mhw, the joints taking its weights: those of
+/// the rig bones listing it, a rig bone without a joint giving them to its
+/// nearest ancestor's joint (the root's when it has none).
+std::map<std::string, std::vector<int>> joints_of_weight_bones(const RigMatch& match,
+                                                              const std::map<std::string, RigBone>& bones) {
   // Each rig bone's skin goes to its own joint or its nearest ancestor's.
   const auto joint_taking = [&](const std::string& bone_name) {
     std::string at = bone_name;
     for (std::size_t guard = 0; guard <= bones.size(); ++guard) {
-      const auto joint = joint_of_rig_bone.find(at);
-      if (joint != joint_of_rig_bone.end()) return joint->second;
+      const auto joint = match.joint_of_rig_bone.find(at);
+      if (joint != match.joint_of_rig_bone.end()) return joint->second;
       const auto bone = bones.find(at);
       if (bone == bones.end() || bone->second.parent.empty()) break;
       at = bone->second.parent;
     }
     return 0;  // no bound ancestor (a second root): the skeleton's root
   };
-
-  // Align: the mesh's hip joints' midpoint on the skeleton's (leg lengths
-  // agree within 1 %, so the feet meet the skeleton's ground; the two Hips
-  // joints do not: the CMU one sits 9.8 cm above its hip joints, MakeHuman's
-  // 2.4 cm). Without both hip joints, the roots are aligned.
-  const Pose rest = rest_pose(skeleton);
-  const int left_hip = skeleton.find("LeftUpLeg"), right_hip = skeleton.find("RightUpLeg");
-  const int root = 0;
-  Vector3d offset;
-  if (left_hip >= 0 && right_hip >= 0 && bone_of[static_cast<std::size_t>(left_hip)] && bone_of[static_cast<std::size_t>(right_hip)]) {
-    const Vector3d mesh_mid = 0.5 * (joints.at(bone_of[static_cast<std::size_t>(left_hip)]->head) +
-                                     joints.at(bone_of[static_cast<std::size_t>(right_hip)]->head));
-    offset = 0.5 * (rest.position(left_hip) + rest.position(right_hip)) - mesh_mid;
-  } else {
-    offset = rest.position(root) - joints.at(bone_of[root] ? bone_of[root]->head : bones.begin()->second.head);
+  std::map<std::string, std::vector<int>> joint_of_bone;
+  for (std::size_t j = 0; j < match.bone_of.size(); ++j)
+    if (match.bone_of[j])
+      for (const std::string& name : match.bone_of[j]->weight_bones) joint_of_bone[name].push_back(static_cast<int>(j));
+  for (const auto& [name, bone] : bones) {
+    if (match.joint_of_rig_bone.count(name)) continue;
+    const int j = joint_taking(name);
+    for (const std::string& weight_bone : bone.weight_bones) joint_of_bone[weight_bone].push_back(j);
   }
+  return joint_of_bone;
+}
 
-  std::vector<Vector3d> heads(n, Vector3d::Zero()), tails(n, Vector3d::Zero());
-  std::vector<bool> has_bone(n, false);
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!bone_of[j]) continue;
-    has_bone[j] = true;
-    heads[j] = joints.at(bone_of[j]->head) + offset;
-    tails[j] = joints.at(bone_of[j]->tail) + offset;
-  }
-  const Binding binding = bind_skeleton(skeleton, rest, heads, tails, has_bone);
-
-  // Body vertices: those the group's faces use, in file order.
-  std::vector<int> body_index(all_vertices.size(), -1);
-  for (const auto& face : obj.group_faces)
-    for (int v : face) body_index[static_cast<std::size_t>(v)] = 0;
-  int body_count = 0;
-  for (int& index : body_index)
-    if (index == 0) index = body_count++;
-
-  SkinnedBody body;
-  body.obj_offset = offset;
+/// The body group's faces as triangles of `body` (quads and larger
+/// polygons as fans from their first corner), with their texture
+/// coordinates when the group has them all; `body_index`: per OBJ vertex,
+/// its index in the body (-1: not in it).
+void add_body_triangles(const ObjData& obj, const std::vector<int>& body_index, SkinnedBody& body) {
   for (std::size_t f = 0; f < obj.group_faces.size(); ++f) {
     const auto& face = obj.group_faces[f];
-    // Quads (and larger polygons) as fans from their first corner.
     for (std::size_t k = 1; k + 1 < face.size(); ++k) {
       body.triangles.emplace_back(body_index[static_cast<std::size_t>(face[0])], body_index[static_cast<std::size_t>(face[k])],
                                   body_index[static_cast<std::size_t>(face[k + 1])]);
@@ -625,35 +610,15 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
       }
     }
   }
+}
 
-  std::map<std::string, std::vector<int>> joint_of_bone;
-  for (std::size_t j = 0; j < n; ++j)
-    if (bone_of[j])
-      for (const std::string& name : bone_of[j]->weight_bones) joint_of_bone[name].push_back(static_cast<int>(j));
-  for (const auto& [name, bone] : bones) {
-    if (joint_of_rig_bone.count(name)) continue;
-    const int j = joint_taking(name);
-    for (const std::string& weight_bone : bone.weight_bones) joint_of_bone[weight_bone].push_back(j);
-  }
-  const int hips = skeleton.find("Hips");
-  std::vector<int> unweighted;
-  body.weights = map_weights(mhw, joint_of_bone, body_index, body_count, hips >= 0 ? hips : root, unweighted,
-                             files.base_obj);
-  // MakeHuman weighs every body vertex (the shared body: all 13,380); one
-  // without weight would stand still in its A-pose while the clip walks.
-  if (!unweighted.empty()) {
-    int first = -1;
-    for (std::size_t v = 0; v < body_index.size() && first < 0; ++v)
-      if (body_index[v] == unweighted.front()) first = static_cast<int>(v);
-    throw InputError(files.weights_file + ": " + std::to_string(unweighted.size()) + " of the body's " +
-                     std::to_string(body_count) + " vertices have no weight (the first: vertex " +
-                     std::to_string(first + 1) + " of " + files.base_obj +
-                     "); expected weights for every vertex of the body group (a .mhw of another body or rig?)");
-  }
-
-  check_weights_fit_mesh(files, all_vertices, body_index, body.weights, heads, tails, has_bone, offset, skeleton,
-                         height);
-
+/// The bound body's geometry from its weights and `binding`: the rest
+/// vertices (in T-pose), the joints' rest pivots and corrections, and the
+/// input pose (A-pose) joints and vertices skinning starts from.
+/// `all_vertices`: the OBJ's (m, before `offset`); `body_index` as above.
+void set_bound_geometry(const std::vector<Vector3d>& all_vertices, const std::vector<int>& body_index, int body_count,
+                        const Vector3d& offset, const Binding& binding, const Skeleton& skeleton, SkinnedBody& body) {
+  const std::size_t n = skeleton.joints.size();
   body.rest_vertices.resize(body_count, 3);
   for (std::size_t v = 0; v < all_vertices.size(); ++v) {
     const int b = body_index[v];
@@ -685,6 +650,83 @@ SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& s
   body.input_vertices.resize(body_count, 3);
   for (std::size_t v = 0; v < all_vertices.size(); ++v)
     if (body_index[v] >= 0) body.input_vertices.row(body_index[v]) = (all_vertices[v] + offset).transpose();
+}
+
+}  // namespace
+
+MakeHumanOptions makehuman_files(const std::string& folder) {
+  MakeHumanOptions files;
+  files.base_obj = folder + "/base.obj";
+  files.skeleton_file = folder + "/rigs/cmu_mb.mhskel";
+  files.weights_file = folder + "/rigs/default_weights.mhw";
+  return files;
+}
+
+// ---------------------------------------------------------------------------
+// load_makehuman_body
+
+SkinnedBody load_makehuman_body(const MakeHumanOptions& files, const Skeleton& skeleton) {
+  if (!(files.metres_per_unit > 0.0 && std::isfinite(files.metres_per_unit)))
+    throw ArgumentError("load_makehuman_body: metres_per_unit must be a finite number > 0 (got " +
+                        std::to_string(files.metres_per_unit) + ")");
+  const ObjData obj = read_obj_group(files.base_obj, "body");
+  std::vector<Vector3d> all_vertices = obj.vertices;
+  for (Vector3d& v : all_vertices) v *= files.metres_per_unit;
+  const double height = body_height(obj, all_vertices);
+  check_body_height(files, height);
+  check_body_closed(files.base_obj, obj);
+
+  const JsonValue rig = read_json(files.skeleton_file);
+  const JsonValue mhw = read_json(files.weights_file);
+  const std::map<std::string, Vector3d> joints = rig_joints(rig, all_vertices);
+  const std::map<std::string, RigBone> bones = rig_bones(rig, joints);
+  const RigMatch match = match_rig_bones(files, skeleton, bones);
+  const std::size_t n = skeleton.joints.size();
+
+  const Pose rest = rest_pose(skeleton);
+  const Vector3d offset = hip_alignment(skeleton, rest, match, joints, bones);
+  std::vector<Vector3d> heads(n, Vector3d::Zero()), tails(n, Vector3d::Zero());
+  std::vector<bool> has_bone(n, false);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!match.bone_of[j]) continue;
+    has_bone[j] = true;
+    heads[j] = joints.at(match.bone_of[j]->head) + offset;
+    tails[j] = joints.at(match.bone_of[j]->tail) + offset;
+  }
+  const Binding binding = bind_skeleton(skeleton, rest, heads, tails, has_bone);
+
+  // Body vertices: those the group's faces use, in file order.
+  std::vector<int> body_index(all_vertices.size(), -1);
+  for (const auto& face : obj.group_faces)
+    for (int v : face) body_index[static_cast<std::size_t>(v)] = 0;
+  int body_count = 0;
+  for (int& index : body_index)
+    if (index == 0) index = body_count++;
+
+  SkinnedBody body;
+  body.obj_offset = offset;
+  add_body_triangles(obj, body_index, body);
+
+  const int hips = skeleton.find("Hips");
+  const int root = 0;
+  std::vector<int> unweighted;
+  body.weights = map_weights(mhw, joints_of_weight_bones(match, bones), body_index, body_count,
+                             hips >= 0 ? hips : root, unweighted, files.base_obj);
+  // MakeHuman weighs every body vertex (the shared body: all 13,380); one
+  // without weight would stand still in its A-pose while the clip walks.
+  if (!unweighted.empty()) {
+    int first = -1;
+    for (std::size_t v = 0; v < body_index.size() && first < 0; ++v)
+      if (body_index[v] == unweighted.front()) first = static_cast<int>(v);
+    throw InputError(files.weights_file + ": " + std::to_string(unweighted.size()) + " of the body's " +
+                     std::to_string(body_count) + " vertices have no weight (the first: vertex " +
+                     std::to_string(first + 1) + " of " + files.base_obj +
+                     "); expected weights for every vertex of the body group (a .mhw of another body or rig?)");
+  }
+
+  check_weights_fit_mesh(files, all_vertices, body_index, body.weights, heads, tails, has_bone, offset, skeleton,
+                         height);
+  set_bound_geometry(all_vertices, body_index, body_count, offset, binding, skeleton, body);
   return body;
 }
 
