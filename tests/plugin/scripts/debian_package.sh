@@ -36,16 +36,19 @@ for resource in scripts/pipeline.js garments/default_skirt.obj characters/walk_n
   case "$files" in *"./usr/share/mrcloth/$resource "*) ;; *) fail "package lacks share/mrcloth/$resource" ;; esac
 done
 
-# Unpacked anywhere, the host runs on its own tree.
+# Unpacked anywhere, the host runs on its own tree (the package's prefix,
+# CPACK_PACKAGING_INSTALL_PREFIX, inside the folder it is unpacked into).
 dpkg-deb -x "$deb" "$tmp/root" || { echo "FAILED: dpkg-deb -x"; exit 1; }
+unpacked="$tmp/root/$(dpkg-deb -c "$deb" | awk '$NF ~ /bin\/mrcloth$/ {print $NF}' | sed 's|^\./||; s|/bin/mrcloth$||')"
+[ -x "$unpacked/bin/mrcloth" ] || { echo "FAILED: no host in the unpacked package ($unpacked)"; exit 1; }
 cat > "$tmp/where.js" <<'JS'
 print("resources " + core.resourcePath());
 print("plugins " + typeof multirescloth + " " + typeof preview);
 print("skirt " + core.objectInfo(core.loadObject(core.resourcePath() + "/garments/default_skirt.obj")).vertices);
 JS
-(cd / && env -u MRCLOTH_RESOURCES "$tmp/root/usr/bin/mrcloth" -q -b "$tmp/where.js") > "$tmp/where.out" 2>&1 ||
+(cd / && env -u MRCLOTH_RESOURCES "$unpacked/bin/mrcloth" -q -b "$tmp/where.js") > "$tmp/where.out" 2>&1 ||
   fail "unpacked host: $(cat "$tmp/where.out")"
-grep -qx "resources $tmp/root/usr/share/mrcloth" "$tmp/where.out" || fail "resourcePath: $(cat "$tmp/where.out")"
+grep -qx "resources $unpacked/share/mrcloth" "$tmp/where.out" || fail "resourcePath: $(cat "$tmp/where.out")"
 grep -qx "plugins object object" "$tmp/where.out" || fail "plugins: $(cat "$tmp/where.out")"
 grep -qx "skirt 800" "$tmp/where.out" || fail "default skirt: $(cat "$tmp/where.out")"
 
