@@ -151,20 +151,16 @@ int cache_frames(const std::string& cache_path) { return Pc2Reader(cache_path).n
 
 BodyFrames::BodyFrames(const std::string& obj_path, const std::string& cache_path) : cache_path_(cache_path) {
   ObjMesh mesh = read_obj(obj_path);
-  rest_.positions = std::move(mesh.positions);
-  rest_.faces = std::move(mesh.faces);
-  rest_.color = kBodyColor;
-  rest_.wireframe = false;
+  points_ = static_cast<int>(mesh.positions.rows());
+  faces_.faces = std::move(mesh.faces);
+  faces_.color = kBodyColor;
+  faces_.wireframe = false;
 }
 
 render::Surface BodyFrames::at(int frame) const {
-  render::Surface surface = rest_;
-  surface.positions = cache_frame(cache_path_, frame, static_cast<int>(rest_.positions.rows()));
+  render::Surface surface = faces_;
+  surface.positions = cache_frame(cache_path_, frame, points_);
   return surface;
-}
-
-render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame) {
-  return BodyFrames(obj_path, cache_path).at(frame);
 }
 
 }  // namespace mrcloth::preview

@@ -82,10 +82,8 @@ class BodyFrames {
 
  private:
   std::string cache_path_;
-  render::Surface rest_;
+  int points_ = 0;          ///< the rest OBJ's vertex count, which every frame must have
+  render::Surface faces_;   ///< its faces and how they are drawn; positions come from each frame
 };
-
-/// BodyFrames(obj_path, cache_path).at(frame), for a single picture.
-render::Surface body_surface(const std::string& obj_path, const std::string& cache_path, int frame);
 
 }  // namespace mrcloth::preview

@@ -387,24 +387,7 @@ TEST_F(PreviewFiles, MissingOrBrokenCacheIsAnInputErrorNamingTheFile) {
   expect_throws<InputError>([&] { cache_frame(obj, 0); }, {obj});
 }
 
-TEST_F(PreviewFiles, BodySurfaceIsTheObjFacesAtTheCacheFrame) {
-  const std::string obj = path("body.obj");
-  const std::string pc2 = path("body.pc2");
-  const std::vector<std::vector<int>> faces{{0, 1, 2}, {1, 3, 4, 2}, {4, 5, 2}};
-  write_obj(obj, frame_values(6, 0), faces);
-  write_cache(pc2, 6, 4);
-  for (const int frame : {0, 3}) {
-    const render::Surface body = body_surface(obj, pc2, frame);
-    EXPECT_EQ(body.faces, faces);
-    EXPECT_EQ(body.positions, Eigen::MatrixX3d(frame_values(6, frame))) << "frame " << frame;
-    EXPECT_FALSE(body.wireframe);
-    EXPECT_TRUE(body.vertex_colors.empty());
-    EXPECT_TRUE(body.face_colors.empty());
-  }
-  expect_throws<ArgumentError>([&] { body_surface(obj, pc2, 4); }, {pc2, "frame 4"});
-}
-
-TEST_F(PreviewFiles, BodyFramesReadTheRestMeshOnceAndEveryFrameFromTheCache) {
+TEST_F(PreviewFiles, BodyFramesAreTheObjFacesAtEachCacheFrameWithTheObjReadOnce) {
   const std::string obj = path("body.obj");
   const std::string pc2 = path("body.pc2");
   const std::vector<std::vector<int>> faces{{0, 1, 2}, {1, 3, 4, 2}, {4, 5, 2}};
@@ -418,6 +401,8 @@ TEST_F(PreviewFiles, BodyFramesReadTheRestMeshOnceAndEveryFrameFromTheCache) {
     EXPECT_EQ(surface.faces, faces);
     EXPECT_EQ(surface.positions, Eigen::MatrixX3d(frame_values(6, frame))) << "frame " << frame;
     EXPECT_FALSE(surface.wireframe);
+    EXPECT_TRUE(surface.vertex_colors.empty());
+    EXPECT_TRUE(surface.face_colors.empty());
   }
   expect_throws<ArgumentError>([&] { (void)body.at(4); }, {pc2, "frame 4"});
   // The cache is read per frame: a frame rewritten since is drawn as it is now.
@@ -425,13 +410,13 @@ TEST_F(PreviewFiles, BodyFramesReadTheRestMeshOnceAndEveryFrameFromTheCache) {
   expect_throws<ArgumentError>([&] { (void)body.at(3); }, {pc2, "frame 3"});
 }
 
-TEST_F(PreviewFiles, BodySurfaceRefusesACacheOfAnotherPointCount) {
+TEST_F(PreviewFiles, BodyFramesRefuseACacheOfAnotherPointCount) {
   const std::string obj = path("body.obj");
   const std::string pc2 = path("other.pc2");
   write_obj(obj, frame_values(6, 0), {{0, 1, 2}, {3, 4, 5}});
   write_cache(pc2, 7, 2);
-  expect_throws<ArgumentError>([&] { body_surface(obj, pc2, 0); }, {pc2, "7 points", "6 vertices"});
-  expect_throws<InputError>([&] { body_surface(path("no_body.obj"), pc2, 0); }, {"no_body.obj"});
+  expect_throws<ArgumentError>([&] { (void)BodyFrames(obj, pc2).at(0); }, {pc2, "7 points", "6 vertices"});
+  expect_throws<InputError>([&] { BodyFrames(path("no_body.obj"), pc2); }, {"no_body.obj"});
 }
 
 }  // namespace
