@@ -165,6 +165,117 @@ IntegratorOptions integrator_options(const SimulationOptions& options) {
   return io;
 }
 
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Sets `integrator` up for the run: a copy of `prepared` when given (it must
+/// step as `io` does), else precomputed for `model`. False when `progress`
+/// stopped the set-up, which is no frame but can be stopped between phases.
+bool set_up_integrator(ImplicitIntegrator& integrator, const DynamicsModel& model, const IntegratorOptions& io,
+                       const ImplicitIntegrator* prepared, const SimulationProgress& progress, int frames) {
+  if (prepared && prepared->options().time_step != io.time_step)
+    throw std::logic_error("simulate: the prepared integrator steps " + std::to_string(prepared->options().time_step) +
+                           " s, this run " + std::to_string(io.time_step));
+  if (prepared) {
+    integrator = *prepared;
+    return true;
+  }
+  const auto keep_going = [&] { return !progress || progress(0, frames); };
+  return keep_going() && integrator.precompute(model, io, keep_going);
+}
+
+/// Takes one output frame's time steps: pins to their trajectory, bodies
+/// posed, pins yielding to the bodies, the integrator's step.
+class FrameStepper {
+ public:
+  FrameStepper(ImplicitIntegrator& integrator, const SimulationOptions& options, const PinTrajectory& pins,
+               const MovingBodies& bodies, const CollisionScene& scene, const Positions& rest_pinned)
+      : integrator_(integrator),
+        options_(options),
+        pins_(pins),
+        bodies_(bodies),
+        scene_(scene),
+        rest_pinned_(rest_pinned),
+        pinned_next_(rest_pinned),
+        pin_hints_(static_cast<std::size_t>(rest_pinned.rows()), -1) {}
+
+  /// Advances `state` by options.substeps steps of output frame `frame`,
+  /// adding their times to `timing` and their counts (steps, rounds, the
+  /// pins' largest yield) to `report`. False, with report.non_finite set,
+  /// once a step leaves a non-finite value.
+  bool advance(ClothState& state, int frame, FrameTiming& timing, SimulationReport& report) {
+    const double h = integrator_.options().time_step;
+    for (int sub = 0; sub < options_.substeps; ++sub) {
+      pinned_next_ = rest_pinned_;
+      if (pins_) pins_(state.time + h, pinned_next_);
+      if (bodies_.pose) {
+        // Posing a body (a skinned mesh: skinning, turned triangles, the
+        // tree's refit) is part of what collision costs.
+        const auto pose_start = std::chrono::steady_clock::now();
+        bodies_.pose(state.time + h);
+        const double posing_ms = ms_since(pose_start);
+        timing.collision_ms += posing_ms;
+        timing.posing_ms += posing_ms;
+      }
+      if (options_.pins_yield && !scene_.empty()) {
+        const auto yield_start = std::chrono::steady_clock::now();
+        const double moved = yield_pins_to_surfaces(scene_, state.pinned, pinned_next_, pin_hints_);
+        if (moved > report.max_pin_yield) {
+          report.max_pin_yield = moved;
+          report.pin_yield_frame = frame;
+        }
+        timing.collision_ms += ms_since(yield_start);
+      }
+      const StepReport step = integrator_.step(state, pinned_next_, scene_);
+      timing.dynamics_ms += step.dynamics_ms;
+      timing.collision_ms += step.collision_ms;
+      timing.limiter_ms += step.limiter_ms;
+      timing.first_round_ms += step.first_round_ms;
+      report.mean_rounds += step.rounds;
+      ++report.steps;
+      if (!step.finite) {
+        report.non_finite = true;
+        return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  ImplicitIntegrator& integrator_;
+  const SimulationOptions& options_;
+  const PinTrajectory& pins_;
+  const MovingBodies& bodies_;
+  const CollisionScene& scene_;
+  const Positions& rest_pinned_;
+  Positions pinned_next_;
+  std::vector<int> pin_hints_;  // one per pin: where its last search ended
+};
+
+/// The mean of each part of `per_frame` (zeros when empty).
+FrameTiming mean_timing(const std::vector<FrameTiming>& per_frame) {
+  FrameTiming mean;
+  for (const FrameTiming& t : per_frame) {
+    mean.dynamics_ms += t.dynamics_ms;
+    mean.collision_ms += t.collision_ms;
+    mean.limiter_ms += t.limiter_ms;
+    mean.posing_ms += t.posing_ms;
+    mean.first_round_ms += t.first_round_ms;
+    mean.measure_ms += t.measure_ms;
+  }
+  if (!per_frame.empty()) {
+    for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms,
+                         &mean.measure_ms})
+      *part /= static_cast<double>(per_frame.size());
+  }
+  return mean;
+}
+
+}  // namespace
+
 SimulationReport simulate(const DynamicsModel& model, ClothState& state, const SimulationOptions& options,
                           const PinTrajectory& pins, const SimulationProgress& progress,
                           std::vector<Positions>* frames_out, const MovingBodies& bodies,
@@ -178,23 +289,14 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   const IntegratorOptions io = integrator_options(options);
   report.time_step = io.time_step;
 
-  auto start = std::chrono::steady_clock::now();
-  if (prepared && prepared->options().time_step != io.time_step)
-    throw std::logic_error("simulate: the prepared integrator steps " + std::to_string(prepared->options().time_step) +
-                           " s, this run " + std::to_string(io.time_step));
+  const auto start = std::chrono::steady_clock::now();
   ImplicitIntegrator integrator;
-  if (prepared) {
-    integrator = *prepared;
-  } else {
-    // The set-up is no frame, but can be stopped between its phases.
-    const auto keep_going = [&] { return !progress || progress(0, options.frames); };
-    if (!keep_going() || !integrator.precompute(model, io, keep_going)) {
-      report.cancelled = true;
-      return report;
-    }
+  if (!set_up_integrator(integrator, model, io, prepared, progress, options.frames)) {
+    report.cancelled = true;
+    return report;
   }
   report.limiter_acceleration = integrator.limiter_acceleration();
-  report.precompute_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  report.precompute_ms = ms_since(start);
 
   std::unique_ptr<Pc2Writer> cache;
   if (!options.cache_path.empty())
@@ -206,50 +308,14 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
   const ContactSurface surface = contact_surface(model);
   MeasureHints hints{std::vector<int>(static_cast<std::size_t>(model.num_vertices), -1),
                      std::vector<int>(model.corners.size(), -1)};
-  Positions pinned_next = rest_pinned;
-  std::vector<int> pin_hints(static_cast<std::size_t>(rest_pinned.rows()), -1);
+  FrameStepper stepper(integrator, options, pins, bodies, scene, rest_pinned);
   for (int frame = 0; frame < options.frames; ++frame) {
     FrameTiming timing;
-    for (int sub = 0; sub < options.substeps; ++sub) {
-      pinned_next = rest_pinned;
-      if (pins) pins(state.time + io.time_step, pinned_next);
-      if (bodies.pose) {
-        // Posing a body (a skinned mesh: skinning, turned triangles, the
-        // tree's refit) is part of what collision costs.
-        const auto pose_start = std::chrono::steady_clock::now();
-        bodies.pose(state.time + io.time_step);
-        const double posing_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pose_start).count();
-        timing.collision_ms += posing_ms;
-        timing.posing_ms += posing_ms;
-      }
-      if (options.pins_yield && !scene.empty()) {
-        const auto yield_start = std::chrono::steady_clock::now();
-        const double moved = yield_pins_to_surfaces(scene, state.pinned, pinned_next, pin_hints);
-        if (moved > report.max_pin_yield) {
-          report.max_pin_yield = moved;
-          report.pin_yield_frame = frame;
-        }
-        timing.collision_ms +=
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - yield_start).count();
-      }
-      const StepReport step = integrator.step(state, pinned_next, scene);
-      timing.dynamics_ms += step.dynamics_ms;
-      timing.collision_ms += step.collision_ms;
-      timing.limiter_ms += step.limiter_ms;
-      timing.first_round_ms += step.first_round_ms;
-      report.mean_rounds += step.rounds;
-      ++report.steps;
-      if (!step.finite) {
-        report.non_finite = true;
-        break;
-      }
-    }
-    if (report.non_finite) break;
+    if (!stepper.advance(state, frame, timing, report)) break;
     const Positions x = full_positions(model, state.positions, state.pinned);
     const auto measure_start = std::chrono::steady_clock::now();
     measure_frame(scene, model, surface, x, report.frames, report, integrator.pool(), hints);
-    timing.measure_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - measure_start).count();
+    timing.measure_ms = ms_since(measure_start);
     if (cache) cache->add_frame(x);
     if (frames_out) frames_out->push_back(x);
     report.per_frame.push_back(timing);
@@ -259,20 +325,7 @@ SimulationReport simulate(const DynamicsModel& model, ClothState& state, const S
       break;
     }
   }
-  FrameTiming& mean = report.mean_frame;
-  for (const FrameTiming& t : report.per_frame) {
-    mean.dynamics_ms += t.dynamics_ms;
-    mean.collision_ms += t.collision_ms;
-    mean.limiter_ms += t.limiter_ms;
-    mean.posing_ms += t.posing_ms;
-    mean.first_round_ms += t.first_round_ms;
-    mean.measure_ms += t.measure_ms;
-  }
-  if (report.frames > 0) {
-    for (double* part : {&mean.dynamics_ms, &mean.collision_ms, &mean.limiter_ms, &mean.posing_ms, &mean.first_round_ms,
-                         &mean.measure_ms})
-      *part /= report.frames;
-  }
+  report.mean_frame = mean_timing(report.per_frame);
   if (report.steps > 0) report.mean_rounds /= report.steps;
   // Only a complete, finite run leaves a cache; the writer removes its
   // temporary file otherwise.
