@@ -411,71 +411,129 @@ int steps_per_frame(const CharacterRunOptions& options) {
   return std::max(1, static_cast<int>(std::lround(options.step_rate / options.fps)));
 }
 
-CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
-                                         PosedBody& body, const CharacterRunOptions& options,
-                                         const SimulationProgress& progress, std::vector<Positions>* frames_out) {
-  check(options, motion);
-  const int pelvis = motion.skeleton.find(options.pelvis_joint);
-  const Pose reference = reference_pose(motion, options);
-  const Eigen::Isometry3d pelvis_rest_inverse = reference.global[pelvis].inverse();
-  const Positions rest_pinned = pinned_rows(model, model.rest);
-  // A skinned waist: per joint, the inverse of the body's joint frame in
-  // the reference pose (the waist's rest shape sits on that pose).
-  const bool skinned_waist = !options.waist_weights.empty();
-  std::vector<Eigen::Isometry3d> reference_inverse;
-  if (skinned_waist) {
+namespace {
+
+/// Where the pinned waist goes in a pose of the motion: with the pelvis
+/// joint's frame, or skinned as the body is where the options give the
+/// waist's skin weights (so the waist keeps its place on the skin).
+class WaistTargets {
+ public:
+  /// Throws ArgumentError when the waist weights do not match the model's
+  /// pins or name no joint of the motion's skeleton.
+  WaistTargets(const DynamicsModel& model, const Motion& motion, const CharacterRunOptions& options)
+      : motion_(motion),
+        options_(options),
+        pelvis_(motion.skeleton.find(options.pelvis_joint)),
+        reference_(reference_pose(motion, options)),
+        pelvis_rest_inverse_(reference_.global[pelvis_].inverse()),
+        rest_(pinned_rows(model, model.rest)) {
+    if (options.waist_weights.empty()) return;
     if (options.waist_weights.size() != model.pinned_vertices.size())
       throw ArgumentError("waist weights for " + std::to_string(options.waist_weights.size()) +
                           " vertices; the model pins " + std::to_string(model.pinned_vertices.size()));
-    for (const Eigen::Isometry3d& g : proportioned_pose(motion.skeleton, options.body_joints, reference).global)
-      reference_inverse.push_back(g.inverse());
+    // Per joint, the inverse of the body's joint frame in the reference
+    // pose (the waist's rest shape sits on that pose).
+    for (const Eigen::Isometry3d& g : proportioned_pose(motion.skeleton, options.body_joints, reference_).global)
+      reference_inverse_.push_back(g.inverse());
     for (const auto& list : options.waist_weights)
       for (const auto& [joint, weight] : list)
-        if (joint < 0 || joint >= static_cast<int>(reference_inverse.size()) || !std::isfinite(weight))
+        if (joint < 0 || joint >= static_cast<int>(reference_inverse_.size()) || !std::isfinite(weight))
           throw ArgumentError("waist weight " + std::to_string(weight) + " on joint " + std::to_string(joint) +
                               ": expected a finite weight on a joint of the motion's skeleton");
   }
 
-  // Poses are needed by both the pins and the body at the same times; cache
-  // the last one so each step computes FK once.
-  double cached_time = -1.0;
-  Pose cached;
-  CharacterRunReport report;
-  bool counting = true;  // steps of the run, not the waist check's re-evaluations below
-  const auto pose_at_time = [&](double time) -> const Pose& {
-    if (time != cached_time) {
-      double arm_angle = 0.0;
-      cached = character_pose(motion, time, options, &arm_angle);
-      cached_time = time;
-      if (counting) {
-        report.max_arm_angle = std::max(report.max_arm_angle, arm_angle);
-        if (arm_angle > 0.0) ++report.arm_steps;
-      }
-    }
-    return cached;
-  };
-  const PinTrajectory pins = [&](double time, Positions& pinned) {
-    const Pose& pose = pose_at_time(time);
-    if (!skinned_waist) {
-      const Eigen::Isometry3d follow = pose.global[pelvis] * pelvis_rest_inverse;
+  /// The pinned vertices' rest positions (#pinned x 3, metres).
+  const Positions& rest() const { return rest_; }
+
+  /// Sets `pinned` (#pinned x 3, metres) to the waist's place in `pose`.
+  void place(const Pose& pose, Positions& pinned) const {
+    if (options_.waist_weights.empty()) {
+      const Eigen::Isometry3d follow = pose.global[pelvis_] * pelvis_rest_inverse_;
       for (Eigen::Index k = 0; k < pinned.rows(); ++k)
-        pinned.row(k) = (follow * Eigen::Vector3d(rest_pinned.row(k).transpose())).transpose();
+        pinned.row(k) = (follow * Eigen::Vector3d(rest_.row(k).transpose())).transpose();
       return;
     }
     // Linear blend skinning, as skin() moves the body (same joints, pivots
-    // and weights), so the waist keeps its place on the skin.
-    const Pose skin_pose = proportioned_pose(motion.skeleton, options.body_joints, pose);
+    // and weights).
+    const Pose skin_pose = proportioned_pose(motion_.skeleton, options_.body_joints, pose);
     for (Eigen::Index k = 0; k < pinned.rows(); ++k) {
-      const Eigen::Vector3d x = rest_pinned.row(k).transpose();
+      const Eigen::Vector3d x = rest_.row(k).transpose();
       Eigen::Vector3d y = Eigen::Vector3d::Zero();
-      for (const auto& [joint, weight] : options.waist_weights[static_cast<std::size_t>(k)])
-        y += weight * (skin_pose.global[static_cast<std::size_t>(joint)] * (reference_inverse[static_cast<std::size_t>(joint)] * x));
+      for (const auto& [joint, weight] : options_.waist_weights[static_cast<std::size_t>(k)])
+        y += weight * (skin_pose.global[static_cast<std::size_t>(joint)] * (reference_inverse_[static_cast<std::size_t>(joint)] * x));
       pinned.row(k) = y.transpose();
     }
-  };
+  }
+
+ private:
+  const Motion& motion_;
+  const CharacterRunOptions& options_;
+  int pelvis_;
+  Pose reference_;
+  Eigen::Isometry3d pelvis_rest_inverse_;
+  Positions rest_;
+  std::vector<Eigen::Isometry3d> reference_inverse_;  // per joint; empty for a rigid waist
+};
+
+/// The character's pose at a time, computed once for the pins and the body
+/// of the same step (FK once a step); counts in `report` the steps at which
+/// the arm clearance opened an arm.
+class StepPoses {
+ public:
+  StepPoses(const Motion& motion, const CharacterRunOptions& options, CharacterRunReport& report)
+      : motion_(motion), options_(options), report_(report) {}
+
+  /// The pose at `time` (seconds on the run's clock); `count`: a step of
+  /// the run, not a re-evaluation (the waist's check), whose arm is counted.
+  const Pose& at(double time, bool count = true) {
+    if (time != time_) {
+      double arm_angle = 0.0;
+      pose_ = character_pose(motion_, time, options_, &arm_angle);
+      time_ = time;
+      if (count) {
+        report_.max_arm_angle = std::max(report_.max_arm_angle, arm_angle);
+        if (arm_angle > 0.0) ++report_.arm_steps;
+      }
+    }
+    return pose_;
+  }
+
+ private:
+  const Motion& motion_;
+  const CharacterRunOptions& options_;
+  CharacterRunReport& report_;
+  double time_ = -1.0;
+  Pose pose_;
+};
+
+/// The pre-roll's options: `sim` for preroll_frames frames that span the
+/// pre-roll exactly, so the motion starts at its first frame: a pre-roll
+/// that is no whole number of output frames (0.516 s at 30 fps) takes them
+/// a little longer or shorter. (Rounded to whole frames, the cloth went on
+/// at clip times the pre-roll's remainder away from the ones the waist's
+/// check and the body's cache were taken at.) No cache is written.
+SimulationOptions preroll_options(const SimulationOptions& sim, const CharacterRunOptions& options, int preroll_frames) {
+  SimulationOptions warmup = sim;
+  warmup.frames = preroll_frames;
+  if (std::abs(preroll_frames - options.preroll_seconds * options.fps) > 1e-9 * preroll_frames)
+    warmup.fps = preroll_frames / options.preroll_seconds;
+  warmup.cache_path.clear();
+  return warmup;
+}
+
+}  // namespace
+
+CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState& state, const Motion& motion,
+                                         PosedBody& body, const CharacterRunOptions& options,
+                                         const SimulationProgress& progress, std::vector<Positions>* frames_out) {
+  check(options, motion);
+  const WaistTargets waist(model, motion, options);
+  CharacterRunReport report;
+  StepPoses poses(motion, options, report);
+  const PinTrajectory pins = [&](double time, Positions& pinned) { waist.place(poses.at(time), pinned); };
   MovingBodies bodies;
   bodies.scene = &body.scene();
-  bodies.pose = [&](double time) { body.set_pose(pose_at_time(time)); };
+  bodies.pose = [&](double time) { body.set_pose(poses.at(time)); };
 
   SimulationOptions sim = options.simulation;
   sim.fps = options.fps;
@@ -495,16 +553,7 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   const double factorise_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - factorise_start).count();
   if (preroll_frames > 0) {
-    SimulationOptions warmup = sim;
-    warmup.frames = preroll_frames;
-    // Its frames span the pre-roll exactly, so the motion starts at its
-    // first frame: a pre-roll that is no whole number of output frames (0.516
-    // s at 30 fps) takes them a little longer or shorter. (Rounded to whole
-    // frames, the cloth went on at clip times the pre-roll's remainder away
-    // from the ones the waist's check and the body's cache were taken at.)
-    if (std::abs(preroll_frames - options.preroll_seconds * options.fps) > 1e-9 * preroll_frames)
-      warmup.fps = preroll_frames / options.preroll_seconds;
-    warmup.cache_path.clear();
+    const SimulationOptions warmup = preroll_options(sim, options, preroll_frames);
     SimulationProgress preroll_progress;
     if (progress) preroll_progress = [&](int done, int) { return progress(done, total_frames); };
     report.preroll = simulate(model, state, warmup, pins, preroll_progress, nullptr, bodies,
@@ -521,13 +570,11 @@ CharacterRunReport simulate_on_character(const DynamicsModel& model, ClothState&
   // at that frame's time: exact by construction, and this checks it. Frame
   // by frame, so a run holds no copy of its frames (24 bytes a vertex a
   // frame: 1.1 GB for 49k vertices over 800 frames).
-  Positions target = rest_pinned;
+  Positions target = waist.rest();
   const SimulationProgress motion_progress = [&](int done, int) {
     const double time = options.preroll_seconds + static_cast<double>(done) / options.fps;
-    counting = false;  // a re-evaluation, not a step of the run
-    target = rest_pinned;
-    pins(time, target);
-    counting = true;
+    target = waist.rest();
+    waist.place(poses.at(time, /*count=*/false), target);
     for (std::size_t k = 0; k < model.pinned_vertices.size(); ++k)
       report.max_waist_error = std::max(report.max_waist_error, (state.pinned.row(static_cast<Eigen::Index>(k)) -
                                                                  target.row(static_cast<Eigen::Index>(k))).norm());
