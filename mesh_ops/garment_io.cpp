@@ -118,6 +118,111 @@ void require_input_file(const std::string& path) {
     throw InputError(with_path(path, "the file is empty; expected a quad mesh"));
 }
 
+/// The whole of a .om file, once its checksum and chunk structure check out
+/// (the OpenMesh reader then reads the same file).
+std::string read_checked_om(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
+  check_om_checksum(path, bytes);
+  check_om_structure(path, bytes);
+  return bytes;
+}
+
+/// Runs OpenMesh's reader into `importer`: on the scan's cleaned text where
+/// there is one, else on the file. False where OpenMesh rejected the file.
+bool read_with_openmesh(const std::string& path, const std::string& extension, Format format, const TextScan& scan,
+                        CheckingImporter& importer) {
+  OpenMesh::IO::Options io_options;
+  QuietOpenMesh quiet;
+  try {
+    if (scan.text_for_reader.empty()) return OpenMesh::IO::IOManager().read(path, importer, io_options);
+    std::istringstream text(scan.text_for_reader);
+    if (format == Format::off) set_off_layout(path, scan.text_for_reader);
+    return OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
+  } catch (const std::bad_alloc&) {
+    // A binary header's counts misread (a big-endian OFF) or simply huge.
+    throw InputError(with_path(path, std::string("cannot be read as ") + format_name(format) +
+                                         ": its header asks for more elements than memory holds; expected a valid " +
+                                         extension + " mesh (binary OFF: little-endian, as OpenMesh reads it)"));
+  }
+}
+
+/// Refuses what the reader made of the file: the first face problem (the
+/// scan's or the importer's, whichever comes first in the file), a file
+/// OpenMesh rejected, no vertices or faces, a .om file cut short.
+void check_read(const std::string& path, const std::string& extension, Format format, bool read, const FaceProblem& problem,
+                const std::string& om_bytes, QuadMesh& mesh) {
+  if (format == Format::om) check_om_counts(path, om_bytes, mesh);
+  if (problem.found()) throw InputError(with_path(path, problem.text));
+  if (!read)
+    throw InputError(with_path(path, std::string("cannot be read as ") + format_name(format) +
+                                         " (OpenMesh rejected it); expected a valid " + extension + " mesh"));
+  if (mesh.n_vertices() == 0) throw InputError(with_path(path, "the file has no vertices; expected a quad mesh"));
+  if (mesh.n_faces() == 0) throw InputError(with_path(path, "the file has no faces; expected a quad mesh"));
+  if (format == Format::om) {
+    // save_mesh writes the forest last (ensure_layers): a file holding our
+    // layers but no forest was cut short, and would load as a coarse garment.
+    if (quadtree(mesh).empty() && om_bytes.find("mrcloth:") != std::string::npos)
+      throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but not the refinement "
+                                       "hierarchy mrcloth writes last); expected a .om file as mrcloth writes "
+                                       "it, whole"));
+    drop_analysis_layers_not_stored(om_bytes, mesh);
+  }
+}
+
+/// Sets the mesh's points from the scan's double-precision reading where it
+/// matches what OpenMesh read (true), refuses a non-finite coordinate and
+/// scales every point by `scale` (metres per unit).
+bool set_points(const std::string& path, Format format, const TextScan& scan, double scale, LoadResult& result) {
+  QuadMesh& mesh = result.mesh;
+  const bool scanned = scan_matches(scan, mesh);
+  if (scanned) {
+    for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);
+  } else if (format != Format::om && !scan.binary) {
+    result.warnings.push_back(with_path(
+        path, "the coordinates could not be re-read in double precision; they keep OpenMesh's single precision"));
+  }
+  for (const auto v : mesh.vertices()) {
+    const OpenMesh::Vec3d& p = mesh.point(v);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) +
+                                           " has a non-finite coordinate; expected finite numbers"));
+    mesh.set_point(v, p * scale);
+  }
+  return scanned;
+}
+
+/// A refined mesh saved by save_mesh: its forest and layers are the truth,
+/// once checked.
+void check_stored_refinement(const std::string& path, const std::string& om_bytes, double scale,
+                             const LoadOptions& options, LoadResult& result) {
+  check_stored_forest(path, result.mesh);
+  // save_mesh writes metres; a scale makes another garment of it, whose
+  // layers in metres (curvature, 1/m) no longer fit it.
+  if (scale != 1.0 && checksum_place(om_bytes).present)
+    result.warnings.push_back(with_path(
+        path, "mrcloth saved this mesh in metres; units '" + options.units + "' scale it by " + number_text(scale) +
+                  " (its curvature layers, in 1/m, are not rescaled): give units 'm' to load it as saved"));
+}
+
+/// A coarse garment: its surface checked (with warnings for unwelded seams
+/// and concave faces), made all quads, given its forest and texture
+/// coordinates. `lines` names the file's lines where the scan saw them.
+void prepare_coarse_garment(const std::string& path, const TextScan& scan, const ElementLines& lines,
+                            LoadResult& result) {
+  QuadMesh& mesh = result.mesh;
+  check_garment_surface(path, mesh, lines);
+  if (std::string unwelded = unwelded_seams_warning(path, mesh, lines); !unwelded.empty())
+    result.warnings.push_back(std::move(unwelded));
+  if (std::string concave = concave_faces_warning(path, mesh, lines); !concave.empty())
+    result.warnings.push_back(std::move(concave));
+  const std::size_t faces_read = mesh.n_faces();
+  std::vector<SplitQuad> split;
+  make_all_quad(mesh, path, result.warnings, split);
+  init_forest(mesh);
+  read_texture_coords(scan, mesh, faces_read, split, path, result.warnings);
+}
+
 }  // namespace
 
 LoadResult load_garment(const std::string& path, const LoadOptions& options) {
@@ -129,110 +234,35 @@ LoadResult load_garment(const std::string& path, const LoadOptions& options) {
   if (!format)
     throw InputError(with_path(path, "unknown mesh format (extension " + shown_extension(extension) +
                                          "); expected one of .obj, .off, .ply, .om"));
-
-  const TextScan scan = *format == Format::om ? TextScan{} : scan_text(path, *format);
+  const bool om = *format == Format::om;
+  const TextScan scan = om ? TextScan{} : scan_text(path, *format);
 
   LoadResult result;
-  QuadMesh& mesh = result.mesh;
   // The OM reader fills a stored property only if the mesh already has one
   // with that name (and a matching size), so the layers must exist first.
-  if (*format == Format::om) {
-    ensure_layers(mesh);
-    ensure_analysis_layers(mesh);
-    ensure_record_uvs(mesh);
+  if (om) {
+    ensure_layers(result.mesh);
+    ensure_analysis_layers(result.mesh);
+    ensure_record_uvs(result.mesh);
   }
-
-  std::string om_bytes;
-  if (*format == Format::om) {
-    std::ifstream in(path, std::ios::binary);
-    om_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    check_om_checksum(path, om_bytes);
-    check_om_structure(path, om_bytes);
-  }
+  const std::string om_bytes = om ? read_checked_om(path) : std::string{};
 
   // The reader would abort the process on this file: the scan's first face
   // problem is the message (the importer's manifold checks, which might
   // have named an earlier face, cannot run).
   if (scan.reader_would_abort) throw InputError(with_path(path, scan.face_problem.text));
-  CheckingImporter importer(mesh, scan.lines);
-  OpenMesh::IO::Options io_options;
-  bool read = false;
-  {
-    QuietOpenMesh quiet;
-    try {
-      if (scan.text_for_reader.empty()) {
-        read = OpenMesh::IO::IOManager().read(path, importer, io_options);
-      } else {
-        std::istringstream text(scan.text_for_reader);
-        if (*format == Format::off) set_off_layout(path, scan.text_for_reader);
-        read = OpenMesh::IO::IOManager().read(text, extension, importer, io_options);
-      }
-    } catch (const std::bad_alloc&) {
-      // A binary header's counts misread (a big-endian OFF) or simply huge.
-      throw InputError(with_path(path, std::string("cannot be read as ") + format_name(*format) +
-                                           ": its header asks for more elements than memory holds; expected a valid " +
-                                           extension + " mesh (binary OFF: little-endian, as OpenMesh reads it)"));
-    }
-  }
-  if (*format == Format::om) check_om_counts(path, om_bytes, mesh);
-  const FaceProblem problem = earlier(scan.face_problem, importer.problem());
-  if (problem.found()) throw InputError(with_path(path, problem.text));
-  if (!read)
-    throw InputError(with_path(path, std::string("cannot be read as ") + format_name(*format) +
-                                         " (OpenMesh rejected it); expected a valid " + extension + " mesh"));
-  if (mesh.n_vertices() == 0) throw InputError(with_path(path, "the file has no vertices; expected a quad mesh"));
-  if (mesh.n_faces() == 0) throw InputError(with_path(path, "the file has no faces; expected a quad mesh"));
-  if (*format == Format::om) {
-    const std::string& bytes = om_bytes;
-    // save_mesh writes the forest last (ensure_layers): a file holding our
-    // layers but no forest was cut short, and would load as a coarse garment.
-    if (quadtree(mesh).empty() && bytes.find("mrcloth:") != std::string::npos)
-      throw InputError(with_path(path, "the file is cut short (it holds mrcloth's layers but not the refinement "
-                                       "hierarchy mrcloth writes last); expected a .om file as mrcloth writes "
-                                       "it, whole"));
-    drop_analysis_layers_not_stored(bytes, mesh);
-  }
+  CheckingImporter importer(result.mesh, scan.lines);
+  const bool read = read_with_openmesh(path, extension, *format, scan, importer);
+  check_read(path, extension, *format, read, earlier(scan.face_problem, importer.problem()), om_bytes, result.mesh);
 
-  const bool scanned = scan_matches(scan, mesh);
-  if (scanned) {
-    for (const auto v : mesh.vertices()) mesh.set_point(v, scan.points[static_cast<std::size_t>(v.idx())]);
-  } else if (*format != Format::om && !scan.binary) {
-    result.warnings.push_back(with_path(
-        path, "the coordinates could not be re-read in double precision; they keep OpenMesh's single precision"));
-  }
-  for (const auto v : mesh.vertices()) {
-    const OpenMesh::Vec3d& p = mesh.point(v);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw InputError(with_path(path, "vertex " + std::to_string(v.idx()) +
-                                           " has a non-finite coordinate; expected finite numbers"));
-    mesh.set_point(v, p * scale);
-  }
-
-  // A refined mesh saved by save_mesh: its forest and layers are the truth.
-  if (*format == Format::om && !quadtree(mesh).empty()) {
-    check_stored_forest(path, mesh);
-    // save_mesh writes metres; a scale makes another garment of it, whose
-    // layers in metres (curvature, 1/m) no longer fit it.
-    if (scale != 1.0 && checksum_place(om_bytes).present)
-      result.warnings.push_back(with_path(
-          path, "mrcloth saved this mesh in metres; units '" + options.units + "' scale it by " + number_text(scale) +
-                    " (its curvature layers, in 1/m, are not rescaled): give units 'm' to load it as saved"));
+  const bool scanned = set_points(path, *format, scan, scale, result);
+  if (om && !quadtree(result.mesh).empty()) {
+    check_stored_refinement(path, om_bytes, scale, options, result);
     return result;
   }
   // Lines are named only where the scan saw the vertices OpenMesh read.
   const ElementLines no_lines;
-  const ElementLines& lines = scanned ? scan.lines : no_lines;
-  check_garment_surface(path, mesh, lines);
-  if (std::string unwelded = unwelded_seams_warning(path, mesh, lines); !unwelded.empty())
-    result.warnings.push_back(std::move(unwelded));
-  if (std::string concave = concave_faces_warning(path, mesh, lines); !concave.empty())
-    result.warnings.push_back(std::move(concave));
-
-  const std::size_t faces_read = mesh.n_faces();
-  std::vector<SplitQuad> split;
-  make_all_quad(mesh, path, result.warnings, split);
-  init_forest(mesh);
-  read_texture_coords(scan, mesh, faces_read, split, path, result.warnings);
+  prepare_coarse_garment(path, scan, scanned ? scan.lines : no_lines, result);
   return result;
 }
 
