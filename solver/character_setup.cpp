@@ -80,91 +80,89 @@ void recentre_root(Motion& motion, const Eigen::Vector3d& root_at_start) {
   }
 }
 
-Character make_character(const Motion& full_clip, const CharacterSetup& setup, const QuadMesh& garment) {
-  check(full_clip, setup);
-  Character character;
-  Motion full = full_clip;
-  Motion clip = setup.skip_first ? without_first_frame(full) : full;
-  if (setup.motion_start > clip.duration() + 1e-9)
+namespace {
+
+/// The clip with its root recentred to start where the run starts (`full`),
+/// and the part of it the run plays (`run`: without the first frame when
+/// the setup skips it).
+struct RecentredClip {
+  Motion full;
+  Motion run;
+};
+
+RecentredClip recentred_clip(const Motion& full_clip, const CharacterSetup& setup) {
+  RecentredClip clip{full_clip, {}};
+  const Motion unshifted = setup.skip_first ? without_first_frame(clip.full) : clip.full;
+  if (setup.motion_start > unshifted.duration() + 1e-9)
     throw ArgumentError("the motion start (" + std::to_string(setup.motion_start) + " s) is beyond the clip's length (" +
-                        std::to_string(clip.duration()) + " s)");
-  recentre_root(full, pose_at(clip, setup.motion_start).position(0));
-  clip = setup.skip_first ? without_first_frame(full) : full;
-  const int pelvis = full.skeleton.find(CharacterRunOptions{}.pelvis_joint);
-  if (setup.place == GarmentPlacement::first_frame)
-    character.placement = rest_pose(full.skeleton).global[pelvis] * frame_pose(full, 0).global[pelvis].inverse();
-  character.motion = std::make_unique<Motion>(std::move(clip));
-  const Skeleton& skeleton = character.motion->skeleton;
+                        std::to_string(unshifted.duration()) + " s)");
+  recentre_root(clip.full, pose_at(unshifted, setup.motion_start).position(0));
+  clip.run = setup.skip_first ? without_first_frame(clip.full) : clip.full;
+  return clip;
+}
 
-  // A figure in the wrong units runs to the end with absurd numbers: refused
-  // here, against an adult's size before the body is read, then against it.
-  const auto require_plausible = [&](const FigureScale& figure) {
-    if (!plausible(figure)) throw FigureSizeError(describe(figure) + ": the motion's units look wrong", figure);
-  };
+/// A figure in the wrong units runs to the end with absurd numbers: refused
+/// against an adult's size, before the body is read and then against it.
+void require_plausible(const FigureScale& figure) {
+  if (!plausible(figure)) throw FigureSizeError(describe(figure) + ": the motion's units look wrong", figure);
+}
+
+/// MakeHuman's body fitted to `skeleton` where the setup names its files.
+std::optional<SkinnedBody> read_body(const CharacterSetup& setup, const Skeleton& skeleton) {
   require_plausible(figure_scale(skeleton));
-  std::optional<SkinnedBody> skinned;
-  if (setup.makehuman) {
-    skinned = load_makehuman_body(*setup.makehuman, skeleton);
-    require_plausible(figure_scale(skeleton, leg_length(skeleton, skinned->joint_rest)));
-  }
-  if (setup.place == GarmentPlacement::makehuman) {
-    if (!skinned) throw ArgumentError("a garment placed on MakeHuman's base.obj needs the MakeHuman files");
-    // Modelled on base.obj: in the body's A-pose, where the pre-roll starts.
-    character.placement = Eigen::Translation3d(skinned->obj_offset);
-    character.garment_pose = mesh_pose(*skinned, skeleton);
-  }
-  // Where the clip starts facing another way, the reference pose is turned
-  // to it (reference_pose), and the garment with it.
-  if (const Eigen::Isometry3d turn = start_heading_turn(*character.motion, setup.motion_start);
-      !turn.matrix().isIdentity(0.0))
-    character.placement = turn * character.placement;
-  const Eigen::MatrixX3d placed = placed_points(garment, character.placement);
-  character.leg_bridges = setup.leg_bridges >= 0.0
-                              ? setup.leg_bridges
-                              : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()), placed,
-                                                      skeleton);
-  // The skinned body's hands collide as capsules (below): the arms open to
-  // keep those clear of the hips too, or cloth is pinched between them.
-  const std::vector<BoneCapsule> mittens = setup.body == CharacterBodyKind::mesh && setup.hand_mittens && skinned
-                                               ? hand_mitten_capsules(skeleton, *skinned)
-                                               : std::vector<BoneCapsule>{};
-  if (setup.arm_clearance >= 0.0) {
-    ArmClearanceOptions arms;
-    arms.clearance = setup.arm_clearance;
-    ArmClearance check =
-        skinned ? make_arm_clearance(skeleton, arms, skinned->rest_vertices, skinned->weights, skinned->joint_rest)
-                : make_arm_clearance(skeleton, arms);
-    add_arm_capsules(check, mittens);
-    character.arm_clearance = std::make_shared<const ArmClearance>(std::move(check));
-  }
-  const bool waist_on_skin = setup.waist == WaistFollows::skin || (setup.waist == WaistFollows::automatic && skinned);
-  if (waist_on_skin) character.waist_skin = std::make_shared<const SkinnedBody>(*skinned);
+  if (!setup.makehuman) return std::nullopt;
+  SkinnedBody skinned = load_makehuman_body(*setup.makehuman, skeleton);
+  require_plausible(figure_scale(skeleton, leg_length(skeleton, skinned.joint_rest)));
+  return skinned;
+}
 
-  if (setup.body == CharacterBodyKind::mesh) {
-    character.body_vertices = static_cast<int>(skinned->rest_vertices.rows());
-    CapsuleRig capsules;
-    if (character.leg_bridges > 0.0) {
-      // Sized like default leg capsules; the rig's bones are dropped, the mesh is the body.
-      capsules = make_capsule_rig(skeleton);
-      add_leg_bridges(capsules, skeleton, character.leg_bridges);
-      capsules.bones.clear();
-    }
-    capsules.bones = mittens;
-    character.hand_mittens = static_cast<int>(mittens.size());
-    if (character.hand_mittens > 0) {
-      // Drawn as it collides (its caches are what a reviewer measures the
-      // cloth against), textured as the whole body is.
-      SkinnedBody collided = without_hands(*skinned, skeleton);
-      SkinnedBody drawn = collided;
-      carry_uvs(*skinned, drawn);
-      character.body = std::make_unique<SkinnedPosedBody>(std::move(collided), skeleton, setup.thickness,
-                                                          setup.friction, std::move(capsules), std::move(drawn));
-    } else {
-      character.body = std::make_unique<SkinnedPosedBody>(std::move(*skinned), skeleton, setup.thickness,
-                                                          setup.friction, std::move(capsules));
-    }
-    return character;
+/// The arms' clearance of the hips (null where the setup turns it off),
+/// keeping `mittens`, the hands' capsules, clear too.
+std::shared_ptr<const ArmClearance> arm_clearance_of(const CharacterSetup& setup, const Skeleton& skeleton,
+                                                     const std::optional<SkinnedBody>& skinned,
+                                                     const std::vector<BoneCapsule>& mittens) {
+  if (setup.arm_clearance < 0.0) return nullptr;
+  ArmClearanceOptions arms;
+  arms.clearance = setup.arm_clearance;
+  ArmClearance check =
+      skinned ? make_arm_clearance(skeleton, arms, skinned->rest_vertices, skinned->weights, skinned->joint_rest)
+              : make_arm_clearance(skeleton, arms);
+  add_arm_capsules(check, mittens);
+  return std::make_shared<const ArmClearance>(std::move(check));
+}
+
+/// The skinned body: the mesh, with capsules for the hands (`mittens`, the
+/// mesh's hands then left out) and bridges between the legs.
+void set_mesh_body(Character& character, const CharacterSetup& setup, const Skeleton& skeleton, SkinnedBody skinned,
+                   const std::vector<BoneCapsule>& mittens) {
+  character.body_vertices = static_cast<int>(skinned.rest_vertices.rows());
+  CapsuleRig capsules;
+  if (character.leg_bridges > 0.0) {
+    // Sized like default leg capsules; the rig's bones are dropped, the mesh is the body.
+    capsules = make_capsule_rig(skeleton);
+    add_leg_bridges(capsules, skeleton, character.leg_bridges);
+    capsules.bones.clear();
   }
+  capsules.bones = mittens;
+  character.hand_mittens = static_cast<int>(mittens.size());
+  if (character.hand_mittens > 0) {
+    // Drawn as it collides (its caches are what a reviewer measures the
+    // cloth against), textured as the whole body is.
+    SkinnedBody collided = without_hands(skinned, skeleton);
+    SkinnedBody drawn = collided;
+    carry_uvs(skinned, drawn);
+    character.body = std::make_unique<SkinnedPosedBody>(std::move(collided), skeleton, setup.thickness,
+                                                        setup.friction, std::move(capsules), std::move(drawn));
+  } else {
+    character.body = std::make_unique<SkinnedPosedBody>(std::move(skinned), skeleton, setup.thickness, setup.friction,
+                                                        std::move(capsules));
+  }
+}
+
+/// The capsule rig: default radii (or fitted to the MakeHuman body where
+/// there is one), shrunk where the garment, at `placed`, starts inside.
+void set_capsule_body(Character& character, const CharacterSetup& setup, const Skeleton& skeleton,
+                      const std::optional<SkinnedBody>& skinned, const Eigen::MatrixX3d& placed) {
   CapsuleRigOptions rig_options;
   rig_options.thickness = setup.thickness;
   rig_options.friction = setup.friction;
@@ -183,6 +181,50 @@ Character make_character(const Motion& full_clip, const CharacterSetup& setup, c
   character.body_capsules = static_cast<int>(rig.bones.size());
   if (character.leg_bridges > 0.0) add_leg_bridges(rig, skeleton, character.leg_bridges);
   character.body = std::make_unique<CapsulePosedBody>(std::move(rig), skeleton, joints);
+}
+
+}  // namespace
+
+Character make_character(const Motion& full_clip, const CharacterSetup& setup, const QuadMesh& garment) {
+  check(full_clip, setup);
+  Character character;
+  RecentredClip clip = recentred_clip(full_clip, setup);
+  const int pelvis = clip.full.skeleton.find(CharacterRunOptions{}.pelvis_joint);
+  if (setup.place == GarmentPlacement::first_frame)
+    character.placement = rest_pose(clip.full.skeleton).global[pelvis] * frame_pose(clip.full, 0).global[pelvis].inverse();
+  character.motion = std::make_unique<Motion>(std::move(clip.run));
+  const Skeleton& skeleton = character.motion->skeleton;
+
+  std::optional<SkinnedBody> skinned = read_body(setup, skeleton);
+  if (setup.place == GarmentPlacement::makehuman) {
+    if (!skinned) throw ArgumentError("a garment placed on MakeHuman's base.obj needs the MakeHuman files");
+    // Modelled on base.obj: in the body's A-pose, where the pre-roll starts.
+    character.placement = Eigen::Translation3d(skinned->obj_offset);
+    character.garment_pose = mesh_pose(*skinned, skeleton);
+  }
+  // Where the clip starts facing another way, the reference pose is turned
+  // to it (reference_pose), and the garment with it.
+  if (const Eigen::Isometry3d turn = start_heading_turn(*character.motion, setup.motion_start);
+      !turn.matrix().isIdentity(0.0))
+    character.placement = turn * character.placement;
+  const Eigen::MatrixX3d placed = placed_points(garment, character.placement);
+  character.leg_bridges = setup.leg_bridges >= 0.0
+                              ? setup.leg_bridges
+                              : automatic_leg_bridges(static_cast<int>(boundary_loops(garment).size()), placed,
+                                                      skeleton);
+  // The skinned body's hands collide as capsules: the arms open to keep
+  // those clear of the hips too, or cloth is pinched between them.
+  const std::vector<BoneCapsule> mittens = setup.body == CharacterBodyKind::mesh && setup.hand_mittens && skinned
+                                               ? hand_mitten_capsules(skeleton, *skinned)
+                                               : std::vector<BoneCapsule>{};
+  character.arm_clearance = arm_clearance_of(setup, skeleton, skinned, mittens);
+  const bool waist_on_skin = setup.waist == WaistFollows::skin || (setup.waist == WaistFollows::automatic && skinned);
+  if (waist_on_skin) character.waist_skin = std::make_shared<const SkinnedBody>(*skinned);
+
+  if (setup.body == CharacterBodyKind::mesh)
+    set_mesh_body(character, setup, skeleton, std::move(*skinned), mittens);
+  else
+    set_capsule_body(character, setup, skeleton, skinned, placed);
   return character;
 }
 
