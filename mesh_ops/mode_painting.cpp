@@ -301,58 +301,47 @@ void write_vertex_layers_csv(const QuadMesh& mesh, const std::string& path) {
   });
 }
 
-ModesCsvRead read_modes_csv(QuadMesh& mesh, const std::string& path) {
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored))
-    throw InputError(path + ": is a folder; expected a CSV file of vertex modes");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file for reading; expected a CSV file of vertex modes");
-  const auto fail = [&](int line, const std::string& problem, const std::string& expected) {
-    throw InputError(path + ":" + std::to_string(line) + ": " + problem + "; expected " + expected);
-  };
-  std::string text;
-  int line = 0;
-  if (!std::getline(in, text)) fail(1, "the file is empty", "a header line naming the vertex and mode columns");
-  ++line;
-  // A spreadsheet's export: a byte-order mark, "Vertex", " mode\r".
-  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
-  bool closed = true;
-  const std::vector<std::string> header = split_csv(text, closed);
-  if (!closed) fail(1, "a quote in the header is not closed", "quoted fields to end in a quote");
-  const auto named = [](std::string field) {
-    field.erase(0, field.find_first_not_of(" \t"));
-    field.erase(field.find_last_not_of(" \t\r") + 1);
-    return ascii_lower(field);
-  };
-  int vertex_column = -1, mode_column = -1;
-  std::array<int, 3> position_columns{-1, -1, -1};
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    const std::string name = named(header[c]);
-    if (name == "vertex") vertex_column = static_cast<int>(c);
-    if (name == "mode") mode_column = static_cast<int>(c);
-    for (int k = 0; k < 3; ++k)
-      if (name == std::string(1, "xyz"[k])) position_columns[static_cast<std::size_t>(k)] = static_cast<int>(c);
+namespace {
+
+/// Reads a modes CSV's rows against `mesh`: the header's columns, then each
+/// row's vertex and mode (checked) and its position, compared with the
+/// mesh's where the file has x, y, z columns. Errors name the file's line.
+class ModesCsvParser {
+ public:
+  ModesCsvParser(const QuadMesh& mesh, const std::string& path)
+      : mesh_(mesh), path_(path), first_line_(mesh.n_vertices(), 0) {}
+
+  [[noreturn]] void fail(int line, const std::string& problem, const std::string& expected) const {
+    throw InputError(path_ + ":" + std::to_string(line) + ": " + problem + "; expected " + expected);
   }
-  const bool has_positions = std::all_of(position_columns.begin(), position_columns.end(), [](int c) { return c >= 0; });
-  ModesCsvRead read;
-  if (vertex_column < 0 || mode_column < 0) fail(1, "the header has no 'vertex' or no 'mode' column", "vertex,mode,...");
-  const int n = static_cast<int>(mesh.n_vertices());
-  std::vector<std::pair<int, int>> assignments;
-  std::vector<int> first_line(static_cast<std::size_t>(n), 0);  // per vertex, the line that set it (0: none)
-  const auto integer = [&](const std::string& field, const char* what) {
-    int value = 0;
-    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-    if (error == std::errc::result_out_of_range)
-      fail(line, std::string(what) + " " + field + " is out of range",
-           what == std::string("mode") ? "a mode from 0 to " + std::to_string(kLargestMode)
-                                       : "a vertex below " + std::to_string(mesh.n_vertices()));
-    if (error != std::errc() || end != field.data() + field.size() || field.empty())
-      fail(line, std::string(what) + " \"" + field + "\" is not an integer", std::string("an integer ") + what);
-    return value;
-  };
-  while (std::getline(in, text)) {
-    ++line;
-    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+
+  /// The header line (line 1): finds the vertex, mode and x, y, z columns.
+  void read_header(std::string text) {
+    // A spreadsheet's export: a byte-order mark, "Vertex", " mode\r".
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+    bool closed = true;
+    const std::vector<std::string> header = split_csv(text, closed);
+    if (!closed) fail(1, "a quote in the header is not closed", "quoted fields to end in a quote");
+    const auto named = [](std::string field) {
+      field.erase(0, field.find_first_not_of(" \t"));
+      field.erase(field.find_last_not_of(" \t\r") + 1);
+      return ascii_lower(field);
+    };
+    for (std::size_t c = 0; c < header.size(); ++c) {
+      const std::string name = named(header[c]);
+      if (name == "vertex") vertex_column_ = static_cast<int>(c);
+      if (name == "mode") mode_column_ = static_cast<int>(c);
+      for (int k = 0; k < 3; ++k)
+        if (name == std::string(1, "xyz"[k])) position_columns_[static_cast<std::size_t>(k)] = static_cast<int>(c);
+    }
+    has_positions_ = std::all_of(position_columns_.begin(), position_columns_.end(), [](int c) { return c >= 0; });
+    header_fields_ = header.size();
+    if (vertex_column_ < 0 || mode_column_ < 0) fail(1, "the header has no 'vertex' or no 'mode' column", "vertex,mode,...");
+  }
+
+  /// One data row, at `line` (blank rows are skipped by the caller).
+  void read_row(const std::string& text, int line) {
+    bool closed = true;
     const std::vector<std::string> fields = split_csv(text, closed);
     if (!closed) fail(line, "a quote is not closed on this line", "quoted fields to end on their line (a field across lines is not read)");
     // More fields than the header names would be a misplaced comma
@@ -361,45 +350,95 @@ ModesCsvRead read_modes_csv(QuadMesh& mesh, const std::string& path) {
     // and a short row is fine if it reaches the vertex and mode columns.
     std::size_t given = fields.size();
     while (given > 0 && fields[given - 1].empty()) --given;
-    if (given > header.size() || static_cast<int>(fields.size()) <= std::max(vertex_column, mode_column))
-      fail(line, std::to_string(given) + " fields", std::to_string(header.size()) + " as in the header");
-    const int vertex = integer(fields[static_cast<std::size_t>(vertex_column)], "vertex");
-    const int mode = integer(fields[static_cast<std::size_t>(mode_column)], "mode");
+    if (given > header_fields_ || static_cast<int>(fields.size()) <= std::max(vertex_column_, mode_column_))
+      fail(line, std::to_string(given) + " fields", std::to_string(header_fields_) + " as in the header");
+    const int n = static_cast<int>(mesh_.n_vertices());
+    const int vertex = integer(fields[static_cast<std::size_t>(vertex_column_)], "vertex", line);
+    const int mode = integer(fields[static_cast<std::size_t>(mode_column_)], "mode", line);
     if (vertex < 0 || vertex >= n)
       fail(line, "vertex " + std::to_string(vertex) + " is out of range", "a vertex below " + std::to_string(n));
     if (mode < 0 || mode > kLargestMode)
       fail(line, "mode " + std::to_string(mode) + " is out of range", "a mode from 0 to " + std::to_string(kLargestMode));
-    int& earlier = first_line[static_cast<std::size_t>(vertex)];
+    int& earlier = first_line_[static_cast<std::size_t>(vertex)];
     if (earlier > 0)
       fail(line, "vertex " + std::to_string(vertex) + " is given again (first at line " + std::to_string(earlier) + ")",
            "one row per vertex");
     earlier = line;
-    assignments.emplace_back(vertex, mode);
-    if (has_positions) {
-      // A position that is no finite number is another tool's column: not compared.
-      OpenMesh::Vec3d p(0, 0, 0);
-      bool numbers = true;
-      for (int k = 0; k < 3; ++k) {
-        const auto column = static_cast<std::size_t>(position_columns[static_cast<std::size_t>(k)]);
-        const std::string& field = column < fields.size() ? fields[column] : std::string();
-        const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), p[k]);
-        numbers = numbers && error == std::errc() && end == field.data() + field.size() && !field.empty() &&
-                  std::isfinite(p[k]);
-      }
-      const double off = (p - mesh.point(mesh.vertex_handle(static_cast<unsigned>(vertex)))).norm();
-      if (numbers && !(off <= kCsvPositionTolerance)) {
-        ++read.misplaced;
-        if (!(off <= read.farthest)) {
-          read.farthest = off;
-          read.farthest_vertex = vertex;
-          read.farthest_line = line;
-        }
+    assignments_.emplace_back(vertex, mode);
+    if (has_positions_) compare_position(fields, vertex, line);
+  }
+
+  /// The rows' (vertex, mode) pairs in file order.
+  const std::vector<std::pair<int, int>>& assignments() const { return assignments_; }
+  /// What the position comparison found (misplaced rows, the farthest).
+  ModesCsvRead& read() { return read_; }
+
+ private:
+  int integer(const std::string& field, const char* what, int line) const {
+    int value = 0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (error == std::errc::result_out_of_range)
+      fail(line, std::string(what) + " " + field + " is out of range",
+           what == std::string("mode") ? "a mode from 0 to " + std::to_string(kLargestMode)
+                                       : "a vertex below " + std::to_string(mesh_.n_vertices()));
+    if (error != std::errc() || end != field.data() + field.size() || field.empty())
+      fail(line, std::string(what) + " \"" + field + "\" is not an integer", std::string("an integer ") + what);
+    return value;
+  }
+
+  void compare_position(const std::vector<std::string>& fields, int vertex, int line) {
+    // A position that is no finite number is another tool's column: not compared.
+    OpenMesh::Vec3d p(0, 0, 0);
+    bool numbers = true;
+    for (int k = 0; k < 3; ++k) {
+      const auto column = static_cast<std::size_t>(position_columns_[static_cast<std::size_t>(k)]);
+      const std::string& field = column < fields.size() ? fields[column] : std::string();
+      const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), p[k]);
+      numbers = numbers && error == std::errc() && end == field.data() + field.size() && !field.empty() &&
+                std::isfinite(p[k]);
+    }
+    const double off = (p - mesh_.point(mesh_.vertex_handle(static_cast<unsigned>(vertex)))).norm();
+    if (numbers && !(off <= kCsvPositionTolerance)) {
+      ++read_.misplaced;
+      if (!(off <= read_.farthest)) {
+        read_.farthest = off;
+        read_.farthest_vertex = vertex;
+        read_.farthest_line = line;
       }
     }
   }
+
+  const QuadMesh& mesh_;
+  const std::string& path_;
+  int vertex_column_ = -1, mode_column_ = -1;
+  std::array<int, 3> position_columns_{-1, -1, -1};
+  bool has_positions_ = false;
+  std::size_t header_fields_ = 0;
+  std::vector<int> first_line_;  // per vertex, the line that set it (0: none)
+  std::vector<std::pair<int, int>> assignments_;
+  ModesCsvRead read_;
+};
+
+}  // namespace
+
+ModesCsvRead read_modes_csv(QuadMesh& mesh, const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored))
+    throw InputError(path + ": is a folder; expected a CSV file of vertex modes");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file for reading; expected a CSV file of vertex modes");
+  ModesCsvParser parser(mesh, path);
+  std::string text;
+  if (!std::getline(in, text)) parser.fail(1, "the file is empty", "a header line naming the vertex and mode columns");
+  parser.read_header(text);
+  for (int line = 2; std::getline(in, text); ++line)
+    if (text.find_first_not_of(" \t\r") != std::string::npos) parser.read_row(text, line);
+  // Only a file read whole sets any mode.
   const auto layer_handle = ensure_layers(mesh).mode;
-  for (const auto& [vertex, mode] : assignments) mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(vertex))) = mode;
-  read.set = assignments.size();
+  for (const auto& [vertex, mode] : parser.assignments())
+    mesh.property(layer_handle, mesh.vertex_handle(static_cast<unsigned>(vertex))) = mode;
+  ModesCsvRead read = parser.read();
+  read.set = parser.assignments().size();
   return read;
 }
 
