@@ -499,55 +499,116 @@ void SelfContact::gather(const Positions& x0, const Positions& x1) {
   std::sort(pairs_.begin(), pairs_.end(), [](const Pair& a, const Pair& b) { return a.key < b.key; });
 }
 
-double SelfContact::project(Positions& q, const Positions& pinned_part) {
-  if (!enabled() || pairs_.empty()) return 0.0;
-  const DynamicsModel& m = *model_;
-  const ContactSurface& s = surface_;
-  const auto position = [&](int v) {
-    Vec3 x = pinned_part.row(v).transpose();
-    for (const StencilTerm& t : m.stencil[static_cast<std::size_t>(v)]) x += t.weight * q.row(t.free).transpose();
+namespace {
+
+/// Projects one step's gathered pairs, one at a time, on free positions
+/// `q` (#free x 3): each pair that overlaps is pushed `gap` metres apart on
+/// its side, through the stencils of the model's vertices. `start` holds the
+/// full positions at the step's start (#V x 3), `pinned_part` P p (#V x 3).
+class PairProjector {
+ public:
+  PairProjector(const DynamicsModel& model, Positions& q, const Positions& pinned_part, const Positions& start,
+                double gap)
+      : m_(model), q_(q), pinned_part_(pinned_part), start_(start), gap_(gap) {}
+
+  /// A vertex over a triangle (full ids); `side` is the pair's side to
+  /// keep, which a pair that went round the triangle takes anew; `raw` its
+  /// sign at the step's start.
+  void project_vertex_triangle(int a, const std::array<int, 3>& t, signed char& side, signed char raw) {
+    const int ids[4] = {a, t[0], t[1], t[2]};
+    for (int k = 0; k < 4; ++k) now_[k] = position(ids[k]);
+    const OverTriangle o = over_triangle(now_[0], now_[1], now_[2], now_[3]);
+    if (!o.valid || !o.near_over()) return;
+    OverTriangle c;
+    Vec3 x[4];  // at the sign change, when there was one
+    const Use use_as = decide(side, raw, sign_of(o.distance), o.inside(), [&] {
+      at_sign_change(ids, [](const Vec3* y) { return (y[2] - y[1]).cross(y[3] - y[1]).dot(y[0] - y[1]); }, raw, x);
+      c = over_triangle(x[0], x[1], x[2], x[3]);
+      return c.valid && c.u >= -kCrossingSlack && c.v >= -kCrossingSlack && c.w >= -kCrossingSlack;
+    });
+    if (use_as == Use::skip) return;
+    OverTriangle use = o;
+    if (use_as == Use::at_crossing) {  // pull it back through where it passed
+      use.u = std::max(c.u, 0.0);
+      use.v = std::max(c.v, 0.0);
+      use.w = std::max(c.w, 0.0);
+      const double sum = use.u + use.v + use.w;
+      use.u /= sum;
+      use.v /= sum;
+      use.w /= sum;
+      use.distance = (now_[0] - (use.u * now_[1] + use.v * now_[2] + use.w * now_[3])).dot(o.normal);
+    }
+    const double violation = gap_ - side * use.distance;
+    if (violation <= 0.0) return;
+    // side * normal . (p - (u a + v b + w c)) >= gap
+    apply({{a, t[0], t[1], t[2]}, {1.0, -use.u, -use.v, -use.w}, 4}, side * o.normal, violation);
+  }
+
+  /// Two edges (full ids); `side` and `raw` as for project_vertex_triangle.
+  void project_edge_edge(const std::array<int, 2>& e1, const std::array<int, 2>& e2, signed char& side, signed char raw) {
+    const int ids[4] = {e1[0], e1[1], e2[0], e2[1]};
+    for (int k = 0; k < 4; ++k) now_[k] = position(ids[k]);
+    const EdgeEdge ee = edge_edge(now_[0], now_[1], now_[2], now_[3]);
+    if (!ee.valid || !ee.near_over()) return;
+    EdgeEdge c;
+    Vec3 x[4];  // at the sign change, when there was one
+    const Use use_as = decide(side, raw, sign_of(ee.distance), ee.inside(), [&] {
+      at_sign_change(ids, [](const Vec3* y) { return (y[2] - y[0]).dot((y[1] - y[0]).cross(y[3] - y[2])); }, raw, x);
+      c = edge_edge(x[0], x[1], x[2], x[3]);
+      return c.valid && c.s > -kCrossingSlack && c.s < 1.0 + kCrossingSlack && c.t > -kCrossingSlack &&
+             c.t < 1.0 + kCrossingSlack;
+    });
+    if (use_as == Use::skip) return;
+    EdgeEdge use = ee;
+    if (use_as == Use::at_crossing) {  // pull it back through where it passed
+      use.s = std::clamp(c.s, 0.0, 1.0);
+      use.t = std::clamp(c.t, 0.0, 1.0);
+    }
+    const Vec3 between = (now_[2] + use.t * (now_[3] - now_[2])) - (now_[0] + use.s * (now_[1] - now_[0]));
+    const double violation = gap_ - side * between.dot(ee.normal);
+    if (violation <= 0.0) return;
+    // side * normal . (q(t) - p(s)) >= gap
+    apply({{e2[0], e2[1], e1[0], e1[1]}, {1.0 - use.t, use.t, -(1.0 - use.s), -use.s}, 4}, side * ee.normal,
+          violation);
+  }
+
+  /// The largest single correction so far, metres.
+  double largest() const { return largest_; }
+
+ private:
+  // How a pair is projected: not at all, as it is now, or where it passed
+  // through. A pair whose sign changed this step passed through the other
+  // element (it keeps its side, pulled back where it passed when it no
+  // longer overlaps) or round it (it takes the new side); any other pair
+  // is projected only while it overlaps.
+  enum class Use { skip, as_is, at_crossing };
+  template <typename PassedThrough>
+  static Use decide(signed char& side, signed char raw, signed char sign_now, bool overlapping,
+                    PassedThrough&& passed_through) {
+    if (sign_now == 0 || sign_now == raw) return overlapping ? Use::as_is : Use::skip;
+    if (passed_through()) return overlapping ? Use::as_is : Use::at_crossing;
+    if (!overlapping) return Use::skip;
+    side = sign_now;
+    return Use::as_is;
+  }
+
+  Vec3 position(int v) const {
+    Vec3 x = pinned_part_.row(v).transpose();
+    for (const StencilTerm& t : m_.stencil[static_cast<std::size_t>(v)]) x += t.weight * q_.row(t.free).transpose();
     return x;
-  };
-  double largest = 0.0;
-  // Terms of one constraint in free coordinates, merged per free vertex.
-  std::vector<std::pair<int, double>> terms;
-  const double gap = options_.thickness;
-  const auto apply = [&](const Constraint& c, const Vec3& normal, double violation) {
-    terms.clear();
-    for (int k = 0; k < c.count; ++k)
-      for (const StencilTerm& t : m.stencil[static_cast<std::size_t>(c.vertex[k])]) {
-        const double w = c.weight[k] * t.weight;
-        auto it = std::find_if(terms.begin(), terms.end(), [&](const auto& term) { return term.first == t.free; });
-        if (it == terms.end()) terms.emplace_back(t.free, w);
-        else it->second += w;
-      }
-    const auto inverse_mass = [&](int f) { return 1.0 / m.free_mass[f]; };
-    double denominator = 0.0;
-    for (const auto& [f, w] : terms) denominator += w * w * inverse_mass(f);
-    if (!(denominator > 0.0)) return;
-    // At most a thickness per projection: a pinch the body will undo (cloth
-    // between two limbs) then costs a little each round instead of pushes
-    // that become velocity (uncapped, pushes grew to 8 cm and the skirt flew
-    // apart within 30 steps).
-    // No vertex moves more than that either (a held triangle whose only free
-    // corner carries a small weight would otherwise throw it far).
-    violation = std::min(violation, gap);
-    double lambda = violation / denominator, farthest = 0.0;
-    for (const auto& [f, w] : terms) farthest = std::max(farthest, std::abs(lambda * w * inverse_mass(f)));
-    if (farthest > gap) lambda *= gap / farthest;
-    for (const auto& [f, w] : terms) q.row(f) += (lambda * w * inverse_mass(f)) * normal.transpose();
-    largest = std::max(largest, violation);
-  };
+  }
+
   // The four points of a pair at fraction t of the way from the step's start.
-  Vec3 now[4], then[4];
-  const auto at = [&](double t, Vec3* out) {
-    for (int k = 0; k < 4; ++k) out[k] = then[k] + t * (now[k] - then[k]);
-  };
+  void at(double t, Vec3* out) const {
+    for (int k = 0; k < 4; ++k) out[k] = then_[k] + t * (now_[k] - then_[k]);
+  }
+
   // The four points when the pair's sign changed this step (bisection: the
   // sign is continuous along the straight paths, and 30 halvings put it
   // within 1e-9 of the step).
-  const auto at_sign_change = [&](const int* ids, auto&& signed_volume, signed char start_sign, Vec3* x) {
-    for (int k = 0; k < 4; ++k) then[k] = start_.row(ids[k]).transpose();
+  template <typename SignedVolume>
+  void at_sign_change(const int* ids, SignedVolume&& signed_volume, signed char start_sign, Vec3* x) {
+    for (int k = 0; k < 4; ++k) then_[k] = start_.row(ids[k]).transpose();
     double lo = 0.0, hi = 1.0;
     for (int k = 0; k < 30; ++k) {
       const double mid = 0.5 * (lo + hi);
@@ -555,84 +616,63 @@ double SelfContact::project(Positions& q, const Positions& pinned_part) {
       if (sign_of(signed_volume(x)) == start_sign) lo = mid; else hi = mid;
     }
     at(0.5 * (lo + hi), x);
-  };
-  // How a pair is projected: not at all, as it is now, or where it passed
-  // through. A pair whose sign changed this step passed through the other
-  // element (it keeps its side, pulled back where it passed when it no
-  // longer overlaps) or round it (it takes the new side); any other pair
-  // is projected only while it overlaps.
-  enum class Use { skip, as_is, at_crossing };
-  const auto decide = [](Pair& pair, signed char sign_now, bool overlapping, auto&& passed_through) {
-    if (sign_now == 0 || sign_now == pair.raw) return overlapping ? Use::as_is : Use::skip;
-    if (passed_through()) return overlapping ? Use::as_is : Use::at_crossing;
-    if (!overlapping) return Use::skip;
-    pair.side = sign_now;
-    return Use::as_is;
-  };
+  }
+
+  // Moves the constraint's free vertices along `normal` (terms merged per
+  // free vertex), inverse-mass weighted.
+  void apply(const Constraint& c, const Vec3& normal, double violation) {
+    terms_.clear();
+    for (int k = 0; k < c.count; ++k)
+      for (const StencilTerm& t : m_.stencil[static_cast<std::size_t>(c.vertex[k])]) {
+        const double w = c.weight[k] * t.weight;
+        auto it = std::find_if(terms_.begin(), terms_.end(), [&](const auto& term) { return term.first == t.free; });
+        if (it == terms_.end()) terms_.emplace_back(t.free, w);
+        else it->second += w;
+      }
+    const auto inverse_mass = [&](int f) { return 1.0 / m_.free_mass[f]; };
+    double denominator = 0.0;
+    for (const auto& [f, w] : terms_) denominator += w * w * inverse_mass(f);
+    if (!(denominator > 0.0)) return;
+    // At most a thickness per projection: a pinch the body will undo (cloth
+    // between two limbs) then costs a little each round instead of pushes
+    // that become velocity (uncapped, pushes grew to 8 cm and the skirt flew
+    // apart within 30 steps).
+    // No vertex moves more than that either (a held triangle whose only free
+    // corner carries a small weight would otherwise throw it far).
+    violation = std::min(violation, gap_);
+    double lambda = violation / denominator, farthest = 0.0;
+    for (const auto& [f, w] : terms_) farthest = std::max(farthest, std::abs(lambda * w * inverse_mass(f)));
+    if (farthest > gap_) lambda *= gap_ / farthest;
+    for (const auto& [f, w] : terms_) q_.row(f) += (lambda * w * inverse_mass(f)) * normal.transpose();
+    largest_ = std::max(largest_, violation);
+  }
+
+  const DynamicsModel& m_;
+  Positions& q_;
+  const Positions& pinned_part_;
+  const Positions& start_;
+  const double gap_;
+  double largest_ = 0.0;
+  std::vector<std::pair<int, double>> terms_;  // one constraint's, in free coordinates
+  Vec3 now_[4], then_[4];
+};
+
+}  // namespace
+
+double SelfContact::project(Positions& q, const Positions& pinned_part) {
+  if (!enabled() || pairs_.empty()) return 0.0;
+  PairProjector projector(*model_, q, pinned_part, start_, options_.thickness);
   for (int pass = 0; pass < options_.passes; ++pass) {
     for (Pair& pair : pairs_) {
       const int a = first_of(pair.key), b = second_of(pair.key);
-      Vec3 x[4];  // at the sign change, when there was one
-      if (!(pair.key & kEdgeEdge)) {
-        const auto& t = s.triangles[static_cast<std::size_t>(b)];
-        const int ids[4] = {a, t[0], t[1], t[2]};
-        for (int k = 0; k < 4; ++k) now[k] = position(ids[k]);
-        const OverTriangle o = over_triangle(now[0], now[1], now[2], now[3]);
-        if (!o.valid || !o.near_over()) continue;
-        OverTriangle c;
-        const Use use_as = decide(pair, sign_of(o.distance), o.inside(), [&] {
-          at_sign_change(ids, [](const Vec3* y) { return (y[2] - y[1]).cross(y[3] - y[1]).dot(y[0] - y[1]); },
-                         pair.raw, x);
-          c = over_triangle(x[0], x[1], x[2], x[3]);
-          return c.valid && c.u >= -kCrossingSlack && c.v >= -kCrossingSlack && c.w >= -kCrossingSlack;
-        });
-        if (use_as == Use::skip) continue;
-        OverTriangle use = o;
-        if (use_as == Use::at_crossing) {  // pull it back through where it passed
-          use.u = std::max(c.u, 0.0);
-          use.v = std::max(c.v, 0.0);
-          use.w = std::max(c.w, 0.0);
-          const double sum = use.u + use.v + use.w;
-          use.u /= sum;
-          use.v /= sum;
-          use.w /= sum;
-          use.distance = (now[0] - (use.u * now[1] + use.v * now[2] + use.w * now[3])).dot(o.normal);
-        }
-        const double violation = gap - pair.side * use.distance;
-        if (violation <= 0.0) continue;
-        // side * normal . (p - (u a + v b + w c)) >= gap
-        apply({{a, t[0], t[1], t[2]}, {1.0, -use.u, -use.v, -use.w}, 4}, pair.side * o.normal, violation);
-      } else {
-        const auto& e1 = s.edges[static_cast<std::size_t>(a)];
-        const auto& e2 = s.edges[static_cast<std::size_t>(b)];
-        const int ids[4] = {e1[0], e1[1], e2[0], e2[1]};
-        for (int k = 0; k < 4; ++k) now[k] = position(ids[k]);
-        const EdgeEdge ee = edge_edge(now[0], now[1], now[2], now[3]);
-        if (!ee.valid || !ee.near_over()) continue;
-        EdgeEdge c;
-        const Use use_as = decide(pair, sign_of(ee.distance), ee.inside(), [&] {
-          at_sign_change(ids, [](const Vec3* y) { return (y[2] - y[0]).dot((y[1] - y[0]).cross(y[3] - y[2])); },
-                         pair.raw, x);
-          c = edge_edge(x[0], x[1], x[2], x[3]);
-          return c.valid && c.s > -kCrossingSlack && c.s < 1.0 + kCrossingSlack && c.t > -kCrossingSlack &&
-                 c.t < 1.0 + kCrossingSlack;
-        });
-        if (use_as == Use::skip) continue;
-        EdgeEdge use = ee;
-        if (use_as == Use::at_crossing) {  // pull it back through where it passed
-          use.s = std::clamp(c.s, 0.0, 1.0);
-          use.t = std::clamp(c.t, 0.0, 1.0);
-        }
-        const Vec3 between = (now[2] + use.t * (now[3] - now[2])) - (now[0] + use.s * (now[1] - now[0]));
-        const double violation = gap - pair.side * between.dot(ee.normal);
-        if (violation <= 0.0) continue;
-        // side * normal . (q(t) - p(s)) >= gap
-        apply({{e2[0], e2[1], e1[0], e1[1]}, {1.0 - use.t, use.t, -(1.0 - use.s), -use.s}, 4},
-              pair.side * ee.normal, violation);
-      }
+      if (!(pair.key & kEdgeEdge))
+        projector.project_vertex_triangle(a, surface_.triangles[static_cast<std::size_t>(b)], pair.side, pair.raw);
+      else
+        projector.project_edge_edge(surface_.edges[static_cast<std::size_t>(a)], surface_.edges[static_cast<std::size_t>(b)],
+                            pair.side, pair.raw);
     }
   }
-  return largest;
+  return projector.largest();
 }
 
 }  // namespace mrcloth
