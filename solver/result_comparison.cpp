@@ -50,18 +50,13 @@ void require_one_coarse_garment(const QuadMesh& model, const QuadMesh& reference
   }
 }
 
-}  // namespace
-
-ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
-                                 const std::string& reference_cache, const ComparisonOptions& options,
-                                 const SimulationProgress& progress) {
-  if (count_roots(model) != count_roots(reference))
-    throw ArgumentError("the model has " + std::to_string(count_roots(model)) + " coarse faces and the reference " +
-                        std::to_string(count_roots(reference)) +
-                        ": compared meshes must be refined from the same coarse mesh");
-  require_one_coarse_garment(model, reference);
-  Pc2Reader model_frames(model_cache);
-  Pc2Reader reference_frames(reference_cache);
+/// Refuses caches that cannot be compared frame by frame: point counts
+/// other than their meshes' vertices, other timings, or other lengths
+/// unless options.max_frames asks only for frames both hold.
+void require_comparable_caches(const QuadMesh& model, const Pc2Reader& model_frames, const QuadMesh& reference,
+                               const Pc2Reader& reference_frames, const ComparisonOptions& options) {
+  const std::string& model_cache = model_frames.path();
+  const std::string& reference_cache = reference_frames.path();
   if (model_frames.num_points() != static_cast<int>(model.n_vertices()))
     throw ArgumentError(model_cache + ": " + std::to_string(model_frames.num_points()) + " points, the model has " +
                         std::to_string(model.n_vertices()) + " vertices");
@@ -86,6 +81,21 @@ ComparisonReport compare_results(const QuadMesh& model, const std::string& model
     throw ArgumentError(model_cache + " holds " + std::to_string(model_frames.num_frames()) + " frames, " +
                         reference_cache + " " + std::to_string(reference_frames.num_frames()) +
                         "; expected the same, or maxFrames at most " + std::to_string(shorter));
+}
+
+}  // namespace
+
+ComparisonReport compare_results(const QuadMesh& model, const std::string& model_cache, const QuadMesh& reference,
+                                 const std::string& reference_cache, const ComparisonOptions& options,
+                                 const SimulationProgress& progress) {
+  if (count_roots(model) != count_roots(reference))
+    throw ArgumentError("the model has " + std::to_string(count_roots(model)) + " coarse faces and the reference " +
+                        std::to_string(count_roots(reference)) +
+                        ": compared meshes must be refined from the same coarse mesh");
+  require_one_coarse_garment(model, reference);
+  Pc2Reader model_frames(model_cache);
+  Pc2Reader reference_frames(reference_cache);
+  require_comparable_caches(model, model_frames, reference, reference_frames, options);
 
   ComparisonReport report;
   const std::vector<MaterialPoint> points = material_points(reference);
