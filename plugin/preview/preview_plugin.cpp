@@ -126,6 +126,65 @@ std::optional<preview::BodyFrames> bodyFramesOf(const RenderRequest& request) {
   return preview::BodyFrames(request.body_mesh.toStdString(), request.body_cache.toStdString());
 }
 
+/// The frames renderSequence draws: option 'frames', else every frame of
+/// the cache (`count` frames), each checked against the cache and the
+/// body's cache before any image is written.
+std::vector<int> framesToDraw(const Fields& fields, const RenderRequest& request, int count) {
+  std::vector<int> frames;
+  if (fields.has(QStringLiteral("frames"))) {
+    frames = script::toIntList(fields.required(QStringLiteral("frames")), fields.label(QStringLiteral("frames")));
+    for (const int f : frames)
+      if (f < 0 || f >= count)
+        options::fail(QStringLiteral("option 'frames': frame %1 is out of range (the cache has %2 frames)").arg(f).arg(count));
+  } else {
+    for (int f = 0; f < count; ++f) frames.push_back(f);
+  }
+  if (frames.empty())
+    options::fail(count == 0 ? QStringLiteral("option 'cache': %1 holds no frames; nothing to draw").arg(request.cache)
+                             : QStringLiteral("option 'frames' is empty; expected the frames to draw"));
+  if (!request.body_cache.isEmpty()) {
+    const int body_frames = preview::cache_frames(request.body_cache.toStdString());
+    const int last = *std::max_element(frames.begin(), frames.end());
+    if (last >= body_frames)
+      options::fail(QStringLiteral("option 'body': the body cache %1 has %2 frames, but frame %3 of the garment's is "
+                                   "to be drawn; expected a body cache of the same run")
+                        .arg(request.body_cache).arg(body_frames).arg(last));
+  }
+  return frames;
+}
+
+/// One camera for a whole sequence: framed on the garment (with fit "all",
+/// and `body`, when given) over every frame drawn.
+render::BoundingBox sequenceFraming(const QuadMesh& mesh, const RenderRequest& request, const std::vector<int>& frames,
+                                    const preview::BodyFrames* body) {
+  render::BoundingBox framing;
+  for (const int f : frames) {
+    const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(mesh.n_vertices()));
+    for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
+    if (request.fit_all && body) {
+      const render::BoundingBox box = render::bounds(body->at(f));
+      if (!box.empty()) {
+        framing.add(box.min);
+        framing.add(box.max);
+      }
+    }
+  }
+  return framing;
+}
+
+/// Refuses option 'animation' (empty: none) unless it names a .gif or .mp4
+/// file in a folder that exists: before any frame is drawn, as the images'
+/// own folder is.
+void requireAnimationTarget(const QString& animation) {
+  if (animation.isEmpty()) return;
+  if (!animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
+      !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
+    options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));
+  if (!QFileInfo(animation).absoluteDir().exists())
+    throw OutputError(QStringLiteral("option 'animation': %1: folder '%2' does not exist")
+                          .arg(animation, QFileInfo(animation).absolutePath()).toStdString());
+}
+
 /// One picture: the garment (and `body`, when given) at `frame`, framed by
 /// `framing` when given (a steady camera across a sequence), else by the
 /// garment (with fit "all", and the body).
@@ -296,56 +355,16 @@ QVariantList PreviewPlugin::renderSequence(QVariant id, QVariant prefix, QVarian
     const RenderRequest request = parseRenderOptions(fields);
     if (request.cache.isEmpty()) options::fail(QStringLiteral("missing option 'cache': the PC2 whose frames are drawn"));
     const int count = preview::cache_frames(request.cache.toStdString());
-    std::vector<int> frames;
-    if (fields.has(QStringLiteral("frames"))) {
-      frames = script::toIntList(fields.required(QStringLiteral("frames")), fields.label(QStringLiteral("frames")));
-      for (const int f : frames)
-        if (f < 0 || f >= count)
-          options::fail(QStringLiteral("option 'frames': frame %1 is out of range (the cache has %2 frames)").arg(f).arg(count));
-    } else {
-      for (int f = 0; f < count; ++f) frames.push_back(f);
-    }
-    if (frames.empty())
-      options::fail(count == 0 ? QStringLiteral("option 'cache': %1 holds no frames; nothing to draw").arg(request.cache)
-                               : QStringLiteral("option 'frames' is empty; expected the frames to draw"));
-    // The body's frames too, before any image is written.
-    if (!request.body_cache.isEmpty()) {
-      const int body_frames = preview::cache_frames(request.body_cache.toStdString());
-      const int last = *std::max_element(frames.begin(), frames.end());
-      if (last >= body_frames)
-        options::fail(QStringLiteral("option 'body': the body cache %1 has %2 frames, but frame %3 of the garment's is "
-                                     "to be drawn; expected a body cache of the same run")
-                          .arg(request.body_cache).arg(body_frames).arg(last));
-    }
+    const std::vector<int> frames = framesToDraw(fields, request, count);
     if (!QFileInfo(stem).absoluteDir().exists())
       throw OutputError(QStringLiteral("%1: folder '%2' does not exist").arg(stem, QFileInfo(stem).absolutePath()).toStdString());
-
-    // One camera for the whole sequence: framed on the garment (with fit
-    // "all", and the body) over every frame drawn.
     const std::optional<preview::BodyFrames> body = bodyFramesOf(request);
-    render::BoundingBox framing;
-    for (const int f : frames) {
-      const Eigen::MatrixX3d p = preview::cache_frame(request.cache.toStdString(), f, static_cast<int>(object.mesh->n_vertices()));
-      for (Eigen::Index v = 0; v < p.rows(); ++v) framing.add(p.row(v).transpose());
-      if (request.fit_all && body) {
-        const render::BoundingBox box = render::bounds(body->at(f));
-        if (!box.empty()) {
-          framing.add(box.min);
-          framing.add(box.max);
-        }
-      }
-    }
+    const render::BoundingBox framing = sequenceFraming(*object.mesh, request, frames, body ? &*body : nullptr);
     const QString animation = fields.string(QStringLiteral("animation"));
     // simulate's range; a GIF's delay (100 / fps hundredths of a second) then fits its counter.
     const double fps = fields.numberBetween(QStringLiteral("fps"), 30.0, options::kLeastFps, options::kMostFps,
                                             QStringLiteral("frames per second"));
-    if (!animation.isEmpty() && !animation.endsWith(QLatin1String(".gif"), Qt::CaseInsensitive) &&
-        !animation.endsWith(QLatin1String(".mp4"), Qt::CaseInsensitive))
-      options::fail(QStringLiteral("option 'animation' must name a .gif or .mp4 file, got \"%1\"").arg(animation));
-    // Refused before any frame is drawn, as the images' own folder is.
-    if (!animation.isEmpty() && !QFileInfo(animation).absoluteDir().exists())
-      throw OutputError(QStringLiteral("option 'animation': %1: folder '%2' does not exist")
-                            .arg(animation, QFileInfo(animation).absolutePath()).toStdString());
+    requireAnimationTarget(animation);
     QVariantList files;
     JobScope job(*this, QStringLiteral("renderSequence"),
                  QStringLiteral("%1 frames of %2").arg(frames.size()).arg(QFileInfo(request.cache).fileName()),
