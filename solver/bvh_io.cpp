@@ -388,6 +388,24 @@ class BvhParser {
   // ---- MOTION ----------------------------------------------------------
 
   void parse_motion() {
+    const FrameCount count = parse_frame_count();
+    motion_.frame_time = parse_frame_time();
+    const long long channels = channel_total_;
+    const long long rows = count.frames;
+    const std::string expectation = require_motion_data(count.line, rows, channels);
+    read_frames(count.line, rows, channels);
+    if (!at_end())
+      fail(ahead_.line, "extra value " + quoted(ahead_.text) + " after " + std::to_string(rows) + " frames",
+           "the end of the file after " + expectation);
+  }
+
+  struct FrameCount {
+    long long frames;  // positive
+    int line;          // where the count is written
+  };
+
+  /// 'Frames: <count>'.
+  FrameCount parse_frame_count() {
     const Token frames_word = next("no 'Frames:' after MOTION", "'Frames: <count>'");
     if (frames_word.text == "Frames" && peek() && peek()->text == ":")
       take();
@@ -406,8 +424,11 @@ class BvhParser {
            "a positive integer");
     }
     if (*count <= 0) fail(count_token.line, "frame count " + std::to_string(*count), "a positive integer");
-    const int frames_line = count_token.line;
+    return {*count, count_token.line};
+  }
 
+  /// 'Frame Time: <seconds>': the seconds, within the bounds a clip can play.
+  double parse_frame_time() {
     const Token frame_word = next("no 'Frame Time:'", "'Frame Time: <seconds>'");
     const std::optional<Token> time_word = peek();
     if (frame_word.text != "Frame" || !time_word || (time_word->text != "Time:" && time_word->text != "Time"))
@@ -428,31 +449,37 @@ class BvhParser {
     if (*time < kShortestFrameTime)
       fail(time_token.line, "frame time " + std::string(time_token.text) + " s",
            "at least 0.00001 seconds per frame (100,000 frames a second)");
-    motion_.frame_time = *time;
+    return *time;
+  }
 
-    const long long channels = channel_total_;
-    const long long rows = *count;
-    if (rows > 2147483647) fail(count_token.line, "frame count " + std::to_string(rows), "at most 2147483647 frames");
+  /// Refuses motion data that holds fewer than `rows` x `channels` values
+  /// (naming a bad value first where there is one: it comes earlier in the
+  /// file). Returns what is expected, "<rows> frames x <channels> channels
+  /// = <values> values", for later messages.
+  std::string require_motion_data(int count_line, long long rows, long long channels) {
+    if (rows > 2147483647) fail(count_line, "frame count " + std::to_string(rows), "at most 2147483647 frames");
     const long long available = survey_rows(channels);
     const bool fits = channels == 0 || rows <= available / channels;  // rows x channels <= available, no overflow
     std::string expectation = std::to_string(rows) + " frames x " + std::to_string(channels) + " channels";
     if (rows <= std::numeric_limits<long long>::max() / std::max(channels, 1LL))
       expectation += " = " + std::to_string(rows * channels) + " values";
-    if (!fits) {
-      // Report a bad value first if there is one: it comes earlier in the file.
-      if (!at_end()) {
-        check_value(ahead_, 0, channels);
-        TokenCursor values = rest();
-        Token token;
-        for (std::size_t k = 1; values.next(token); ++k) check_value(token, k, channels);
-      }
-      const long long complete = channels > 0 ? available / channels : 0;
-      fail(last_line(),
-           "motion data ends after " + std::to_string(available) + " values (" + std::to_string(complete) +
-               " complete frames)",
-           expectation);
+    if (fits) return expectation;
+    if (!at_end()) {
+      check_value(ahead_, 0, channels);
+      TokenCursor values = rest();
+      Token token;
+      for (std::size_t k = 1; values.next(token); ++k) check_value(token, k, channels);
     }
+    const long long complete = channels > 0 ? available / channels : 0;
+    fail(last_line(),
+         "motion data ends after " + std::to_string(available) + " values (" + std::to_string(complete) +
+             " complete frames)",
+         expectation);
+  }
 
+  /// Reads the `rows` frames of `channels` values (the first dropped when
+  /// the options skip it), positions scaled to metres relative to the rest.
+  void read_frames(int frames_line, long long rows, long long channels) {
     const int skip = options_.skip_first_frame ? 1 : 0;
     if (rows - skip < 1)
       fail(frames_line, "skip_first_frame leaves no frame of " + std::to_string(rows), "at least 2 frames");
@@ -465,9 +492,6 @@ class BvhParser {
         motion_.frames(r - skip, c) =
             is_position(channel_of_column(c)) ? value * options_.scale - rest_of_column_[static_cast<std::size_t>(c)] : value;
       }
-    if (!at_end())
-      fail(ahead_.line, "extra value " + quoted(ahead_.text) + " after " + std::to_string(rows) + " frames",
-           "the end of the file after " + expectation);
   }
 
   /// Counts the values left (the next token on) without taking them, and
