@@ -307,11 +307,11 @@ QStringList simulationOptionKeys() {
          characterOptionKeys() + QStringList{QStringLiteral("optionNames")};
 }
 
-SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh, SimulationCall call) {
-  const bool record = call == SimulationCall::recordInstance;
-  const Fields fields(options, QString(), simulationOptionKeys(),
-                      record ? QStringLiteral("recordInstance options") : QStringLiteral("simulate options"));
-  const bool character = fields.has(QStringLiteral("motion"));
+namespace {
+
+/// Refuses what the call does not take: recordInstance without motion or
+/// output, a character's option without motion, substeps with it.
+void refuseOptionsOutOfPlace(const Fields& fields, bool record, bool character) {
   if (record && !character)
     fields.required(QStringLiteral("motion"));  // "missing option 'motion' (accepted: ...)"
   if (!character) {
@@ -325,9 +325,11 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   if (record && !fields.has(QStringLiteral("output")))
     fail(QStringLiteral("missing option 'output': recordInstance writes its PC2 cache there and the rest mesh beside "
                         "it (same name, .obj)"));
+}
 
-  SimulationRequest request;
-  SimulationOptions& sim = request.simulation;
+/// frames, fps, and the counts of the loops in a frame: substeps (without
+/// motion), iterations, newtonCg, limiterSweeps.
+void parseStepCounts(const Fields& fields, bool record, bool character, SimulationOptions& sim) {
   sim.frames = fields.integerAtLeast(QStringLiteral("frames"), record ? 200 : sim.frames, 1);
   sim.fps = fields.numberBetween(QStringLiteral("fps"), sim.fps, kLeastFps, kMostFps, QStringLiteral("frames per second"));
   // Progress and Ctrl-C come between frames: a frame's work is bounded.
@@ -338,6 +340,10 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.newton_cg = fields.integerBetween(QStringLiteral("newtonCg"), sim.newton_cg, 0, kMostNewtonCg);
   sim.strain_limit_sweeps =
       fields.integerBetween(QStringLiteral("limiterSweeps"), sim.strain_limit_sweeps, 0, kMostLimiterSweeps);
+}
+
+/// limiterAcceleration: "auto" or a number >= 0 and < 1.
+void parseLimiterAcceleration(const Fields& fields, SimulationOptions& sim) {
   // "auto": the default estimate raised to the garment's chain's
   // (chain_spectral_radius), which the longer chains of refined meshes need.
   const QVariant acceleration =
@@ -356,12 +362,20 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
                .arg(fields.label(QStringLiteral("limiterAcceleration")))
                .arg(sim.limiter_acceleration));
   }
+}
+
+void parseLimiterMassExponent(const Fields& fields, SimulationOptions& sim) {
   sim.limiter_mass_exponent =
       fields.numberFrom(QStringLiteral("limiterMassExponent"), sim.limiter_mass_exponent, 0.0, false);
   if (!(sim.limiter_mass_exponent <= 1.0))
     fail(QStringLiteral("%1 must be a number >= 0 and <= 1 (1: mass-weighted limiter projections), got %2")
              .arg(fields.label(QStringLiteral("limiterMassExponent")))
              .arg(sim.limiter_mass_exponent));
+}
+
+/// The settings that take their value as given, checked for type and range:
+/// tNodeSag, pinsYield, collisionRounds, contactSlack, threads, gravity.
+void parsePlainSettings(const Fields& fields, SimulationOptions& sim) {
   sim.t_node_sag = fields.boolean(QStringLiteral("tNodeSag"), sim.t_node_sag);
   sim.pins_yield = fields.boolean(QStringLiteral("pinsYield"), sim.pins_yield);
   sim.collision_rounds =
@@ -370,48 +384,61 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
   sim.threads = resolve_thread_count(
       fields.integerBetween(QStringLiteral("threads"), sim.threads, 0, kMostThreads));
   sim.gravity = fields.vec3(QStringLiteral("gravity"), sim.gravity);
-  if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
-  if (fields.has(QStringLiteral("selfContact"))) {
-    const QString label = fields.label(QStringLiteral("selfContact"));
-    const QVariant contact = fields.required(QStringLiteral("selfContact"));
-    double metres = 0.0;
-    QVariant thickness = contact;
-    QString thickness_label = label;
-    if (isObjectLike(contact) && contact.typeId() != QMetaType::QVariantList) {
-      // {thickness, neighbourhood}: the sheet's neighbourhood given too.
-      const Fields parts(contact, QStringLiteral("selfContact"),
-                         {QStringLiteral("thickness"), QStringLiteral("neighbourhood")});
-      thickness = parts.required(QStringLiteral("thickness"));
-      thickness_label = parts.label(QStringLiteral("thickness"));
-      // Up to 10 cm: beyond, a garment's own folds are no longer held, and
-      // each vertex's neighbourhood (kept for the run) grows with its square.
-      sim.self_contact.neighbourhood = parts.numberFrom(QStringLiteral("neighbourhood"), -1.0, 0.0, false);
-      if (sim.self_contact.neighbourhood > 0.1)
-        fail(QStringLiteral("%1 must be at most 0.1 m, got %2")
-                 .arg(parts.label(QStringLiteral("neighbourhood")))
-                 .arg(sim.self_contact.neighbourhood));
-    }
-    if (thickness.typeId() == QMetaType::Bool) {
-      if (thickness.toBool())
-        fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got true")
-                 .arg(thickness_label).arg(kMostSelfContactThickness));
-    } else {
-      metres = script::toNumber(thickness, thickness_label);
-      if (!(metres >= 0.0 && metres <= kMostSelfContactThickness))
-        fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got %3")
-                 .arg(thickness_label)
-                 .arg(kMostSelfContactThickness)
-                 .arg(script::describeValue(thickness)));
-    }
-    sim.self_contact.thickness = metres;
+}
+
+/// selfContact's thickness: false (none) or metres from 0 to
+/// kMostSelfContactThickness; `label` names it.
+double selfContactThickness(const QVariant& thickness, const QString& label) {
+  double metres = 0.0;
+  if (thickness.typeId() == QMetaType::Bool) {
+    if (thickness.toBool())
+      fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got true")
+               .arg(label).arg(kMostSelfContactThickness));
+  } else {
+    metres = script::toNumber(thickness, label);
+    if (!(metres >= 0.0 && metres <= kMostSelfContactThickness))
+      fail(QStringLiteral("%1 must be false or a thickness from 0 to %2 m, got %3")
+               .arg(label)
+               .arg(kMostSelfContactThickness)
+               .arg(script::describeValue(thickness)));
   }
+  return metres;
+}
+
+/// selfContact (given): a thickness, or {thickness, neighbourhood}.
+void parseSelfContact(const Fields& fields, SelfContactOptions& self_contact) {
+  const QString label = fields.label(QStringLiteral("selfContact"));
+  const QVariant contact = fields.required(QStringLiteral("selfContact"));
+  QVariant thickness = contact;
+  QString thickness_label = label;
+  if (isObjectLike(contact) && contact.typeId() != QMetaType::QVariantList) {
+    // {thickness, neighbourhood}: the sheet's neighbourhood given too.
+    const Fields parts(contact, QStringLiteral("selfContact"),
+                       {QStringLiteral("thickness"), QStringLiteral("neighbourhood")});
+    thickness = parts.required(QStringLiteral("thickness"));
+    thickness_label = parts.label(QStringLiteral("thickness"));
+    // Up to 10 cm: beyond, a garment's own folds are no longer held, and
+    // each vertex's neighbourhood (kept for the run) grows with its square.
+    self_contact.neighbourhood = parts.numberFrom(QStringLiteral("neighbourhood"), -1.0, 0.0, false);
+    if (self_contact.neighbourhood > 0.1)
+      fail(QStringLiteral("%1 must be at most 0.1 m, got %2")
+               .arg(parts.label(QStringLiteral("neighbourhood")))
+               .arg(self_contact.neighbourhood));
+  }
+  self_contact.thickness = selfContactThickness(thickness, thickness_label);
+}
+
+/// output: the PC2 cache's path (empty: none), whose folder exists.
+QString parseCacheOutput(const Fields& fields) {
   const QString output = checkedOutputPath(fields, QStringLiteral("output"));
   if (QFileInfo(output).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
     fail(QStringLiteral("option 'output' must be the PC2 cache (e.g. walk.pc2), not an .obj: the rest mesh is written "
                         "beside it as <name>.obj, got \"%1\"").arg(output));
-  sim.cache_path = output.toStdString();
+  return output;
+}
 
-  DynamicsOptions& dynamics = request.dynamics;
+/// material, alpha, alphaBend, bendModel.
+void parseDynamics(const Fields& fields, DynamicsOptions& dynamics) {
   if (fields.has(QStringLiteral("material"))) dynamics.material = parseMaterial(fields.required(QStringLiteral("material")));
   dynamics.alpha = fields.number(QStringLiteral("alpha"), dynamics.alpha);
   dynamics.alpha_bend = fields.number(QStringLiteral("alphaBend"), dynamics.alpha_bend);
@@ -420,7 +447,12 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
                                QStringLiteral("secondDifference")
                            ? BendModel::second_difference
                            : BendModel::distance;
+}
 
+/// The pinned vertices (request.dynamics.pinned) and how they were given
+/// (request.pinsText).
+void parseWaistOrPins(const Fields& fields, const QuadMesh& mesh, bool character, SimulationRequest& request) {
+  DynamicsOptions& dynamics = request.dynamics;
   // The pins; on a character they are its waist, "top" unless given.
   request.pinsText = QStringLiteral("none");
   QString pins_key = QStringLiteral("pins");
@@ -433,28 +465,61 @@ SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh
     dynamics.pinned = parsePins(fields.required(pins_key), mesh, pins_key, request.pinsText);
   else if (character)
     dynamics.pinned = parsePins(QStringLiteral("top"), mesh, pins_key, request.pinsText);
+}
 
+/// The character's options (parseCharacterOptions) and bodyOutput, the
+/// body's PC2 cache.
+CharacterRequest parseCharacter(const Fields& fields, double fps) {
+  CharacterRequest character = parseCharacterOptions(fields, fps);
+  character.bodyOutput = checkedOutputPath(fields, QStringLiteral("bodyOutput"));
+  if (QFileInfo(character.bodyOutput).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
+    fail(QStringLiteral("option 'bodyOutput' must be the body's PC2 cache (e.g. body.pc2), not an .obj: its rest "
+                        "mesh is written beside it as <name>.obj, got \"%1\"").arg(character.bodyOutput));
+  return character;
+}
+
+/// optionNames (given): {option key: the caller's name for it}.
+QHash<QString, QString> parseOptionNames(const Fields& fields) {
+  QHash<QString, QString> option_names;
+  const QStringList known = simulationOptionKeys();
+  const Fields names(fields.required(QStringLiteral("optionNames")), QStringLiteral("optionNames"), known);
+  for (const QString& key : known)
+    if (names.has(key)) {
+      const QVariant name = names.required(key);
+      if (name.typeId() != QMetaType::QString) script::toString(name, names.label(key));  // refused with its type
+      option_names.insert(key, name.toString());
+    }
+  return option_names;
+}
+
+}  // namespace
+
+SimulationRequest parseSimulationOptions(const QVariant& options, const QuadMesh& mesh, SimulationCall call) {
+  const bool record = call == SimulationCall::recordInstance;
+  const Fields fields(options, QString(), simulationOptionKeys(),
+                      record ? QStringLiteral("recordInstance options") : QStringLiteral("simulate options"));
+  const bool character = fields.has(QStringLiteral("motion"));
+  refuseOptionsOutOfPlace(fields, record, character);
+
+  SimulationRequest request;
+  SimulationOptions& sim = request.simulation;
+  parseStepCounts(fields, record, character, sim);
+  parseLimiterAcceleration(fields, sim);
+  parseLimiterMassExponent(fields, sim);
+  parsePlainSettings(fields, sim);
+  if (fields.has(QStringLiteral("colliders"))) sim.colliders = parseColliders(fields.required(QStringLiteral("colliders")));
+  if (fields.has(QStringLiteral("selfContact"))) parseSelfContact(fields, sim.self_contact);
+  const QString output = parseCacheOutput(fields);
+  sim.cache_path = output.toStdString();
+
+  parseDynamics(fields, request.dynamics);
+  parseWaistOrPins(fields, mesh, character, request);
   request.objSequence = checkedOutputPath(fields, QStringLiteral("objSequence"));
   request.updateObject = fields.boolean(QStringLiteral("updateObject"), request.updateObject);
-  if (character) {
-    request.character = parseCharacterOptions(fields, sim.fps);
-    request.character->bodyOutput = checkedOutputPath(fields, QStringLiteral("bodyOutput"));
-    if (QFileInfo(request.character->bodyOutput).suffix().compare(QLatin1String("obj"), Qt::CaseInsensitive) == 0)
-      fail(QStringLiteral("option 'bodyOutput' must be the body's PC2 cache (e.g. body.pc2), not an .obj: its rest "
-                          "mesh is written beside it as <name>.obj, got \"%1\"").arg(request.character->bodyOutput));
-  }
+  if (character) request.character = parseCharacter(fields, sim.fps);
   requireDistinctOutputs(output, request.character ? request.character->bodyOutput : QString(), request.objSequence,
                          sim.frames);
-  if (fields.has(QStringLiteral("optionNames"))) {
-    const QStringList known = simulationOptionKeys();
-    const Fields names(fields.required(QStringLiteral("optionNames")), QStringLiteral("optionNames"), known);
-    for (const QString& key : known)
-      if (names.has(key)) {
-        const QVariant name = names.required(key);
-        if (name.typeId() != QMetaType::QString) script::toString(name, names.label(key));  // refused with its type
-        request.optionNames.insert(key, name.toString());
-      }
-  }
+  if (fields.has(QStringLiteral("optionNames"))) request.optionNames = parseOptionNames(fields);
   return request;
 }
 
