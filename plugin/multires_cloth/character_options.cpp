@@ -155,34 +155,29 @@ void parseMotion(const Fields& top, CharacterRequest& request) {
              .arg(fields.label(QStringLiteral("smoothing"))).arg(kLongestMotionSmoothing).arg(request.motionSmoothing));
 }
 
-void parseBody(const Fields& top, CharacterRequest& request) {
-  const QString key = QStringLiteral("body");
-  const QStringList types = {QStringLiteral("capsules"), QStringLiteral("mesh")};
-  if (!top.has(key)) return;
-  const QVariant value = top.required(key);
-  if (value.typeId() == QMetaType::QString) {
-    const QString type = script::toChoice(value, optionLabel(key), types);
-    if (type == QLatin1String("mesh"))
-      fail(QStringLiteral("%1: \"mesh\" needs the MakeHuman files: give {type: \"mesh\", obj, skeleton, weights} "
-                          "(base.obj, a .mhskel rig and a .mhw weights file)")
-               .arg(optionLabel(key)));
-    request.setup.body = CharacterBodyKind::capsules;
-    return;
-  }
-  if (!options::isObjectLike(value))
-    fail(QStringLiteral("%1 must be \"capsules\", \"mesh\" or an object {type, obj, skeleton, weights, units, "
-                        "thickness, friction}, got %2")
-             .arg(optionLabel(key), script::describeValue(value)));
-  const QStringList files = {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
-  const Fields fields(value, key, QStringList{QStringLiteral("type")} + files +
-                                      QStringList{QStringLiteral("units"), QStringLiteral("thickness"),
-                                                  QStringLiteral("friction"), QStringLiteral("radii"),
-                                                  QStringLiteral("legBridges"),
-                                                  QStringLiteral("waistFollows"), QStringLiteral("waistSmoothing"),
-                                                  QStringLiteral("armClearance"), QStringLiteral("handMittens")});
-  const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), types);
-  request.setup.body = type == QLatin1String("mesh") ? CharacterBodyKind::mesh : CharacterBodyKind::capsules;
+/// The types option 'body' (or its 'type') may name.
+QStringList bodyTypes() { return {QStringLiteral("capsules"), QStringLiteral("mesh")}; }
 
+/// The MakeHuman body's files, as keys of option 'body'.
+QStringList makeHumanFileKeys() {
+  return {QStringLiteral("obj"), QStringLiteral("skeleton"), QStringLiteral("weights")};
+}
+
+/// body given by name (`value`, a string): only "capsules", as "mesh" needs
+/// the MakeHuman files.
+CharacterBodyKind bodyByName(const QVariant& value, const QString& key) {
+  const QString type = script::toChoice(value, optionLabel(key), bodyTypes());
+  if (type == QLatin1String("mesh"))
+    fail(QStringLiteral("%1: \"mesh\" needs the MakeHuman files: give {type: \"mesh\", obj, skeleton, weights} "
+                        "(base.obj, a .mhskel rig and a .mhw weights file)")
+             .arg(optionLabel(key)));
+  return CharacterBodyKind::capsules;
+}
+
+/// obj, skeleton, weights: all three (the MakeHuman body, read in body.units)
+/// or none; type "mesh" needs them.
+void parseMakeHumanFiles(const Fields& fields, const QString& key, const QString& type, CharacterSetup& setup) {
+  const QStringList files = makeHumanFileKeys();
   QStringList missing;
   for (const QString& file : files)
     if (!fields.has(file)) missing << file;
@@ -204,94 +199,145 @@ void parseBody(const Fields& top, CharacterRequest& request) {
     makehuman.weights_file = file(QStringLiteral("weights"));
     makehuman.metres_per_unit =
         metresPerUnit(fields.choice(QStringLiteral("units"), QStringLiteral("dm"), bodyUnits()));
-    request.setup.makehuman = makehuman;
+    setup.makehuman = makehuman;
   } else if (fields.has(QStringLiteral("units"))) {
     fail(QStringLiteral("%1 are the units of the MakeHuman body file (obj): give obj, skeleton and weights with it")
              .arg(fields.label(QStringLiteral("units"))));
   }
-  if (fields.has(QStringLiteral("legBridges"))) {
-    const QString label = fields.label(QStringLiteral("legBridges"));
-    const QVariant bridges = fields.required(QStringLiteral("legBridges"));
-    if (bridges.typeId() == QMetaType::QString) {
-      script::toChoice(bridges, label, {QStringLiteral("auto")});
-      request.setup.leg_bridges = -1.0;
-    } else if (bridges.typeId() == QMetaType::Bool) {
-      request.setup.leg_bridges = bridges.toBool() ? -1.0 : 0.0;
-    } else {
-      const double reach = script::toNumber(bridges, label);
-      if (!(reach == 0.0 || (reach >= 0.5 && reach <= 2.0)))
-        fail(QStringLiteral("%1 must be \"auto\", false, 0 or a reach from 0.5 to 2 bones below the hips (1: the "
-                            "knees, 2: the ankles), got %2")
-                 .arg(label, script::describeValue(bridges)));
-      request.setup.leg_bridges = reach;
-    }
+}
+
+/// body.legBridges: "auto" or true (automatic), false or 0 (none), or a reach in bones.
+void parseLegBridges(const Fields& fields, CharacterSetup& setup) {
+  if (!fields.has(QStringLiteral("legBridges"))) return;
+  const QString label = fields.label(QStringLiteral("legBridges"));
+  const QVariant bridges = fields.required(QStringLiteral("legBridges"));
+  if (bridges.typeId() == QMetaType::QString) {
+    script::toChoice(bridges, label, {QStringLiteral("auto")});
+    setup.leg_bridges = -1.0;
+  } else if (bridges.typeId() == QMetaType::Bool) {
+    setup.leg_bridges = bridges.toBool() ? -1.0 : 0.0;
+  } else {
+    const double reach = script::toNumber(bridges, label);
+    if (!(reach == 0.0 || (reach >= 0.5 && reach <= 2.0)))
+      fail(QStringLiteral("%1 must be \"auto\", false, 0 or a reach from 0.5 to 2 bones below the hips (1: the "
+                          "knees, 2: the ankles), got %2")
+               .arg(label, script::describeValue(bridges)));
+    setup.leg_bridges = reach;
   }
-  if (fields.has(QStringLiteral("armClearance"))) {
-    const QString label = fields.label(QStringLiteral("armClearance"));
-    const QVariant clearance = fields.required(QStringLiteral("armClearance"));
-    if (clearance.typeId() == QMetaType::QString) {
-      script::toChoice(clearance, label, {QStringLiteral("auto")});
-    } else if (clearance.typeId() == QMetaType::Bool) {
-      if (!clearance.toBool()) request.setup.arm_clearance = -1.0;
-    } else {
-      const double metres = script::toNumber(clearance, label);
-      if (!(metres >= 0.0 && metres <= 0.1))
-        fail(QStringLiteral("%1 must be \"auto\", false or a clearance from 0 to 0.1 m, got %2")
-                 .arg(label, script::describeValue(clearance)));
-      request.setup.arm_clearance = metres;
-    }
+}
+
+/// body.armClearance: "auto" or true (the default clearance), false (the
+/// clip's arms as they are), or metres.
+void parseArmClearance(const Fields& fields, CharacterSetup& setup) {
+  if (!fields.has(QStringLiteral("armClearance"))) return;
+  const QString label = fields.label(QStringLiteral("armClearance"));
+  const QVariant clearance = fields.required(QStringLiteral("armClearance"));
+  if (clearance.typeId() == QMetaType::QString) {
+    script::toChoice(clearance, label, {QStringLiteral("auto")});
+  } else if (clearance.typeId() == QMetaType::Bool) {
+    if (!clearance.toBool()) setup.arm_clearance = -1.0;
+  } else {
+    const double metres = script::toNumber(clearance, label);
+    if (!(metres >= 0.0 && metres <= 0.1))
+      fail(QStringLiteral("%1 must be \"auto\", false or a clearance from 0 to 0.1 m, got %2")
+               .arg(label, script::describeValue(clearance)));
+    setup.arm_clearance = metres;
   }
-  request.setup.hand_mittens = fields.boolean(QStringLiteral("handMittens"), request.setup.hand_mittens);
+}
+
+void parseHandMittens(const Fields& fields, const QString& type, CharacterSetup& setup) {
+  setup.hand_mittens = fields.boolean(QStringLiteral("handMittens"), setup.hand_mittens);
   if (fields.has(QStringLiteral("handMittens")) && type != QLatin1String("mesh"))
     fail(QStringLiteral("%1 applies to type \"mesh\" (the capsule body has no hands to replace)")
              .arg(fields.label(QStringLiteral("handMittens"))));
+}
+
+/// body.waistFollows and body.waistSmoothing, after the MakeHuman files
+/// (skinning the waist needs them).
+void parseWaist(const Fields& fields, CharacterSetup& setup) {
   if (fields.has(QStringLiteral("waistFollows"))) {
     const QString follows = fields.choice(QStringLiteral("waistFollows"), QStringLiteral("auto"),
                                           {QStringLiteral("auto"), QStringLiteral("pelvis"), QStringLiteral("skin")});
-    request.setup.waist = follows == QLatin1String("pelvis") ? WaistFollows::pelvis
-                          : follows == QLatin1String("skin")   ? WaistFollows::skin
-                                                               : WaistFollows::automatic;
-    if (request.setup.waist == WaistFollows::skin && !request.setup.makehuman)
+    setup.waist = follows == QLatin1String("pelvis") ? WaistFollows::pelvis
+                  : follows == QLatin1String("skin")   ? WaistFollows::skin
+                                                       : WaistFollows::automatic;
+    if (setup.waist == WaistFollows::skin && !setup.makehuman)
       fail(QStringLiteral("%1 \"skin\" needs a body to skin by: give the MakeHuman files (obj, skeleton, weights)")
                .arg(fields.label(QStringLiteral("waistFollows"))));
   }
-  request.setup.waist_smoothing =
-      fields.numberFrom(QStringLiteral("waistSmoothing"), request.setup.waist_smoothing, 0.0, false);
+  setup.waist_smoothing =
+      fields.numberFrom(QStringLiteral("waistSmoothing"), setup.waist_smoothing, 0.0, false);
   if (fields.has(QStringLiteral("waistSmoothing")) &&
-      (!request.setup.makehuman || request.setup.waist == WaistFollows::pelvis))
+      (!setup.makehuman || setup.waist == WaistFollows::pelvis))
     fail(QStringLiteral("%1 applies where the waist follows the skin: give the MakeHuman files (obj, skeleton, "
                         "weights), and no waistFollows \"pelvis\"")
              .arg(fields.label(QStringLiteral("waistSmoothing"))));
+}
+
+/// One entry of body.radii (`entry` names it): a radius, or [head, tail].
+std::pair<double, double> capsuleRadius(const QVariant& value, const QString& entry) {
+  std::pair<double, double> radius;
+  if (options::isNumber(value)) {
+    radius.first = radius.second = script::toNumber(value, entry);
+  } else {
+    const QVariantList pair = script::toList(value, entry);
+    if (pair.size() != 2)
+      fail(QStringLiteral("%1 must be a radius or [head, tail] in metres, got %2")
+               .arg(entry, script::describeValue(value)));
+    radius = {script::toNumber(pair[0], entry + QStringLiteral("[0]")),
+              script::toNumber(pair[1], entry + QStringLiteral("[1]"))};
+  }
+  if (!(radius.first >= 0.0 && radius.second >= 0.0))
+    fail(QStringLiteral("%1 must be >= 0 (0 removes the capsule), got %2").arg(entry, script::describeValue(value)));
+  return radius;
+}
+
+/// body.radii: {joint name: radius or [head, tail]}, for the capsules only.
+void parseCapsuleRadii(const Fields& fields, CharacterSetup& setup) {
+  if (!fields.has(QStringLiteral("radii"))) return;
+  const QString label = fields.label(QStringLiteral("radii"));
+  if (setup.body != CharacterBodyKind::capsules)
+    fail(QStringLiteral("%1 applies to capsules only, not to type \"mesh\"").arg(label));
+  const QVariant radii = fields.required(QStringLiteral("radii"));
+  if (!options::isObjectLike(radii) || radii.typeId() == QMetaType::QVariantList)
+    fail(QStringLiteral("%1 must be an object {joint name: radius or [head, tail]}, got %2")
+             .arg(label, script::describeValue(radii)));
+  const QVariantMap map = radii.toMap();
+  for (auto it = map.cbegin(); it != map.cend(); ++it)
+    setup.radii[it.key().toStdString()] =
+        capsuleRadius(it.value(), QStringLiteral("option 'body.radii.%1'").arg(it.key()));
+}
+
+void parseBody(const Fields& top, CharacterRequest& request) {
+  const QString key = QStringLiteral("body");
+  if (!top.has(key)) return;
+  const QVariant value = top.required(key);
+  if (value.typeId() == QMetaType::QString) {
+    request.setup.body = bodyByName(value, key);
+    return;
+  }
+  if (!options::isObjectLike(value))
+    fail(QStringLiteral("%1 must be \"capsules\", \"mesh\" or an object {type, obj, skeleton, weights, units, "
+                        "thickness, friction}, got %2")
+             .arg(optionLabel(key), script::describeValue(value)));
+  const Fields fields(value, key, QStringList{QStringLiteral("type")} + makeHumanFileKeys() +
+                                      QStringList{QStringLiteral("units"), QStringLiteral("thickness"),
+                                                  QStringLiteral("friction"), QStringLiteral("radii"),
+                                                  QStringLiteral("legBridges"),
+                                                  QStringLiteral("waistFollows"), QStringLiteral("waistSmoothing"),
+                                                  QStringLiteral("armClearance"), QStringLiteral("handMittens")});
+  const QString type = fields.choice(QStringLiteral("type"), QStringLiteral("capsules"), bodyTypes());
+  request.setup.body = type == QLatin1String("mesh") ? CharacterBodyKind::mesh : CharacterBodyKind::capsules;
+
+  parseMakeHumanFiles(fields, key, type, request.setup);
+  parseLegBridges(fields, request.setup);
+  parseArmClearance(fields, request.setup);
+  parseHandMittens(fields, type, request.setup);
+  parseWaist(fields, request.setup);
   request.setup.thickness = fields.numberBetween(QStringLiteral("thickness"), request.setup.thickness, 0.0,
                                                   kMostContactThickness, QStringLiteral("m"));
   request.setup.friction = fields.numberFrom(QStringLiteral("friction"), request.setup.friction, 0.0, false);
-  if (fields.has(QStringLiteral("radii"))) {
-    const QString label = fields.label(QStringLiteral("radii"));
-    if (request.setup.body != CharacterBodyKind::capsules)
-      fail(QStringLiteral("%1 applies to capsules only, not to type \"mesh\"").arg(label));
-    const QVariant radii = fields.required(QStringLiteral("radii"));
-    if (!options::isObjectLike(radii) || radii.typeId() == QMetaType::QVariantList)
-      fail(QStringLiteral("%1 must be an object {joint name: radius or [head, tail]}, got %2")
-               .arg(label, script::describeValue(radii)));
-    const QVariantMap map = radii.toMap();
-    for (auto it = map.cbegin(); it != map.cend(); ++it) {
-      const QString entry = QStringLiteral("option 'body.radii.%1'").arg(it.key());
-      std::pair<double, double> radius;
-      if (options::isNumber(it.value())) {
-        radius.first = radius.second = script::toNumber(it.value(), entry);
-      } else {
-        const QVariantList pair = script::toList(it.value(), entry);
-        if (pair.size() != 2)
-          fail(QStringLiteral("%1 must be a radius or [head, tail] in metres, got %2")
-                   .arg(entry, script::describeValue(it.value())));
-        radius = {script::toNumber(pair[0], entry + QStringLiteral("[0]")),
-                  script::toNumber(pair[1], entry + QStringLiteral("[1]"))};
-      }
-      if (!(radius.first >= 0.0 && radius.second >= 0.0))
-        fail(QStringLiteral("%1 must be >= 0 (0 removes the capsule), got %2").arg(entry, script::describeValue(it.value())));
-      request.setup.radii[it.key().toStdString()] = radius;
-    }
-  }
+  parseCapsuleRadii(fields, request.setup);
 }
 
 }  // namespace
