@@ -89,38 +89,38 @@ std::vector<LogLine> clipChangeLines(const QString& slot, const CharacterRequest
   return lines;
 }
 
-QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest& request, const Character& character,
-                                    const CharacterRunOptions& run, const DynamicsModel& model,
-                                    const QuadMesh& garment, std::vector<LogLine>& lines) {
-  const QString contact_warning = selfContactWarning(slot, garment, request.simulation.self_contact);
-  if (!contact_warning.isEmpty()) lines.push_back({LOGWARN, contact_warning});
-  if (const QString precision = cachePrecisionWarning(slot, garment, request.simulation); !precision.isEmpty())
-    lines.push_back({LOGWARN, precision});
-  const Motion& motion = *character.motion;
+namespace {
+
+/// Warns when the pinned waist is far from the pelvis joint in the rest pose.
+void addWaistPlacementWarning(const QString& slot, const SimulationRequest& request, const Motion& motion,
+                              const CharacterRunOptions& run, const DynamicsModel& model, std::vector<LogLine>& lines) {
   const int pelvis = motion.skeleton.find(run.pelvis_joint);
-  if (!model.pinned_vertices.empty()) {
-    Eigen::Vector3d waist = Eigen::Vector3d::Zero();
-    for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
-    waist /= static_cast<double>(model.pinned_vertices.size());
-    const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
-    // Placed as on the MakeHuman body, the garment is where its file puts it
-    // relative to the body file's: then the files disagree, not the option.
-    const bool as_on_body = request.character && request.character->setup.place == GarmentPlacement::makehuman;
-    const QString advice =
-        as_on_body ? QStringLiteral("placed as on the MakeHuman body (option 'place': \"makehuman\"), the garment's file "
-                                    "and the body's do not share their coordinates: a garment modelled on another "
-                                    "body, one of the two files moved, or the garment loaded in other units than the "
-                                    "body (core.loadObject's units and option 'body.units'; the pipeline's --units and "
-                                    "--makehuman-units)")
-                   : QStringLiteral("the garment is probably not placed on the character (option 'place': "
-                                    "\"makehuman\" for MakeHuman garments, \"firstFrame\" for garments modelled on the "
-                                    "clip's frame 0)");
-    if (distance > 0.3)
-      lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: %4")
-                                    .arg(slot)
-                                    .arg(distance, 0, 'f', 2)
-                                    .arg(QString::fromStdString(run.pelvis_joint), advice)});
-  }
+  if (model.pinned_vertices.empty()) return;
+  Eigen::Vector3d waist = Eigen::Vector3d::Zero();
+  for (const int vertex : model.pinned_vertices) waist += model.rest.row(vertex).transpose();
+  waist /= static_cast<double>(model.pinned_vertices.size());
+  const double distance = (waist - rest_pose(motion.skeleton).position(pelvis)).norm();
+  // Placed as on the MakeHuman body, the garment is where its file puts it
+  // relative to the body file's: then the files disagree, not the option.
+  const bool as_on_body = request.character && request.character->setup.place == GarmentPlacement::makehuman;
+  const QString advice =
+      as_on_body ? QStringLiteral("placed as on the MakeHuman body (option 'place': \"makehuman\"), the garment's file "
+                                  "and the body's do not share their coordinates: a garment modelled on another "
+                                  "body, one of the two files moved, or the garment loaded in other units than the "
+                                  "body (core.loadObject's units and option 'body.units'; the pipeline's --units and "
+                                  "--makehuman-units)")
+                 : QStringLiteral("the garment is probably not placed on the character (option 'place': "
+                                  "\"makehuman\" for MakeHuman garments, \"firstFrame\" for garments modelled on the "
+                                  "clip's frame 0)");
+  if (distance > 0.3)
+    lines.push_back({LOGWARN, QStringLiteral("%1: the pinned waist is %2 m from the %3 joint in the rest pose: %4")
+                                  .arg(slot)
+                                  .arg(distance, 0, 'f', 2)
+                                  .arg(QString::fromStdString(run.pelvis_joint), advice)});
+}
+
+void addStepRateWarning(const QString& slot, const SimulationRequest& request, const CharacterRunOptions& run,
+                        std::vector<LogLine>& lines) {
   // Steps come in whole numbers per output frame: 120 asked at 90 fps ran at
   // 90, silently (the report's stepRate said so, after the run).
   const int substeps = steps_per_frame(run);
@@ -131,6 +131,10 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                                   .arg(slot, optionCalled(request, QStringLiteral("stepRate"))).arg(run.step_rate)
                                   .arg(run.fps).arg(substeps).arg(substeps * run.fps)
                                   .arg(optionCalled(request, QStringLiteral("fps")))});
+}
+
+void addPrerollWarning(const QString& slot, const SimulationRequest& request, const Motion& motion,
+                       const CharacterRunOptions& run, std::vector<LogLine>& lines) {
   // A pre-roll too short for the way from the rest pose to the first frame
   // moves the legs faster than any stride: cloth on them tears.
   if (const double speed = preroll_leg_speed(motion, run); speed > kPrerollLegSpeedWarning) {
@@ -146,44 +150,49 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                           .arg(optionCalled(request, QStringLiteral("preroll")))
                           .arg(std::ceil(100.0 * enough) / 100.0, 0, 'f', 2).arg(kPrerollLegSpeedWarning, 0, 'f', 0)});
   }
-  // A glitch or jitter in the capture, within the frames the run plays.
-  {
-    const int first = static_cast<int>(std::floor(run.motion_start / motion.frame_time));
-    // Past the clip's end (in double first: a long run's count of clip
-    // frames need not fit in an int).
-    const int last = static_cast<int>(std::min(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time),
-                                               static_cast<double>(motion.frames.rows())));
-    const int in_file = request.character->setup.skip_first ? 1 : 0;  // the run's frame 0 is the file's 1
-    // Jitter tears below the speed a glitch is told by: said first, with the smoothing that takes it out.
-    if (const double jitter = leg_jitter(motion, first, last); jitter > kLegJitterWarning) {
-      const double already = request.character->motionSmoothing;
-      lines.push_back({LOGWARN, QStringLiteral("%1: the legs of %2 jitter (their largest acceleration at a frame %3 m/s^2 at "
-                                       "the median over the frames the run plays; a clean walk's 10-35, a run's about 65): "
-                                       "raw capture noise, which tears cloth on the legs; option 'motion.smoothing' %4 s "
-                                       "(a Gaussian in time%5) takes it out")
-                            .arg(slot, QFileInfo(request.character->motionPath).fileName())
-                            .arg(jitter, 0, 'f', 0)
-                            .arg(smoothing_against_jitter(motion, already, first, last, 0.5 * kLegJitterWarning))
-                            .arg(already > 0.0 ? QStringLiteral("; now %1 s").arg(already) : QString())});
-    }
-    if (const LegSpeed fastest = fastest_leg_speed(motion, first, last); fastest.speed > kClipLegSpeedWarning)
-      lines.push_back({LOGWARN, QStringLiteral("%1: %2 moves its %3 at %4 m/s between its frames %5 and %6 (from 0; a run's "
-                                       "feet: about 8): a glitch or jitter in the capture? Cloth on the legs may tear "
-                                       "there; smooth or cut the clip (motionInfo's fastestLegSpeed finds such frames)")
-                            .arg(slot, QFileInfo(request.character->motionPath).fileName(),
-                                 QString::fromStdString(fastest.joint))
-                            .arg(fastest.speed, 0, 'f', 1).arg(fastest.frame + in_file).arg(fastest.frame + in_file + 1)});
+}
+
+/// A glitch or jitter in the capture, within the frames the run plays.
+void addCaptureWarnings(const QString& slot, const SimulationRequest& request, const Motion& motion,
+                        const CharacterRunOptions& run, std::vector<LogLine>& lines) {
+  const int first = static_cast<int>(std::floor(run.motion_start / motion.frame_time));
+  // Past the clip's end (in double first: a long run's count of clip
+  // frames need not fit in an int).
+  const int last = static_cast<int>(std::min(std::ceil((run.motion_start + run.frames / run.fps) / motion.frame_time),
+                                             static_cast<double>(motion.frames.rows())));
+  const int in_file = request.character->setup.skip_first ? 1 : 0;  // the run's frame 0 is the file's 1
+  // Jitter tears below the speed a glitch is told by: said first, with the smoothing that takes it out.
+  if (const double jitter = leg_jitter(motion, first, last); jitter > kLegJitterWarning) {
+    const double already = request.character->motionSmoothing;
+    lines.push_back({LOGWARN, QStringLiteral("%1: the legs of %2 jitter (their largest acceleration at a frame %3 m/s^2 at "
+                                     "the median over the frames the run plays; a clean walk's 10-35, a run's about 65): "
+                                     "raw capture noise, which tears cloth on the legs; option 'motion.smoothing' %4 s "
+                                     "(a Gaussian in time%5) takes it out")
+                          .arg(slot, QFileInfo(request.character->motionPath).fileName())
+                          .arg(jitter, 0, 'f', 0)
+                          .arg(smoothing_against_jitter(motion, already, first, last, 0.5 * kLegJitterWarning))
+                          .arg(already > 0.0 ? QStringLiteral("; now %1 s").arg(already) : QString())});
   }
-  if (character.capsules_shrunk > 0)
-    lines.push_back({LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
-                                     "capsules stand out of the body where it is narrower than a taper)")
-                          .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules)});
+  if (const LegSpeed fastest = fastest_leg_speed(motion, first, last); fastest.speed > kClipLegSpeedWarning)
+    lines.push_back({LOGWARN, QStringLiteral("%1: %2 moves its %3 at %4 m/s between its frames %5 and %6 (from 0; a run's "
+                                     "feet: about 8): a glitch or jitter in the capture? Cloth on the legs may tear "
+                                     "there; smooth or cut the clip (motionInfo's fastestLegSpeed finds such frames)")
+                          .arg(slot, QFileInfo(request.character->motionPath).fileName(),
+                               QString::fromStdString(fastest.joint))
+                          .arg(fastest.speed, 0, 'f', 1).arg(fastest.frame + in_file).arg(fastest.frame + in_file + 1)});
+}
+
+/// The report's 'fit' (empty unless the garment is a tube), with a warning
+/// when the body needs more girth than the material stretches to.
+QVariantMap checkTubeFit(const QString& slot, const SimulationRequest& request, const Character& character,
+                         const CharacterRunOptions& run, const DynamicsModel& model, const QuadMesh& garment,
+                         std::vector<LogLine>& lines) {
   // A tube garment (two boundary loops: a skirt or dress) too narrow for
   // the motion cannot stay whole within its material's stretch limit:
   // said now, with where, rather than found as a tear after the run.
   QVariantMap fit;
   if (is_tube_garment(garment)) {
-    const std::vector<HoopLevel> levels = run_hoop_demand(motion, *character.body, run, garment);
+    const std::vector<HoopLevel> levels = run_hoop_demand(*character.motion, *character.body, run, garment);
     fit = hoopDemandMap(levels, request.dynamics.material.stretch_limit);
     const int worst_level = most_demanding_level(levels);
     const HoopLevel* worst = worst_level < 0 ? nullptr : &levels[static_cast<std::size_t>(worst_level)];
@@ -199,13 +208,39 @@ QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest
                             .arg(QString::fromStdString(request.dynamics.material.name))
                             .arg(100.0 * request.dynamics.material.stretch_limit, 0, 'f', 0)});
   }
+  return fit;
+}
+
+void addMotionEndWarning(const QString& slot, const Motion& motion, const CharacterRunOptions& run,
+                         std::vector<LogLine>& lines) {
   const double end_time = run.motion_start + run.frames / run.fps;
   if (end_time > motion.duration() + 0.5 / run.fps)
     lines.push_back({LOGWARN, QStringLiteral("%1: the motion ends at %2 s but %3 frames from %4 s run to %5 s; the last "
                                      "frames hold its final pose")
                           .arg(slot).arg(motion.duration(), 0, 'f', 2).arg(run.frames).arg(run.motion_start)
                           .arg(end_time, 0, 'f', 2)});
+}
 
+}  // namespace
+
+QVariantMap checkBeforeCharacterRun(const QString& slot, const SimulationRequest& request, const Character& character,
+                                    const CharacterRunOptions& run, const DynamicsModel& model,
+                                    const QuadMesh& garment, std::vector<LogLine>& lines) {
+  const QString contact_warning = selfContactWarning(slot, garment, request.simulation.self_contact);
+  if (!contact_warning.isEmpty()) lines.push_back({LOGWARN, contact_warning});
+  if (const QString precision = cachePrecisionWarning(slot, garment, request.simulation); !precision.isEmpty())
+    lines.push_back({LOGWARN, precision});
+  const Motion& motion = *character.motion;
+  addWaistPlacementWarning(slot, request, motion, run, model, lines);
+  addStepRateWarning(slot, request, run, lines);
+  addPrerollWarning(slot, request, motion, run, lines);
+  addCaptureWarnings(slot, request, motion, run, lines);
+  if (character.capsules_shrunk > 0)
+    lines.push_back({LOGINFO, QStringLiteral("%1: %2 of %3 capsules shrunk so the garment starts outside them (fitted "
+                                     "capsules stand out of the body where it is narrower than a taper)")
+                          .arg(slot).arg(character.capsules_shrunk).arg(character.body_capsules)});
+  const QVariantMap fit = checkTubeFit(slot, request, character, run, model, garment, lines);
+  addMotionEndWarning(slot, motion, run, lines);
   return fit;
 }
 
