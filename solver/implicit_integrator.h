@@ -76,7 +76,7 @@ struct IntegratorOptions {
   int strain_limit_sweeps = 6;                  ///< Gauss-Seidel sweeps over stretch springs (and tethers) per round, >= 0
   double limiter_acceleration = 0.97;           ///< spectral radius estimate rho in [0, 1) for Chebyshev acceleration of a round's sweeps (see limit_strain); 0: plain sweeps
   bool acceleration_from_chain = true;          ///< raise rho to chain_spectral_radius(model) (see there) in rounds not near rest (see limit_strain); with limiter_acceleration 0 still plain sweeps
-  double limiter_mass_exponent = 0.5;           ///< the limiter moves a vertex in proportion to mass^-exponent, in [0, 1]: 1 mass-weighted (momentum-conserving), 0 equal; 0.5 converges on multi-resolution meshes, whose masses differ up to 16-fold (see precompute; README, Limiter weights)
+  double limiter_mass_exponent = 0.5;           ///< the limiter moves a vertex in proportion to mass^-exponent, in [0, 1]: 1 mass-weighted (momentum-conserving), 0 equal; 0.5 converges on multi-resolution meshes, whose masses differ up to 16-fold (see projection_weights in integrator_setup.cpp; README, Limiter weights)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};     ///< m/s^2
   int collision_rounds = 8;                     ///< at most this many rounds of (strain limiting, collision checks) per step, >= 1
   double round_tolerance = 0.01;                ///< another round also while a spring starts it this much strain beyond the limit (0.01 = 1 %)
@@ -228,6 +228,32 @@ class ImplicitIntegrator {
   /// free stencil, mass-weighted; flags the moved free vertices in `moved`
   /// when given. False when it has no free stencil.
   bool move_t_node(std::size_t h, const Eigen::Vector3d& delta, Positions& q, std::vector<char>* moved) const;
+
+  // precompute's steps after it has set model_ and options_, in its order.
+  /// Starts the worker pool, sizes the scratch every step reuses and zeroes
+  /// pinned_part_ (without pins it stays zero).
+  void prepare_step_scratch();
+  /// Fills sweep_ with every stretch spring in wavefront order; fj is a
+  /// general spring's index in model_->springs until build_general_springs.
+  void build_sweep();
+  /// Puts the free vertices in the order the collision checks visit them
+  /// (check_order_, near each other at rest) and memo_slot_ to match.
+  void order_checks();
+  /// Sizes the contact planes, anchors and slacks: per free vertex, then per T-node.
+  void size_contact_buffers();
+  /// Turns each general spring of sweep_ into a GeneralSpring (in sweep
+  /// order) and points its fj at it.
+  void build_general_springs();
+  /// Appends spring `s` to general_ (its fine row `row` with t_node_sag,
+  /// else null); returns its index there.
+  int add_general_spring(const Spring& s, const FineRow* row);
+  /// Leaves the springs with both ends pinned out of sweep_.
+  void drop_pinned_springs();
+  /// Per free vertex, the sweep_ slots of the springs it moves (see
+  /// limit_strain's active set), in sweep order.
+  std::vector<std::vector<int>> sweep_dependents() const;
+  /// Packs sweep_dependents into dependent_start_ / dependent_slots_ and sizes due_.
+  void build_dependents();
 
   const DynamicsModel* model_ = nullptr;
   IntegratorOptions options_;
