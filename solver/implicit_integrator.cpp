@@ -623,117 +623,118 @@ double ImplicitIntegrator::slack_of(const SurfaceNearby& nearby, bool planed) co
 int ImplicitIntegrator::check_contacts(const Positions& q_previous, Positions& q, const CollisionScene& scene,
                                        bool first, double& largest) const {
   if (scene.empty()) return 0;
-  const DynamicsModel& m = *model_;
   const Eigen::Index free_count = q.rows();
-  memos_.resize(static_cast<std::size_t>(free_count) + m.hanging_vertices.size());
-  // Whether row r (at x) needs a check: every row in the step's first, then
-  // those that moved beyond their slack from where their last check left them.
-  const auto needs = [&](Eigen::Index r, const Eigen::Vector3d& x) {
-    if (first) return true;
-    const double slack = slack_[static_cast<std::size_t>(r)];
-    return (x - anchor_.row(r).transpose()).squaredNorm() > slack * slack;
-  };
-  // Resolves free vertex f if it needs it (or `forced`), and returns the
-  // correction (-1: not checked). Friction acts once, in the step's first
-  // check. Each vertex's resolve reads and writes its own rows and memo.
-  const auto check_vertex = [&](Eigen::Index f, bool forced) {
-    const Eigen::Vector3d before = q.row(f).transpose();
-    if (!forced && !needs(f, before)) return -1.0;
-    Eigen::Vector3d x = before;
-    SurfaceNearby nearby;
-    const double correction = scene.resolve(q_previous.row(f).transpose(), x, first && !forced,
-                                            &memos_[static_cast<std::size_t>(memo_slot_[static_cast<std::size_t>(f)])], &nearby);
-    q.row(f) = x.transpose();
-    anchor_.row(f) = x.transpose();
-    set_plane(f, before, x, nearby);
-    slack_[static_cast<std::size_t>(f)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(f)] != 0);
-    return correction;
-  };
-  int checked = 0;
-  const auto check_free = [&](const std::vector<char>* only) {
-    if (!pool_ || only) {
-      for (const int ordered : check_order_) {
-        const Eigen::Index f = ordered;
-        if (only && !(*only)[static_cast<std::size_t>(f)]) continue;
-        const double correction = check_vertex(f, only != nullptr);
-        if (correction < 0.0) continue;
-        ++checked;
-        largest = std::max(largest, correction);
-      }
-      return;
-    }
-    // In parts: any split gives the same bits (each vertex is its own).
-    pool_->run(static_cast<std::size_t>(free_count), [&](int part, std::size_t begin, std::size_t end) {
-      double& part_largest = part_largest_[static_cast<std::size_t>(part)];
-      int& part_checked = part_checked_[static_cast<std::size_t>(part)];
-      part_largest = 0.0;
-      part_checked = 0;
-      for (std::size_t k = begin; k < end; ++k) {
-        const auto f = static_cast<Eigen::Index>(check_order_[k]);
-        const double correction = check_vertex(f, false);
-        if (correction < 0.0) continue;
-        ++part_checked;
-        part_largest = std::max(part_largest, correction);
-      }
-    });
-    for (std::size_t part = 0; part < part_largest_.size(); ++part) {
-      largest = std::max(largest, part_largest_[part]);
-      checked += part_checked_[part];
-    }
-  };
-  // A T-node can be inside while its parents are outside (the collider is
-  // curved): its free stencil is pushed by the correction, mass-weighted,
-  // flagging the free vertices it moves in `moved`. `only`: null, every
-  // T-node that needs a check; else only T-nodes with a free stencil
-  // vertex flagged there.
-  std::vector<char>& moved = moved_;
-  std::vector<char>& check = check_;
-  moved.assign(static_cast<std::size_t>(free_count), 0);
-  const auto check_t_nodes = [&](const std::vector<char>* only) {
-    bool pushed = false;
-    for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
-      const int v = m.hanging_vertices[h];
-      if (only && std::none_of(m.stencil[v].begin(), m.stencil[v].end(), [&](const StencilTerm& t) {
-            return (*only)[static_cast<std::size_t>(t.free)] != 0;
-          }))
-        continue;
-      const Eigen::Index row = free_count + static_cast<Eigen::Index>(h);
-      const Eigen::Vector3d x = position_of(v, q);
-      if (!only && !needs(row, x)) continue;
-      ++checked;
-      Eigen::Vector3d target = x;
-      SurfaceNearby nearby;
-      const double correction =
-          scene.resolve(position_of(v, q_previous), target, false, &memos_[static_cast<std::size_t>(row)], &nearby);
-      if (correction > 0.0 && move_t_node(h, target - x, q, &moved)) {
-        largest = std::max(largest, correction);
-        pushed = true;
-      } else {
-        target = x;  // not moved (no free stencil to move it by)
-      }
-      anchor_.row(row) = target.transpose();
-      set_plane(row, x, target, nearby);
-      slack_[static_cast<std::size_t>(row)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(row)] != 0);
-    }
-    return pushed;
-  };
-  check_free(nullptr);
+  memos_.resize(static_cast<std::size_t>(free_count) + model_->hanging_vertices.size());
+  ContactPass pass{q_previous, q, scene, first, largest};
+  moved_.assign(static_cast<std::size_t>(free_count), 0);
+  check_free_vertices(nullptr, pass);
   // A push moves parents that neighbouring T-nodes share, after those
   // T-nodes and the parents were checked: the moved parents are checked
   // again, then the T-nodes on them, a few times at most. (The shared
   // skirt's multi-resolution mesh on the skinned body, CMU 07_03: T-nodes
   // 45.9 -> 24.5 mm inside at worst, stretch 1676 -> 205 %.)
-  bool pushed = check_t_nodes(nullptr);
-  for (int pass = 0; pushed && pass < 3; ++pass) {
-    check.swap(moved);
-    moved.assign(check.size(), 0);
-    check_free(&check);
-    pushed = check_t_nodes(&check);
+  bool pushed = check_t_nodes(nullptr, pass);
+  for (int again = 0; pushed && again < 3; ++again) {
+    check_.swap(moved_);
+    moved_.assign(check_.size(), 0);
+    check_free_vertices(&check_, pass);
+    pushed = check_t_nodes(&check_, pass);
   }
+  list_t_node_planes(free_count);
+  return pass.checked;
+}
+
+bool ImplicitIntegrator::needs_check(Eigen::Index row, const Eigen::Vector3d& x, bool first) const {
+  if (first) return true;
+  const double slack = slack_[static_cast<std::size_t>(row)];
+  return (x - anchor_.row(row).transpose()).squaredNorm() > slack * slack;
+}
+
+double ImplicitIntegrator::check_vertex(Eigen::Index f, bool forced, const ContactPass& pass) const {
+  // Friction acts once, in the step's first check. Each vertex's resolve
+  // reads and writes its own rows and memo.
+  const Eigen::Vector3d before = pass.q.row(f).transpose();
+  if (!forced && !needs_check(f, before, pass.first)) return -1.0;
+  Eigen::Vector3d x = before;
+  SurfaceNearby nearby;
+  const double correction = pass.scene.resolve(pass.q_previous.row(f).transpose(), x, pass.first && !forced,
+                                               &memos_[static_cast<std::size_t>(memo_slot_[static_cast<std::size_t>(f)])], &nearby);
+  pass.q.row(f) = x.transpose();
+  anchor_.row(f) = x.transpose();
+  set_plane(f, before, x, nearby);
+  slack_[static_cast<std::size_t>(f)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(f)] != 0);
+  return correction;
+}
+
+void ImplicitIntegrator::check_free_vertices(const std::vector<char>* only, ContactPass& pass) const {
+  if (!pool_ || only) {
+    for (const int ordered : check_order_) {
+      const Eigen::Index f = ordered;
+      if (only && !(*only)[static_cast<std::size_t>(f)]) continue;
+      const double correction = check_vertex(f, only != nullptr, pass);
+      if (correction < 0.0) continue;
+      ++pass.checked;
+      pass.largest = std::max(pass.largest, correction);
+    }
+    return;
+  }
+  // In parts: any split gives the same bits (each vertex is its own).
+  pool_->run(static_cast<std::size_t>(pass.q.rows()), [&](int part, std::size_t begin, std::size_t end) {
+    double& part_largest = part_largest_[static_cast<std::size_t>(part)];
+    int& part_checked = part_checked_[static_cast<std::size_t>(part)];
+    part_largest = 0.0;
+    part_checked = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto f = static_cast<Eigen::Index>(check_order_[k]);
+      const double correction = check_vertex(f, false, pass);
+      if (correction < 0.0) continue;
+      ++part_checked;
+      part_largest = std::max(part_largest, correction);
+    }
+  });
+  for (std::size_t part = 0; part < part_largest_.size(); ++part) {
+    pass.largest = std::max(pass.largest, part_largest_[part]);
+    pass.checked += part_checked_[part];
+  }
+}
+
+bool ImplicitIntegrator::check_t_nodes(const std::vector<char>* only, ContactPass& pass) const {
+  // A T-node can be inside while its parents are outside (the collider is
+  // curved): its free stencil is pushed by the correction, mass-weighted.
+  const DynamicsModel& m = *model_;
+  const Eigen::Index free_count = pass.q.rows();
+  bool pushed = false;
+  for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h) {
+    const int v = m.hanging_vertices[h];
+    if (only && std::none_of(m.stencil[v].begin(), m.stencil[v].end(), [&](const StencilTerm& t) {
+          return (*only)[static_cast<std::size_t>(t.free)] != 0;
+        }))
+      continue;
+    const Eigen::Index row = free_count + static_cast<Eigen::Index>(h);
+    const Eigen::Vector3d x = position_of(v, pass.q);
+    if (!only && !needs_check(row, x, pass.first)) continue;
+    ++pass.checked;
+    Eigen::Vector3d target = x;
+    SurfaceNearby nearby;
+    const double correction =
+        pass.scene.resolve(position_of(v, pass.q_previous), target, false, &memos_[static_cast<std::size_t>(row)], &nearby);
+    if (correction > 0.0 && move_t_node(h, target - x, pass.q, &moved_)) {
+      pass.largest = std::max(pass.largest, correction);
+      pushed = true;
+    } else {
+      target = x;  // not moved (no free stencil to move it by)
+    }
+    anchor_.row(row) = target.transpose();
+    set_plane(row, x, target, nearby);
+    slack_[static_cast<std::size_t>(row)] = slack_of(nearby, has_plane_[static_cast<std::size_t>(row)] != 0);
+  }
+  return pushed;
+}
+
+void ImplicitIntegrator::list_t_node_planes(Eigen::Index free_count) const {
   t_node_planes_.clear();
-  for (std::size_t h = 0; h < m.hanging_vertices.size(); ++h)
+  for (std::size_t h = 0; h < model_->hanging_vertices.size(); ++h)
     if (has_plane_[static_cast<std::size_t>(free_count) + h]) t_node_planes_.push_back(static_cast<int>(h));
-  return checked;
 }
 
 StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next,

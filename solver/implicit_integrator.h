@@ -204,6 +204,31 @@ class ImplicitIntegrator {
   /// were checked.
   int check_contacts(const Positions& q_previous, Positions& q, const CollisionScene& scene, bool first,
                      double& largest) const;
+  /// One check_contacts call's points, scene and tallies, shared by its steps.
+  struct ContactPass {
+    const Positions& q_previous;  // #free x 3, metres: the step's start (the side a point was on; friction)
+    Positions& q;                 // #free x 3, metres: checked and moved in place
+    const CollisionScene& scene;
+    bool first;                   // the step's first check: every point, with friction
+    double& largest;              // metres, raised to the largest correction
+    int checked = 0;              // points checked so far
+  };
+  /// Whether point `row` (free vertex, then T-node), now at `x`, needs a
+  /// check: every one in the step's `first`, else one moved beyond its
+  /// slack from where its last check left it.
+  bool needs_check(Eigen::Index row, const Eigen::Vector3d& x, bool first) const;
+  /// Resolves free vertex f if it needs it (or `forced`); returns the
+  /// correction in metres (-1: not checked).
+  double check_vertex(Eigen::Index f, bool forced, const ContactPass& pass) const;
+  /// Checks the free vertices that need it (on the pool when there is
+  /// one), or with `only` every free vertex flagged there.
+  void check_free_vertices(const std::vector<char>* only, ContactPass& pass) const;
+  /// Checks the T-nodes: with `only` null every one that needs it, else
+  /// those with a free stencil vertex flagged there; flags the free
+  /// vertices a push moves in moved_. Returns whether any was pushed.
+  bool check_t_nodes(const std::vector<char>* only, ContactPass& pass) const;
+  /// Lists in t_node_planes_ the T-nodes with a contact plane.
+  void list_t_node_planes(Eigen::Index free_count) const;
   Eigen::Vector3d position_of(int vertex, const Positions& q) const;
   /// The contact plane of free vertex `row` (or T-node `row - #free`) after
   /// a check moved it from `before` to `after`: across the push when it was
