@@ -16,6 +16,8 @@
 #include "plugin/core/object_store.h"
 #include "plugin/core/script_errors.h"
 #include "plugin/core/script_values.h"
+#include "analysis_options.h"
+#include "comparison_report.h"
 #include "mode_report.h"
 #include "option_limits.h"
 #include "run_checks.h"
@@ -488,22 +490,9 @@ QVariantMap MultiresClothPlugin::extractModes(QVariant id, QVariant cachePath, Q
   return guarded("extractModes", [&] {
     const StoredObject& input = store().get(script::toInt(id, QStringLiteral("id")));
     const QString path = script::toString(cachePath, QStringLiteral("cachePath"));
-    const script::Options given(options, QStringLiteral("extractModes options"),
-                                {QStringLiteral("clusters"), QStringLiteral("normalize"), QStringLiteral("seed"),
-                                 QStringLiteral("restarts"), QStringLiteral("skipFrames"), QStringLiteral("maxFrames")});
-    ModeOptions modes;
-    modes.modes = given.integerBetween(QStringLiteral("clusters"), modes.modes, 1, kLargestMode);
-    modes.normalization = normalization_from_name(
-        given.choice(QStringLiteral("normalize"), QStringLiteral("minmax"), {QStringLiteral("minmax"), QStringLiteral("zscore")})
-            .toStdString());
-    modes.seed = static_cast<std::uint64_t>(given.integerAtLeast(QStringLiteral("seed"), 1, 0));
-    // Each restart is a whole k-means run (a step of the clustering job).
-    modes.restarts = given.integerBetween(QStringLiteral("restarts"), modes.restarts, 1, options::kMostRestarts);
-    CurvatureAnalysisOptions analysis;
-    analysis.skip_frames = given.integerAtLeast(QStringLiteral("skipFrames"), 0, 0);
-    analysis.max_frames = given.has(QStringLiteral("maxFrames"))
-                              ? given.integerAtLeast(QStringLiteral("maxFrames"), -1, 1)
-                              : -1;
+    const ModeRequest request = parseModeOptions(options);
+    const ModeOptions& modes = request.modes;
+    const CurvatureAnalysisOptions& analysis = request.analysis;
 
     QElapsedTimer timer;
     timer.start();
@@ -599,12 +588,7 @@ QVariantMap MultiresClothPlugin::compareResults(QVariant id, QVariant cachePath,
                                                            QStringLiteral("cachePath"));
     const QString reference_cache = options::existingInputFile(
         script::toString(referenceCachePath, QStringLiteral("referenceCachePath")), QStringLiteral("referenceCachePath"));
-    const script::Options given(options, QStringLiteral("compareResults options"),
-                                {QStringLiteral("regionMode"), QStringLiteral("maxFrames")});
-    ComparisonOptions settings;
-    settings.region_mode = given.integerAtLeast(QStringLiteral("regionMode"), settings.region_mode, 1);
-    settings.max_frames = given.integerAtLeast(QStringLiteral("maxFrames"), settings.max_frames, 1);
-
+    const ComparisonOptions settings = parseComparisonOptions(options);
     QElapsedTimer timer;
     timer.start();
     const int frames = Pc2Reader(reference_cache.toStdString()).num_frames();
@@ -620,42 +604,8 @@ QVariantMap MultiresClothPlugin::compareResults(QVariant id, QVariant cachePath,
                                  return !cancelRequested();
                                });
     }
-    QVariantList rms, p95;
-    for (const DistanceStats& d : report.per_frame) {
-      rms << d.rms;
-      p95 << d.p95;
-    }
-    last_report_ = {{QStringLiteral("operation"), QStringLiteral("compareResults")},
-                    {QStringLiteral("source"), model.id},
-                    {QStringLiteral("reference"), reference.id},
-                    {QStringLiteral("frames"), report.frames},
-                    {QStringLiteral("points"), report.points},
-                    {QStringLiteral("regionMode"), report.region_mode},
-                    {QStringLiteral("regionPoints"), report.region_points},
-                    {QStringLiteral("meanRms"), report.mean_rms},
-                    {QStringLiteral("meanP95"), report.mean_p95},
-                    {QStringLiteral("maxDistance"), report.max_distance},
-                    {QStringLiteral("wrinkleKept"), report.wrinkle_kept},
-                    {QStringLiteral("wrinkleKeptRegion"), report.wrinkle_kept_region},
-                    {QStringLiteral("wrinkleError"), report.wrinkle_error},
-                    {QStringLiteral("wrinkleErrorRegion"), report.wrinkle_error_region},
-                    {QStringLiteral("rmsPerFrame"), rms},
-                    {QStringLiteral("p95PerFrame"), p95},
-                    {QStringLiteral("cancelled"), report.cancelled},
-                    {QStringLiteral("milliseconds"), millisecondsSince(timer)}};
-    // A cancelled comparison's numbers cover only the frames it reached: not logged as a result.
-    if (report.cancelled) {
-      emit log(LOGINFO, QStringLiteral("compareResults: %1 against %2 cancelled after %3 frames")
-                            .arg(describeObject(model), describeObject(reference)).arg(report.frames));
-      return last_report_;
-    }
-    emit log(LOGINFO, QStringLiteral("compareResults: %1 against %2 over %3 frames: RMS %4 mm, p95 %5 mm, max %6 mm; "
-                                     "wrinkle energy kept %7 % (mode-%8 region: %9 %), error %10 (region %11)")
-                          .arg(describeObject(model), describeObject(reference)).arg(report.frames)
-                          .arg(1000.0 * report.mean_rms, 0, 'f', 2).arg(1000.0 * report.mean_p95, 0, 'f', 2)
-                          .arg(1000.0 * report.max_distance, 0, 'f', 2).arg(100.0 * report.wrinkle_kept, 0, 'f', 1)
-                          .arg(report.region_mode).arg(100.0 * report.wrinkle_kept_region, 0, 'f', 1)
-                          .arg(report.wrinkle_error, 0, 'f', 3).arg(report.wrinkle_error_region, 0, 'f', 3));
+    last_report_ = comparisonReportMap(model.id, reference.id, report, millisecondsSince(timer));
+    emit log(LOGINFO, comparisonOutcomeLine(describeObject(model), describeObject(reference), report));
     return last_report_;
   });
 }
