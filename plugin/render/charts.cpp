@@ -172,37 +172,39 @@ bool finite(const QPointF& p) { return std::isfinite(p.x()) && std::isfinite(p.y
 
 }  // namespace
 
-QImage draw_line_chart(const LineChart& chart, const ChartOptions& options) {
-  check_size(options, "draw_line_chart");
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  double x_lo = inf, x_hi = -inf, y_lo = inf, y_hi = -inf;
-  std::vector<LegendEntry> legend;
-  for (std::size_t s = 0; s < chart.series.size(); ++s) {
-    for (const QPointF& p : chart.series[s].points) {
+namespace {
+
+/// The finite points' extent of every series (x_lo > x_hi: none).
+struct PointRange {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -std::numeric_limits<double>::infinity();
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -std::numeric_limits<double>::infinity();
+  bool empty() const { return !(x_lo <= x_hi); }
+};
+
+PointRange point_range(const LineChart& chart) {
+  PointRange range;
+  for (const LineSeries& series : chart.series)
+    for (const QPointF& p : series.points) {
       if (!finite(p)) continue;
-      x_lo = std::min(x_lo, p.x());
-      x_hi = std::max(x_hi, p.x());
-      y_lo = std::min(y_lo, p.y());
-      y_hi = std::max(y_hi, p.y());
+      range.x_lo = std::min(range.x_lo, p.x());
+      range.x_hi = std::max(range.x_hi, p.x());
+      range.y_lo = std::min(range.y_lo, p.y());
+      range.y_hi = std::max(range.y_hi, p.y());
     }
-    if (!chart.series[s].name.isEmpty()) legend.push_back({series_color(chart.series[s].color, s), chart.series[s].name});
-  }
-  const bool has_data = x_lo <= x_hi;
-  check_span(x_lo, x_hi, "draw_line_chart", "x");
-  check_span(y_lo, y_hi, "draw_line_chart", "y");
-  const Axis x_axis = has_data ? make_axis(x_lo, x_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
-  const Axis y_axis = has_data ? make_axis(y_lo, y_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
+  return range;
+}
 
-  QImage image(options.width, options.height, QImage::Format_ARGB32);
-  image.fill(options.background);
-  QPainter painter(&image);
-  painter.setRenderHint(QPainter::TextAntialiasing, true);
-  elide_legend(legend, options);
-  const Layout layout = layout_chart(options, chart.title, chart.x_label, chart.y_label, y_axis, legend, true);
-  const QRect& plot = layout.plot;
-  draw_frame(painter, options, layout, chart.title, chart.x_label, chart.y_label, y_axis, legend);
+/// A legend entry per named series, in the series' colours.
+template <class Series>
+std::vector<LegendEntry> series_legend(const std::vector<Series>& series) {
+  std::vector<LegendEntry> legend;
+  for (std::size_t s = 0; s < series.size(); ++s)
+    if (!series[s].name.isEmpty()) legend.push_back({series_color(series[s].color, s), series[s].name});
+  return legend;
+}
 
-  // Vertical grid and x ticks.
+/// The vertical grid lines and the x axis' ticks and their labels.
+void draw_x_ticks(QPainter& painter, const ChartOptions& options, const Axis& x_axis, const QRect& plot) {
   const QFontMetrics metrics(make_font(options.font_pixel_size));
   for (double v : x_axis.ticks) {
     const int x = static_cast<int>(std::lround(map(x_axis, v, plot.left(), plot.right())));
@@ -217,84 +219,68 @@ QImage draw_line_chart(const LineChart& chart, const ChartOptions& options) {
     const int w = metrics.horizontalAdvance(text) + 2;
     painter.drawText(QRect(x - w / 2, plot.bottom() + tick_length + 2, w, metrics.height()), Qt::AlignCenter, text);
   }
-  draw_axes(painter, options, plot);
-  if (!has_data) {
-    draw_no_data(painter, options, plot);
-    return image;
-  }
-
-  painter.setRenderHint(QPainter::Antialiasing, true);
-  painter.setClipRect(plot.adjusted(-4, -4, 4, 4));
-  for (std::size_t s = 0; s < chart.series.size(); ++s) {
-    const LineSeries& series = chart.series[s];
-    const QColor color = series_color(series.color, s);
-    QPainterPath path;
-    bool pen_down = false;
-    std::vector<QPointF> dots;
-    for (const QPointF& p : series.points) {
-      if (!finite(p)) {
-        pen_down = false;  // a gap in the data is a gap in the line
-        continue;
-      }
-      const QPointF q(map(x_axis, p.x(), plot.left(), plot.right()), map(y_axis, p.y(), plot.bottom(), plot.top()));
-      if (pen_down)
-        path.lineTo(q);
-      else
-        path.moveTo(q);
-      pen_down = true;
-      dots.push_back(q);
-    }
-    painter.setPen(QPen(color, std::max(0.5, chart.line_width), Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
-    painter.setBrush(Qt::NoBrush);
-    painter.drawPath(path);
-    // A single point has no line, so it always gets its dot.
-    if (dots.size() <= static_cast<std::size_t>(std::max(1, chart.max_points_with_markers))) {
-      painter.setPen(Qt::NoPen);
-      painter.setBrush(color);
-      const double r = std::max(2.5, chart.line_width + 1.0);
-      for (const QPointF& q : dots) painter.drawEllipse(q, r, r);
-    }
-  }
-  return image;
 }
 
-QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
-  check_size(options, "draw_bar_chart");
-  std::size_t categories = chart.categories.size();
-  double lo = 0.0, hi = 0.0;  // bars grow from zero, so zero is always on the axis
-  std::vector<LegendEntry> legend;
-  for (std::size_t s = 0; s < chart.series.size(); ++s) {
-    categories = std::max(categories, chart.series[s].values.size());
-    for (double v : chart.series[s].values) {
-      if (!std::isfinite(v)) continue;
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
+/// One series as a line through its finite points (a non-finite point is a
+/// gap), with a dot on each point when it has few enough.
+void draw_line_series(QPainter& painter, const LineChart& chart, std::size_t s, const Axis& x_axis, const Axis& y_axis,
+                      const QRect& plot) {
+  const LineSeries& series = chart.series[s];
+  const QColor color = series_color(series.color, s);
+  QPainterPath path;
+  bool pen_down = false;
+  std::vector<QPointF> dots;
+  for (const QPointF& p : series.points) {
+    if (!finite(p)) {
+      pen_down = false;  // a gap in the data is a gap in the line
+      continue;
     }
-    if (!chart.series[s].name.isEmpty()) legend.push_back({series_color(chart.series[s].color, s), chart.series[s].name});
+    const QPointF q(map(x_axis, p.x(), plot.left(), plot.right()), map(y_axis, p.y(), plot.bottom(), plot.top()));
+    if (pen_down)
+      path.lineTo(q);
+    else
+      path.moveTo(q);
+    pen_down = true;
+    dots.push_back(q);
   }
-  check_span(lo, hi, "draw_bar_chart", "bar");
-  if (lo == hi) hi = 1.0;  // all zero (or nothing): show 0..1 rather than a range around zero
-  const Axis y_axis = make_axis(lo, hi, options.target_ticks);
-
-  QImage image(options.width, options.height, QImage::Format_ARGB32);
-  image.fill(options.background);
-  QPainter painter(&image);
-  painter.setRenderHint(QPainter::TextAntialiasing, true);
-  elide_legend(legend, options);
-  const Layout layout =
-      layout_chart(options, chart.title, chart.category_label, chart.value_label, y_axis, legend, true);
-  const QRect& plot = layout.plot;
-  draw_frame(painter, options, layout, chart.title, chart.category_label, chart.value_label, y_axis, legend);
-  if (categories == 0 || chart.series.empty()) {
-    draw_axes(painter, options, plot);
-    draw_no_data(painter, options, plot);
-    return image;
+  painter.setPen(QPen(color, std::max(0.5, chart.line_width), Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+  painter.setBrush(Qt::NoBrush);
+  painter.drawPath(path);
+  // A single point has no line, so it always gets its dot.
+  if (dots.size() <= static_cast<std::size_t>(std::max(1, chart.max_points_with_markers))) {
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(color);
+    const double r = std::max(2.5, chart.line_width + 1.0);
+    for (const QPointF& q : dots) painter.drawEllipse(q, r, r);
   }
+}
 
-  const double group = static_cast<double>(plot.width()) / categories;
+/// The number of categories (the chart's, or the longest series') and the
+/// finite values' range, zero always in it.
+struct BarRange {
+  std::size_t categories = 0;
+  double lo = 0.0, hi = 0.0;
+};
+
+BarRange bar_range(const BarChart& chart) {
+  BarRange range;
+  range.categories = chart.categories.size();
+  for (const BarSeries& series : chart.series) {
+    range.categories = std::max(range.categories, series.values.size());
+    for (double v : series.values) {
+      if (!std::isfinite(v)) continue;
+      range.lo = std::min(range.lo, v);
+      range.hi = std::max(range.hi, v);
+    }
+  }
+  return range;
+}
+
+/// Every series' bars, side by side in each category's `group` pixels,
+/// from the value axis' zero at `baseline`.
+void draw_bars(QPainter& painter, const BarChart& chart, const Axis& y_axis, const QRect& plot, double group,
+               int baseline) {
   const double bar = 0.8 * group / chart.series.size();
-  const int baseline = static_cast<int>(std::lround(map(y_axis, 0.0, plot.bottom(), plot.top())));
-  painter.setRenderHint(QPainter::Antialiasing, false);  // exact series colours, crisp edges
   for (std::size_t s = 0; s < chart.series.size(); ++s) {
     const BarSeries& series = chart.series[s];
     const QColor color = series_color(series.color, s);
@@ -310,11 +296,12 @@ QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
                        color);
     }
   }
-  draw_axes(painter, options, plot);
-  painter.setPen(options.axis_color);
-  painter.drawLine(plot.left(), baseline, plot.right(), baseline);
+}
 
-  // Category labels, thinned out when they would overlap (e.g. a histogram of many modes).
+/// The categories' labels and ticks, thinned out when they would overlap
+/// (e.g. a histogram of many modes).
+void draw_category_labels(QPainter& painter, const BarChart& chart, const ChartOptions& options, std::size_t categories,
+                          const QRect& plot, double group) {
   const QFontMetrics metrics(make_font(options.font_pixel_size));
   std::vector<QString> labels(categories);
   int widest = 0;
@@ -336,6 +323,70 @@ QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
                      plot.bottom() + tick_length);
     painter.setPen(options.text_color);
   }
+}
+
+}  // namespace
+
+QImage draw_line_chart(const LineChart& chart, const ChartOptions& options) {
+  check_size(options, "draw_line_chart");
+  const PointRange range = point_range(chart);
+  std::vector<LegendEntry> legend = series_legend(chart.series);
+  const bool has_data = !range.empty();
+  check_span(range.x_lo, range.x_hi, "draw_line_chart", "x");
+  check_span(range.y_lo, range.y_hi, "draw_line_chart", "y");
+  const Axis x_axis = has_data ? make_axis(range.x_lo, range.x_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
+  const Axis y_axis = has_data ? make_axis(range.y_lo, range.y_hi, options.target_ticks) : make_axis(0, 1, options.target_ticks);
+
+  QImage image(options.width, options.height, QImage::Format_ARGB32);
+  image.fill(options.background);
+  QPainter painter(&image);
+  painter.setRenderHint(QPainter::TextAntialiasing, true);
+  elide_legend(legend, options);
+  const Layout layout = layout_chart(options, chart.title, chart.x_label, chart.y_label, y_axis, legend, true);
+  const QRect& plot = layout.plot;
+  draw_frame(painter, options, layout, chart.title, chart.x_label, chart.y_label, y_axis, legend);
+  draw_x_ticks(painter, options, x_axis, plot);
+  draw_axes(painter, options, plot);
+  if (!has_data) {
+    draw_no_data(painter, options, plot);
+    return image;
+  }
+  painter.setRenderHint(QPainter::Antialiasing, true);
+  painter.setClipRect(plot.adjusted(-4, -4, 4, 4));
+  for (std::size_t s = 0; s < chart.series.size(); ++s) draw_line_series(painter, chart, s, x_axis, y_axis, plot);
+  return image;
+}
+
+QImage draw_bar_chart(const BarChart& chart, const ChartOptions& options) {
+  check_size(options, "draw_bar_chart");
+  BarRange range = bar_range(chart);
+  std::vector<LegendEntry> legend = series_legend(chart.series);
+  check_span(range.lo, range.hi, "draw_bar_chart", "bar");
+  if (range.lo == range.hi) range.hi = 1.0;  // all zero (or nothing): show 0..1 rather than a range around zero
+  const Axis y_axis = make_axis(range.lo, range.hi, options.target_ticks);
+
+  QImage image(options.width, options.height, QImage::Format_ARGB32);
+  image.fill(options.background);
+  QPainter painter(&image);
+  painter.setRenderHint(QPainter::TextAntialiasing, true);
+  elide_legend(legend, options);
+  const Layout layout =
+      layout_chart(options, chart.title, chart.category_label, chart.value_label, y_axis, legend, true);
+  const QRect& plot = layout.plot;
+  draw_frame(painter, options, layout, chart.title, chart.category_label, chart.value_label, y_axis, legend);
+  if (range.categories == 0 || chart.series.empty()) {
+    draw_axes(painter, options, plot);
+    draw_no_data(painter, options, plot);
+    return image;
+  }
+  const double group = static_cast<double>(plot.width()) / range.categories;
+  const int baseline = static_cast<int>(std::lround(map(y_axis, 0.0, plot.bottom(), plot.top())));
+  painter.setRenderHint(QPainter::Antialiasing, false);  // exact series colours, crisp edges
+  draw_bars(painter, chart, y_axis, plot, group, baseline);
+  draw_axes(painter, options, plot);
+  painter.setPen(options.axis_color);
+  painter.drawLine(plot.left(), baseline, plot.right(), baseline);
+  draw_category_labels(painter, chart, options, range.categories, plot, group);
   return image;
 }
 
