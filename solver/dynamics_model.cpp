@@ -102,6 +102,86 @@ void check_options(const QuadMesh& mesh, const DynamicsOptions& o, const std::ve
   }
 }
 
+/// Sorts the vertices into pinned, hanging (T-node) and free, each list in
+/// vertex order, and returns each vertex's index in its list (-1 in the
+/// others): {free_index, pinned_index}.
+std::pair<std::vector<int>, std::vector<int>> classify_vertices(DynamicsModel& model, const std::vector<int>& pins,
+                                                                 const std::vector<char>& hanging) {
+  const int n = model.num_vertices;
+  std::vector<char> pinned(n, 0);
+  for (int v : pins) pinned[v] = 1;
+  std::vector<int> free_index(n, -1), pinned_index(n, -1);
+  for (int v = 0; v < n; ++v) {
+    if (pinned[v]) {
+      pinned_index[v] = static_cast<int>(model.pinned_vertices.size());
+      model.pinned_vertices.push_back(v);
+    } else if (hanging[v]) {
+      model.hanging_vertices.push_back(v);
+    } else {
+      free_index[v] = static_cast<int>(model.free_vertices.size());
+      model.free_vertices.push_back(v);
+    }
+  }
+  return {std::move(free_index), std::move(pinned_index)};
+}
+
+/// Per vertex, its position's weights on the free and on the pinned
+/// vertices (column -> weight): a hanging vertex's is the mean of its
+/// parents'. Parents have lower indices than the midpoints they made, so
+/// one forward sweep composes chains.
+struct VertexRows {
+  std::vector<std::map<int, double>> free, pinned;
+};
+
+VertexRows compose_rows(const QuadMesh& mesh, const Layers& layers, const std::vector<int>& free_index,
+                        const std::vector<int>& pinned_index) {
+  const int n = static_cast<int>(free_index.size());
+  VertexRows rows{std::vector<std::map<int, double>>(n), std::vector<std::map<int, double>>(n)};
+  for (int v = 0; v < n; ++v) {
+    if (free_index[v] >= 0) {
+      rows.free[v][free_index[v]] = 1.0;
+    } else if (pinned_index[v] >= 0) {
+      rows.pinned[v][pinned_index[v]] = 1.0;
+    } else {
+      const OpenMesh::Vec2i p = mesh.property(layers.parents, mesh.vertex_handle(v));
+      for (int parent : {p[0], p[1]}) {
+        for (const auto& [col, w] : rows.free[parent]) rows.free[v][col] += 0.5 * w;
+        for (const auto& [col, w] : rows.pinned[parent]) rows.pinned[v][col] += 0.5 * w;
+      }
+    }
+  }
+  return rows;
+}
+
+/// S, P and the per-vertex stencils from the composed rows.
+void set_selection(DynamicsModel& model, const VertexRows& rows) {
+  const int n = model.num_vertices;
+  std::vector<Eigen::Triplet<double>> s_entries, p_entries;
+  model.stencil.resize(n);
+  for (int v = 0; v < n; ++v) {
+    for (const auto& [col, w] : rows.free[v]) {
+      s_entries.emplace_back(v, col, w);
+      model.stencil[v].push_back({col, w});
+    }
+    for (const auto& [col, w] : rows.pinned[v]) p_entries.emplace_back(v, col, w);
+  }
+  model.S.resize(n, static_cast<int>(model.free_vertices.size()));
+  model.S.setFromTriplets(s_entries.begin(), s_entries.end());
+  model.P.resize(n, static_cast<int>(model.pinned_vertices.size()));
+  model.P.setFromTriplets(p_entries.begin(), p_entries.end());
+}
+
+/// The free vertices' masses; throws ArgumentError for a free vertex with
+/// none (no face).
+void set_free_masses(DynamicsModel& model) {
+  model.free_mass.resize(static_cast<int>(model.free_vertices.size()));
+  for (std::size_t f = 0; f < model.free_vertices.size(); ++f) model.free_mass[f] = model.mass[model.free_vertices[f]];
+  for (std::size_t f = 0; f < model.free_vertices.size(); ++f)
+    if (!(model.free_mass[f] > 0.0))
+      throw ArgumentError("free vertex " + std::to_string(model.free_vertices[f]) +
+                          " has no mass (an isolated vertex?); every simulated vertex needs a face");
+}
+
 }  // namespace
 
 DynamicsModel build_dynamics(const QuadMesh& mesh, const DynamicsOptions& options) {
@@ -134,60 +214,11 @@ std::optional<DynamicsModel> build_dynamics(const QuadMesh& mesh, const Dynamics
   for (const QuadRecord& q : quadtree(mesh))
     if (q.active) model.corners.push_back(q.corners);
 
-  // Classify vertices; free and pinned indices follow vertex order.
-  std::vector<char> pinned(n, 0);
-  for (int v : options.pinned) pinned[v] = 1;
-  std::vector<int> free_index(n, -1), pinned_index(n, -1);
-  for (int v = 0; v < n; ++v) {
-    if (pinned[v]) {
-      pinned_index[v] = static_cast<int>(model.pinned_vertices.size());
-      model.pinned_vertices.push_back(v);
-    } else if (hanging[v]) {
-      model.hanging_vertices.push_back(v);
-    } else {
-      free_index[v] = static_cast<int>(model.free_vertices.size());
-      model.free_vertices.push_back(v);
-    }
-  }
-
-  // Rows of S and P: a hanging vertex's row is the mean of its parents' rows.
-  // Parents have lower indices than the midpoints they made, so one forward
-  // sweep composes chains.
-  std::vector<std::map<int, double>> free_row(n), pinned_row(n);
-  for (int v = 0; v < n; ++v) {
-    if (free_index[v] >= 0) {
-      free_row[v][free_index[v]] = 1.0;
-    } else if (pinned_index[v] >= 0) {
-      pinned_row[v][pinned_index[v]] = 1.0;
-    } else {
-      const OpenMesh::Vec2i p = mesh.property(layers.parents, mesh.vertex_handle(v));
-      for (int parent : {p[0], p[1]}) {
-        for (const auto& [col, w] : free_row[parent]) free_row[v][col] += 0.5 * w;
-        for (const auto& [col, w] : pinned_row[parent]) pinned_row[v][col] += 0.5 * w;
-      }
-    }
-  }
+  const auto [free_index, pinned_index] = classify_vertices(model, options.pinned, hanging);
+  const VertexRows rows = compose_rows(mesh, layers, free_index, pinned_index);
   if (stopped()) return std::nullopt;
-  std::vector<Eigen::Triplet<double>> s_entries, p_entries;
-  model.stencil.resize(n);
-  for (int v = 0; v < n; ++v) {
-    for (const auto& [col, w] : free_row[v]) {
-      s_entries.emplace_back(v, col, w);
-      model.stencil[v].push_back({col, w});
-    }
-    for (const auto& [col, w] : pinned_row[v]) p_entries.emplace_back(v, col, w);
-  }
-  model.S.resize(n, static_cast<int>(model.free_vertices.size()));
-  model.S.setFromTriplets(s_entries.begin(), s_entries.end());
-  model.P.resize(n, static_cast<int>(model.pinned_vertices.size()));
-  model.P.setFromTriplets(p_entries.begin(), p_entries.end());
-
-  model.free_mass.resize(static_cast<int>(model.free_vertices.size()));
-  for (std::size_t f = 0; f < model.free_vertices.size(); ++f) model.free_mass[f] = model.mass[model.free_vertices[f]];
-  for (std::size_t f = 0; f < model.free_vertices.size(); ++f)
-    if (!(model.free_mass[f] > 0.0))
-      throw ArgumentError("free vertex " + std::to_string(model.free_vertices[f]) +
-                          " has no mass (an isolated vertex?); every simulated vertex needs a face");
+  set_selection(model, rows);
+  set_free_masses(model);
   return std::optional<DynamicsModel>(std::move(model));
 }
 
