@@ -20,6 +20,7 @@
 #include <cerrno>
 #include <clocale>
 #include <cstdio>
+#include <optional>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -69,16 +70,10 @@ void occupyClosedStandardDescriptors() {
   }
 }
 
-/// The host's work; returns the exit code. The application and every
-/// object are gone when it returns, so that whatever they write is in.
-int runHost(int argc, char* argv[]) {
-  // A GUI application for fonts and images (previews), on Qt's offscreen
-  // platform: the host never opens a window and needs no display or GPU.
-  // Always, not only when unset: a desktop's QT_QPA_PLATFORM (wayland, xcb)
-  // inherited by a batch job without a display made Qt abort even --version.
-  qputenv("QT_QPA_PLATFORM", "offscreen");
-  // Qt's runtime-folder warnings come while the application is made, before
-  // the host log exists; its handler drops them too once it takes over.
+/// Drops Qt's runtime-folder warnings, which come while the application is
+/// made, before the host log exists (its handler drops them too once it
+/// takes over); the rest go where they went.
+void dropRuntimeFolderWarnings() {
   const QtMessageHandler default_handler = qInstallMessageHandler(nullptr);
   static QtMessageHandler forward = default_handler;
   qInstallMessageHandler([](QtMsgType type, const QMessageLogContext& context, const QString& message) {
@@ -86,15 +81,12 @@ int runHost(int argc, char* argv[]) {
     if (forward) forward(type, context, message);
     else std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
   });
-  QGuiApplication application(argc, argv);
-  // Qt has set the C library's locale from the user's; numbers in messages
-  // and files stay "1.5" (in de_DE the libraries' messages said "1,98 m"
-  // beside "0.4-2 times"). Text and collation keep the user's locale.
-  std::setlocale(LC_NUMERIC, "C");
-  QCoreApplication::setApplicationName(QStringLiteral("mrcloth"));
-  QCoreApplication::setApplicationVersion(QStringLiteral(MRCLOTH_VERSION));
+}
 
-  CommandLine command;
+/// The exit code of a command line that asks for no script (usage errors,
+/// --help, --version, nothing to do), once its text is printed; none when
+/// there is work to do (a script, --api or the pipeline), read into `command`.
+std::optional<int> answerWithoutWork(CommandLine& command) {
   try {
     command = parseCommandLine(QCoreApplication::arguments().mid(1));
   } catch (const UsageError& error) {
@@ -115,6 +107,40 @@ int runHost(int argc, char* argv[]) {
     printUsage(stderr);
     return 2;
   }
+  return std::nullopt;
+}
+
+/// After Ctrl-C stopped a pipeline (the pipeline records each stage as it
+/// completes, in `pipelineStage`): says how to go on.
+void warnHowToResume(const QJSEngine& engine, const CommandLine& command, HostLog& log) {
+  const QJSValue stage = engine.globalObject().property(QStringLiteral("pipelineStage"));
+  if (!(command.pipeline || stage.isObject()) || !interruptFlag().load()) return;
+  const QString where = stage.isObject() ? QStringLiteral(" stopped in %1 with %2 stage(s) complete, which are kept;")
+                                               .arg(stage.property(QStringLiteral("label")).toString())
+                                               .arg(stage.property(QStringLiteral("complete")).toInt())
+                                         : QString();
+  log.warn(QStringLiteral("pipeline:%1 the same command with --resume continues from the stages complete").arg(where));
+}
+
+/// The host's work; returns the exit code. The application and every
+/// object are gone when it returns, so that whatever they write is in.
+int runHost(int argc, char* argv[]) {
+  // A GUI application for fonts and images (previews), on Qt's offscreen
+  // platform: the host never opens a window and needs no display or GPU.
+  // Always, not only when unset: a desktop's QT_QPA_PLATFORM (wayland, xcb)
+  // inherited by a batch job without a display made Qt abort even --version.
+  qputenv("QT_QPA_PLATFORM", "offscreen");
+  dropRuntimeFolderWarnings();
+  QGuiApplication application(argc, argv);
+  // Qt has set the C library's locale from the user's; numbers in messages
+  // and files stay "1.5" (in de_DE the libraries' messages said "1,98 m"
+  // beside "0.4-2 times"). Text and collation keep the user's locale.
+  std::setlocale(LC_NUMERIC, "C");
+  QCoreApplication::setApplicationName(QStringLiteral("mrcloth"));
+  QCoreApplication::setApplicationVersion(QStringLiteral(MRCLOTH_VERSION));
+
+  CommandLine command;
+  if (const std::optional<int> code = answerWithoutWork(command)) return *code;
 
   HostLog log(command.quiet);
   log.installMessageHandler();
@@ -142,15 +168,7 @@ int runHost(int argc, char* argv[]) {
   for (const LoadedPlugin& plugin : plugins.plugins())
     if (qobject_cast<ProcessInterface*>(plugin.object)) interrupt_handler.watchJobs(plugin.object);
   const int code = runBatchScript(command.scriptPath, engine, core, log, interruptFlag());
-  // The pipeline records each stage as it completes: say how to go on.
-  const QJSValue stage = engine.globalObject().property(QStringLiteral("pipelineStage"));
-  if ((command.pipeline || stage.isObject()) && interruptFlag().load()) {
-    const QString where = stage.isObject() ? QStringLiteral(" stopped in %1 with %2 stage(s) complete, which are kept;")
-                                                 .arg(stage.property(QStringLiteral("label")).toString())
-                                                 .arg(stage.property(QStringLiteral("complete")).toInt())
-                                           : QString();
-    log.warn(QStringLiteral("pipeline:%1 the same command with --resume continues from the stages complete").arg(where));
-  }
+  warnHowToResume(engine, command, log);
   return code;
 }
 
