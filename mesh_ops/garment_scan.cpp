@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -263,6 +264,85 @@ TextScan scan_binary_off(const std::string& path, const std::string& magic, cons
   return scan;
 }
 
+/// An OFF file's non-blank lines as words, comments stripped, with their
+/// line numbers; keeps the lines read as the text the reader gets.
+class OffLines {
+ public:
+  explicit OffLines(const std::string& text) : in_(text) {}
+
+  /// The next non-blank line's words (empty at the end of the file).
+  std::vector<std::string> next_words() {
+    for (std::string line; std::getline(in_, line);) {
+      ++line_number_;
+      line = strip_comment(line);
+      std::vector<std::string> words = split_words(line);
+      if (words.empty()) continue;
+      cleaned_ += line;
+      cleaned_ += '\n';
+      return words;
+    }
+    return std::vector<std::string>{};
+  }
+
+  /// The line number of the words last returned (1-based).
+  std::size_t line_number() const { return line_number_; }
+  /// The lines read so far, for the reader.
+  std::string& cleaned() { return cleaned_; }
+
+ private:
+  std::istringstream in_;
+  std::size_t line_number_ = 0;
+  std::string cleaned_;
+};
+
+/// The header word without its ST, C and N prefixes; refuses a word that is
+/// no OFF variant (OpenMesh accepted "OFFX").
+std::string off_variant(const std::string& path, const std::string& word) {
+  std::string header = word;
+  for (const char* prefix : {"ST", "C", "N"}) {
+    if (header.rfind(prefix, 0) == 0) header.erase(0, std::string(prefix).size());
+  }
+  if (header != "OFF" && header != "4OFF" && header != "nOFF")
+    throw InputError(with_path(path, "the file starts with '" + word +
+                                         "'; expected OFF (or COFF, NOFF, STOFF, 4OFF, nOFF)"));
+  return header;
+}
+
+/// The vertex and face counts of the header's `words` (its 'V F E' line,
+/// at `line`). Without them OpenMesh's reader reserves for whatever its
+/// variables held (tens of gigabytes were seen).
+std::array<std::size_t, 2> off_counts(const std::string& path, const std::vector<std::string>& words, std::size_t line) {
+  if (words.size() < 2)
+    throw InputError(with_path(path, "the OFF header has no vertex and face counts" +
+                                         (words.empty() ? std::string() : at_line(line)) +
+                                         "; expected 'V F E' after OFF"));
+  std::array<std::size_t, 2> counts{0, 0};  // vertices, faces
+  for (int k = 0; k < 2; ++k) {
+    const std::string& word = words[static_cast<std::size_t>(k)];
+    const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), counts[static_cast<std::size_t>(k)]);
+    if (error != std::errc() || stop != word.data() + word.size())
+      throw InputError(with_path(path, "the OFF header's " + std::string(k == 0 ? "vertex" : "face") + " count '" +
+                                           word + "'" + at_line(line) + " is not a count; expected 'V F E'"));
+  }
+  return counts;
+}
+
+/// Refuses face `f` (its `words`, at `line`) unless it starts with its
+/// corner count and lists at least that many numbers after it. OpenMesh
+/// takes the first number as the corner count and reads that many indices
+/// on, across lines: a huge count reserves memory without bound, a wrong
+/// one reads the faces after it askew.
+void check_off_face(const std::string& path, std::size_t f, const std::vector<std::string>& words, std::size_t line) {
+  std::size_t corners = 0;
+  const std::string& count = words[0];
+  const auto [stop, error] = std::from_chars(count.data(), count.data() + count.size(), corners);
+  if (error != std::errc() || stop != count.data() + count.size() || corners + 1 > words.size())
+    throw InputError(with_path(path, face_label(static_cast<long>(f)) + at_line(line) + " starts with '" + count +
+                                         "' and lists " + std::to_string(words.size() - 1) +
+                                         " numbers after it; expected its corner count, then that many vertex "
+                                         "indices (then, optionally, a colour)"));
+}
+
 /// Plain ASCII OFF, optionally with colours/normals/texture coordinates after
 /// x y z (COFF, NOFF, STOFF...); binary OFF by scan_binary_off; 4OFF and nOFF
 /// are left to OpenMesh (which refuses them).
@@ -270,34 +350,14 @@ TextScan scan_binary_off(const std::string& path, const std::string& magic, cons
 /// (it accepted "OFFX"), and counts more than the lines after it hold (it
 /// would allocate for them, or read faces as vertices).
 TextScan scan_off(const std::string& path, const std::string& text) {
-  std::istringstream in(text);
+  OffLines off(text);
   TextScan scan;
-  std::size_t line_number = 0;
-  std::string cleaned;
-  auto next_words = [&]() {
-    for (std::string line; std::getline(in, line);) {
-      ++line_number;
-      line = strip_comment(line);
-      std::vector<std::string> words = split_words(line);
-      if (words.empty()) continue;
-      cleaned += line;
-      cleaned += '\n';
-      return words;
-    }
-    return std::vector<std::string>{};
-  };
-  std::vector<std::string> words = next_words();
+  std::vector<std::string> words = off.next_words();
   if (words.empty()) return scan;
-  std::string header = words[0];
-  for (const char* prefix : {"ST", "C", "N"}) {
-    if (header.rfind(prefix, 0) == 0) header.erase(0, std::string(prefix).size());
-  }
-  if (header != "OFF" && header != "4OFF" && header != "nOFF")
-    throw InputError(with_path(path, "the file starts with '" + words[0] +
-                                         "'; expected OFF (or COFF, NOFF, STOFF, 4OFF, nOFF)"));
+  const std::string header = off_variant(path, words[0]);
   if (words.size() > 1 && words[1] == "BINARY") {
-    if (line_number != 1)
-      throw InputError(with_path(path, "the 'OFF BINARY' line is line " + std::to_string(line_number) +
+    if (off.line_number() != 1)
+      throw InputError(with_path(path, "the 'OFF BINARY' line is line " + std::to_string(off.line_number()) +
                                        "; expected it first (OpenMesh's reader reads binary data after line 1)"));
     return scan_binary_off(path, words[0], text);
   }
@@ -306,29 +366,16 @@ TextScan scan_off(const std::string& path, const std::string& text) {
   words.erase(words.begin());
   if (!words.empty()) {
     // Counts on the header's line: OpenMesh reads them only on their own.
-    cleaned = magic + "\n";
-    for (const std::string& word : words) cleaned += word + ' ';
-    cleaned += '\n';
+    off.cleaned() = magic + "\n";
+    for (const std::string& word : words) off.cleaned() += word + ' ';
+    off.cleaned() += '\n';
   }
-  if (words.empty()) words = next_words();
-  // Without its counts OpenMesh's reader reserves for whatever its
-  // variables held (tens of gigabytes were seen).
-  if (words.size() < 2)
-    throw InputError(with_path(path, "the OFF header has no vertex and face counts" +
-                                         (words.empty() ? std::string() : at_line(line_number)) +
-                                         "; expected 'V F E' after OFF"));
-  std::size_t counts[2] = {0, 0};  // vertices, faces
-  for (int k = 0; k < 2; ++k) {
-    const std::string& word = words[static_cast<std::size_t>(k)];
-    const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), counts[k]);
-    if (error != std::errc() || stop != word.data() + word.size())
-      throw InputError(with_path(path, "the OFF header's " + std::string(k == 0 ? "vertex" : "face") + " count '" +
-                                           word + "'" + at_line(line_number) + " is not a count; expected 'V F E'"));
-  }
-  const std::size_t header_line = line_number;
+  if (words.empty()) words = off.next_words();
+  const std::array<std::size_t, 2> counts = off_counts(path, words, off.line_number());
+  const std::size_t header_line = off.line_number();
   std::vector<std::pair<std::size_t, std::vector<std::string>>> lines;  // (line number, words)
-  for (std::vector<std::string> next = next_words(); !next.empty(); next = next_words())
-    lines.emplace_back(line_number, std::move(next));
+  for (std::vector<std::string> next = off.next_words(); !next.empty(); next = off.next_words())
+    lines.emplace_back(off.line_number(), std::move(next));
   if (lines.size() < counts[0] || lines.size() - counts[0] < counts[1])
     throw InputError(with_path(path, "the OFF header" + at_line(header_line) + " declares " +
                                          std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
@@ -341,20 +388,10 @@ TextScan scan_off(const std::string& path, const std::string& text) {
   for (std::size_t f = 0; f < counts[1]; ++f) {
     const auto& [face_line, face_words] = lines[counts[0] + f];
     scan.lines.face.push_back(face_line);
-    // OpenMesh takes the first number as the corner count and reads that
-    // many indices on, across lines: a huge count reserves memory without
-    // bound, a wrong one reads the faces after it askew.
-    std::size_t corners = 0;
-    const std::string& count = face_words[0];
-    const auto [stop, error] = std::from_chars(count.data(), count.data() + count.size(), corners);
-    if (error != std::errc() || stop != count.data() + count.size() || corners + 1 > face_words.size())
-      throw InputError(with_path(path, face_label(static_cast<long>(f)) + at_line(face_line) + " starts with '" +
-                                           count + "' and lists " + std::to_string(face_words.size() - 1) +
-                                           " numbers after it; expected its corner count, then that many vertex "
-                                           "indices (then, optionally, a colour)"));
+    check_off_face(path, f, face_words, face_line);
   }
   scan.understood = true;
-  scan.text_for_reader = std::move(cleaned);
+  scan.text_for_reader = std::move(off.cleaned());
   return scan;
 }
 
