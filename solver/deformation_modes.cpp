@@ -26,6 +26,50 @@ std::pair<double, double> normalizer(const Eigen::VectorXd& x, FeatureNormalizat
   return {offset, scale};
 }
 
+/// Refuses a mode count a mode layer cannot hold, features of other
+/// lengths, and non-finite features (naming the vertex).
+void check_features(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation, int modes) {
+  if (modes < 1 || modes > kLargestMode)
+    throw ArgumentError("deformation_modes: " + std::to_string(modes) + " modes asked for; expected 1 to " +
+                        std::to_string(kLargestMode) + ", the modes a mode layer holds");
+  if (mean_curvature.size() != deviation.size()) {
+    throw ArgumentError("deformation_modes: " + std::to_string(mean_curvature.size()) + " mean curvatures but " +
+                        std::to_string(deviation.size()) + " deviations; expected one of each per vertex");
+  }
+  for (Eigen::Index v = 0; v < mean_curvature.size(); ++v) {
+    if (!std::isfinite(mean_curvature[v]) || !std::isfinite(deviation[v]))
+      throw ArgumentError("deformation_modes: the features of vertex " + std::to_string(v) +
+                          " are not finite; expected finite curvature features");
+  }
+}
+
+/// Each cluster's members' mean features (h x 2, in the features' own
+/// units) and member count.
+std::pair<Eigen::MatrixXd, std::vector<int>> cluster_means(const Eigen::MatrixXd& features, const std::vector<int>& labels,
+                                                           int h) {
+  Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(h, 2);
+  std::vector<int> sizes(static_cast<std::size_t>(h), 0);
+  for (Eigen::Index v = 0; v < features.rows(); ++v) {
+    const int c = labels[static_cast<std::size_t>(v)];
+    centroids.row(c) += features.row(v);
+    ++sizes[static_cast<std::size_t>(c)];
+  }
+  for (int c = 0; c < h; ++c) centroids.row(c) /= sizes[static_cast<std::size_t>(c)];
+  return {std::move(centroids), std::move(sizes)};
+}
+
+/// The clusters in mode order (mode 1 first): mode 1 is the least deformed,
+/// by centroid mean curvature, ties by deviation.
+std::vector<int> clusters_by_deformation(const Eigen::MatrixXd& centroids) {
+  std::vector<int> order(static_cast<std::size_t>(centroids.rows()));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    if (centroids(a, 0) != centroids(b, 0)) return centroids(a, 0) < centroids(b, 0);
+    return centroids(a, 1) < centroids(b, 1);
+  });
+  return order;
+}
+
 }  // namespace
 
 std::string normalization_name(FeatureNormalization normalization) {
@@ -40,18 +84,7 @@ FeatureNormalization normalization_from_name(const std::string& name) {
 
 ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& deviation,
                              const ModeOptions& options, const KMeansProgress& progress) {
-  if (options.modes < 1 || options.modes > kLargestMode)
-    throw ArgumentError("deformation_modes: " + std::to_string(options.modes) + " modes asked for; expected 1 to " +
-                        std::to_string(kLargestMode) + ", the modes a mode layer holds");
-  if (mean_curvature.size() != deviation.size()) {
-    throw ArgumentError("deformation_modes: " + std::to_string(mean_curvature.size()) + " mean curvatures but " +
-                        std::to_string(deviation.size()) + " deviations; expected one of each per vertex");
-  }
-  for (Eigen::Index v = 0; v < mean_curvature.size(); ++v) {
-    if (!std::isfinite(mean_curvature[v]) || !std::isfinite(deviation[v]))
-      throw ArgumentError("deformation_modes: the features of vertex " + std::to_string(v) +
-                          " are not finite; expected finite curvature features");
-  }
+  check_features(mean_curvature, deviation, options.modes);
   ModeReport report;
   report.normalization = options.normalization;
   report.seed = options.seed;
@@ -79,24 +112,9 @@ ModeReport deformation_modes(const Eigen::VectorXd& mean_curvature, const Eigen:
   report.restart = clusters.restart;
   report.iterations = clusters.iterations;
 
-  // Centroids in the features' own units: the members' means.
   const int h = options.modes;
-  Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(h, 2);
-  std::vector<int> sizes(static_cast<std::size_t>(h), 0);
-  for (Eigen::Index v = 0; v < n; ++v) {
-    const int c = clusters.labels[static_cast<std::size_t>(v)];
-    centroids.row(c) += features.row(v);
-    ++sizes[static_cast<std::size_t>(c)];
-  }
-  for (int c = 0; c < h; ++c) centroids.row(c) /= sizes[static_cast<std::size_t>(c)];
-
-  // Mode 1 is the least deformed: by centroid mean curvature, ties by deviation.
-  std::vector<int> order(static_cast<std::size_t>(h));
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    if (centroids(a, 0) != centroids(b, 0)) return centroids(a, 0) < centroids(b, 0);
-    return centroids(a, 1) < centroids(b, 1);
-  });
+  const auto [centroids, sizes] = cluster_means(features, clusters.labels, h);
+  const std::vector<int> order = clusters_by_deformation(centroids);
   std::vector<int> mode_of_cluster(static_cast<std::size_t>(h));
   for (int m = 0; m < h; ++m) mode_of_cluster[static_cast<std::size_t>(order[static_cast<std::size_t>(m)])] = m + 1;
 
