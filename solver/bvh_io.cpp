@@ -625,16 +625,34 @@ Motion read_bvh(const std::string& path, const BvhReadOptions& options) {
   return BvhParser(path, text, options).parse();
 }
 
-void write_bvh(const std::string& path, const Motion& motion, double scale) {
-  check_writable(motion, scale);
-  const Skeleton& skeleton = motion.skeleton;
+namespace {
+
+/// One joint's block opening: its name line, "{", OFFSET (divided by
+/// `scale`) and, but for an End Site, its CHANNELS line.
+void append_joint_header(std::string& text, const Joint& joint, const std::string& indent, double scale) {
+  text += indent + (joint.end_site ? std::string("End Site") : (joint.parent < 0 ? "ROOT " : "JOINT ") + joint.name) +
+          "\n";
+  text += indent + "{\n";
+  text += indent + "\tOFFSET";
+  for (int k = 0; k < 3; ++k) {
+    text += ' ';
+    append_number(text, joint.offset[k] / scale);
+  }
+  text += '\n';
+  if (joint.end_site) return;
+  text += indent + "\tCHANNELS " + std::to_string(joint.channels.size());
+  for (const Channel c : joint.channels) text += std::string(" ") + channel_name(c);
+  text += '\n';
+}
+
+/// The HIERARCHY block, depth-first in joint order; returns the joints
+/// with channels in the order written, which the data's columns follow.
+std::vector<int> append_hierarchy(std::string& text, const Skeleton& skeleton, double scale) {
   const int n = static_cast<int>(skeleton.joints.size());
   std::vector<std::vector<int>> children(n);
   for (int j = 0; j < n; ++j)
     if (skeleton.joints[j].parent >= 0) children[skeleton.joints[j].parent].push_back(j);
-
-  // Depth-first in joint order; the data columns follow the written order.
-  std::string text = "HIERARCHY\n";
+  text += "HIERARCHY\n";
   std::vector<int> column_order;
   struct Item {
     int joint;
@@ -653,33 +671,26 @@ void write_bvh(const std::string& path, const Motion& motion, double scale) {
       continue;
     }
     const Joint& joint = skeleton.joints[item.joint];
-    text += indent + (joint.end_site ? std::string("End Site") : (joint.parent < 0 ? "ROOT " : "JOINT ") + joint.name) +
-            "\n";
-    text += indent + "{\n";
-    text += indent + "\tOFFSET";
-    for (int k = 0; k < 3; ++k) {
-      text += ' ';
-      append_number(text, joint.offset[k] / scale);
-    }
-    text += '\n';
-    if (!joint.end_site) {
-      text += indent + "\tCHANNELS " + std::to_string(joint.channels.size());
-      for (const Channel c : joint.channels) text += std::string(" ") + channel_name(c);
-      text += '\n';
-      column_order.push_back(item.joint);
-    }
+    append_joint_header(text, joint, indent, scale);
+    if (!joint.end_site) column_order.push_back(item.joint);
     stack.push_back({item.joint, item.depth, true});
     for (auto it = children[item.joint].rbegin(); it != children[item.joint].rend(); ++it)
       stack.push_back({*it, item.depth + 1, false});
   }
+  return column_order;
+}
 
+/// The MOTION block: the frames' channels in `column_order`'s joints'
+/// order, positions back in the file's units (offset added, divided by
+/// `scale`).
+void append_motion(std::string& text, const Motion& motion, const std::vector<int>& column_order, double scale) {
   text += "MOTION\nFrames: " + std::to_string(motion.frames.rows()) + "\nFrame Time: ";
   append_number(text, motion.frame_time);
   text += '\n';
   for (Eigen::Index r = 0; r < motion.frames.rows(); ++r) {
     bool first = true;
     for (const int j : column_order) {
-      const Joint& joint = skeleton.joints[j];
+      const Joint& joint = motion.skeleton.joints[j];
       for (std::size_t k = 0; k < joint.channels.size(); ++k) {
         if (!first) text += ' ';
         first = false;
@@ -690,7 +701,15 @@ void write_bvh(const std::string& path, const Motion& motion, double scale) {
     }
     text += '\n';
   }
+}
 
+}  // namespace
+
+void write_bvh(const std::string& path, const Motion& motion, double scale) {
+  check_writable(motion, scale);
+  std::string text;
+  const std::vector<int> column_order = append_hierarchy(text, motion.skeleton, scale);
+  append_motion(text, motion, column_order, scale);
   write_file_atomically(path, ".bvh", [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
