@@ -285,6 +285,48 @@ CapsuleRig make_capsule_rig(const Skeleton& skeleton, const CapsuleRigOptions& o
 
 namespace {
 
+/// How a cross-section much wider one way than the other is covered by two
+/// capsules side by side: `direction` (unit, across the axis) the wide way
+/// and `offset` (metres) each twin's distance from the axis; offset 0 for
+/// one round capsule.
+struct TwinSpread {
+  Vector3d direction = Vector3d::Zero();
+  double offset = 0.0;
+};
+
+/// The samples' spread across the centred axis from `a_fit` to `c_fit`
+/// (rest space, metres), by its principal directions (a sphere bone has no
+/// axis and stays round).
+TwinSpread twin_spread(const Vector3d& a_fit, const Vector3d& c_fit, const std::vector<Vector3d>& head_samples,
+                       const std::vector<Vector3d>& tail_samples) {
+  TwinSpread twin;
+  const double length = (c_fit - a_fit).norm();
+  if (!(length > 0.0)) return twin;
+  const Vector3d axis = (c_fit - a_fit) / length;
+  const Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  std::vector<Eigen::Vector2d> offsets;
+  for (const auto* samples : {&head_samples, &tail_samples})
+    for (const Vector3d& p : *samples) {
+      const Vector3d d = p - a_fit;
+      offsets.emplace_back(d.dot(e1), d.dot(e2));
+    }
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d& o : offsets) covariance += o * o.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> principal(covariance);
+  const Eigen::Vector2d major = principal.eigenvectors().col(1), minor = principal.eigenvectors().col(0);
+  std::vector<double> along_major, along_minor;
+  for (const Eigen::Vector2d& o : offsets) {
+    along_major.push_back(std::abs(o.dot(major)));
+    along_minor.push_back(std::abs(o.dot(minor)));
+  }
+  const double wide = percentile(along_major, kFitPercentile), narrow = percentile(along_minor, kFitPercentile);
+  if (wide > kTwinAspect * narrow) {
+    twin.direction = major.x() * e1 + major.y() * e2;
+    twin.offset = wide - narrow;
+  }
+  return twin;
+}
+
 /// Fits one bone's capsule to the body vertices it dominates near its head
 /// and tail (rest space). Each end moves to the centre of its cross-section:
 /// a bone may run off-centre in its limb (the spine along the back), and a
@@ -306,35 +348,9 @@ std::vector<BoneCapsule> fit_bone(const BoneCapsule& bone, const Pose& rest, con
   const Vector3d tail_shift = tail_ok ? tail_centre : head_centre;
   const Vector3d a_fit = a + head_shift, c_fit = c + tail_shift;
 
-  // The cross-section's principal directions (perpendicular to the centred
-  // axis; a sphere bone has no axis and stays round).
-  Vector3d spread_direction = Vector3d::Zero();
-  double side_offset = 0.0;
-  const double length = (c_fit - a_fit).norm();
-  if (length > 0.0) {
-    const Vector3d axis = (c_fit - a_fit) / length;
-    const Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
-    std::vector<Eigen::Vector2d> offsets;
-    for (const auto* samples : {&head_samples, &tail_samples})
-      for (const Vector3d& p : *samples) {
-        const Vector3d d = p - a_fit;
-        offsets.emplace_back(d.dot(e1), d.dot(e2));
-      }
-    Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
-    for (const Eigen::Vector2d& o : offsets) covariance += o * o.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> principal(covariance);
-    const Eigen::Vector2d major = principal.eigenvectors().col(1), minor = principal.eigenvectors().col(0);
-    std::vector<double> along_major, along_minor;
-    for (const Eigen::Vector2d& o : offsets) {
-      along_major.push_back(std::abs(o.dot(major)));
-      along_minor.push_back(std::abs(o.dot(minor)));
-    }
-    const double wide = percentile(along_major, kFitPercentile), narrow = percentile(along_minor, kFitPercentile);
-    if (wide > kTwinAspect * narrow) {
-      spread_direction = major.x() * e1 + major.y() * e2;
-      side_offset = wide - narrow;
-    }
-  }
+  const TwinSpread twin = twin_spread(a_fit, c_fit, head_samples, tail_samples);
+  const Vector3d& spread_direction = twin.direction;
+  const double side_offset = twin.offset;
 
   const int count = side_offset > 0.0 ? 2 : 1;
   std::vector<BoneCapsule> out;
