@@ -150,11 +150,10 @@ struct Trousers {
   std::vector<std::array<int, 4>> quads;
 };
 
-Trousers make_trousers(const TrouserOptions& o) {
-  Trousers out;
-  const int n = o.waist_segments, half = n / 2, m = o.leg_segments();
-
-  // The seat tube, waist first.
+/// The seat tube, waist first: o.seat_rings rings of o.waist_segments
+/// vertices and the quads between them.
+void add_seat_tube(const TrouserOptions& o, Trousers& out) {
+  const int n = o.waist_segments;
   for (int r = 0; r < o.seat_rings; ++r) {
     const double y = lerp(o.waist_height, o.seat_height, static_cast<double>(r) / (o.seat_rings - 1));
     for (const Vertex& v : seat_ring(o, y)) out.vertices.push_back(v);
@@ -164,10 +163,12 @@ Trousers make_trousers(const TrouserOptions& o) {
       const int top = r * n, bottom = (r + 1) * n, s1 = (s + 1) % n;
       out.quads.push_back({top + s, bottom + s, bottom + s1, top + s1});
     }
-  const int seat = (o.seat_rings - 1) * n;  // first vertex of the seat ring
+}
 
-  // The crotch path, front to back, equally spaced on a half ellipse in
-  // the plane x = 0 (half of the full ellipse's equal-arc points).
+/// The crotch path, front to back, equally spaced on a half ellipse in the
+/// plane x = 0 (half of the full ellipse's equal-arc points); returns its
+/// first vertex's id.
+int add_crotch_path(const TrouserOptions& o, Trousers& out) {
   const double depth = seat_semi_axes(o, o.seat_height).second, drop = o.seat_height - o.crotch_height;
   const int crotch = static_cast<int>(out.vertices.size());
   const std::vector<double> crotch_angles = equal_arc_angles(drop, depth, 2 * (o.crotch_vertices + 1));
@@ -175,17 +176,17 @@ Trousers make_trousers(const TrouserOptions& o) {
     const double angle = crotch_angles[c];
     out.vertices.push_back({0.0, o.seat_height - drop * std::sin(angle), depth * std::cos(angle)});
   }
+  return crotch;
+}
 
-  // The left leg's split ring: its half of the seat ring, front centre to
-  // back centre over its side, then the crotch path from back to front.
-  std::vector<int> split;
-  for (int s = 0; s <= half; ++s) split.push_back(seat + s);
-  for (int c = o.crotch_vertices - 1; c >= 0; --c) split.push_back(crotch + c);
-
-  // Lower rings: heights step evenly from the split ring's mean height to
-  // the ankle, the split's slant fading out; each vertex keeps its angle
-  // around the leg's axis at first and moves to an even spacing, from the
-  // split's shape to a circle, over blend_rings rings.
+/// The left leg's rings, the split ring (vertex ids `split`) first. Lower
+/// rings: heights step evenly from the split ring's mean height to the
+/// ankle, the split's slant fading out; each vertex keeps its angle around
+/// the leg's axis at first and moves to an even spacing, from the split's
+/// shape to a circle, over blend_rings rings.
+std::vector<std::vector<Vertex>> left_leg_rings(const TrouserOptions& o, const Trousers& out,
+                                                const std::vector<int>& split) {
+  const int m = o.leg_segments();
   double mean_y = 0.0;
   for (int id : split) mean_y += out.vertices[id].y / m;
   const double axis_top = leg_axis(o, o.seat_height);
@@ -214,6 +215,22 @@ Trousers make_trousers(const TrouserOptions& o) {
       left[k].push_back({x, y, z});
     }
   }
+  return left;
+}
+
+Trousers make_trousers(const TrouserOptions& o) {
+  Trousers out;
+  const int n = o.waist_segments, half = n / 2, m = o.leg_segments();
+  add_seat_tube(o, out);
+  const int seat = (o.seat_rings - 1) * n;  // first vertex of the seat ring
+  const int crotch = add_crotch_path(o, out);
+
+  // The left leg's split ring: its half of the seat ring, front centre to
+  // back centre over its side, then the crotch path from back to front.
+  std::vector<int> split;
+  for (int s = 0; s <= half; ++s) split.push_back(seat + s);
+  for (int c = o.crotch_vertices - 1; c >= 0; --c) split.push_back(crotch + c);
+  const std::vector<std::vector<Vertex>> left = left_leg_rings(o, out, split);
 
   // Leg rings as vertex ids; the right leg is the left one mirrored (x ->
   // -x) with its ring order reversed, which keeps every face outward and
