@@ -78,7 +78,8 @@ TEST(ImplicitIntegrator, LinearMomentumIsConservedWithoutGravity) {
   const DynamicsModel m = build_dynamics(refined_sheet(), d);
   ImplicitIntegrator integrator;
   // Mass-weighted limiter projections: the default weights trade momentum
-  // on unequal masses for convergence (TheLimitersMassExponent... below).
+  // on unequal masses for convergence (TheLimitersMassExponent... in
+  // implicit_integrator_limiter_test.cpp).
   IntegratorOptions o = options(1.0 / 120, {0, 0, 0});
   o.limiter_mass_exponent = 1.0;
   integrator.precompute(m, o);
