@@ -133,11 +133,15 @@ Mesh subdivided_cube(int n) {
   return mesh;
 }
 
+namespace {
+
+/// A point uniform in the box with corners lo and hi.
 Vector3d random_in_box(std::mt19937& rng, const Vector3d& lo, const Vector3d& hi) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   return lo + Vector3d(unit(rng), unit(rng), unit(rng)).cwiseProduct(hi - lo);
 }
 
+/// A direction uniform on the unit sphere (length 1).
 Vector3d random_unit(std::mt19937& rng) {
   std::normal_distribution<double> gauss;
   for (;;) {
@@ -145,6 +149,8 @@ Vector3d random_unit(std::mt19937& rng) {
     if (v.norm() > 1e-3) return v.normalized();
   }
 }
+
+}  // namespace
 
 std::vector<Vector3d> sample_points(const Mesh& mesh, std::mt19937& rng, int count, double spread) {
   const Vector3d lo = mesh.vertices.colwise().minCoeff().transpose(), hi = mesh.vertices.colwise().maxCoeff().transpose();

@@ -49,12 +49,6 @@ Mesh icosphere(int levels);
 /// edges and corners, where edge and vertex pseudo-normals decide the sign.
 Mesh subdivided_cube(int n);
 
-/// A point uniform in the box with corners lo and hi.
-Eigen::Vector3d random_in_box(std::mt19937& rng, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
-
-/// A direction uniform on the unit sphere (length 1).
-Eigen::Vector3d random_unit(std::mt19937& rng);
-
 /// Points near and inside a mesh: uniform in its padded box, plus surface
 /// points (triangle samples, vertices, edge midpoints) pushed along random
 /// directions by up to `spread`.
