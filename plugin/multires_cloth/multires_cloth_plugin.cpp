@@ -108,6 +108,12 @@ QString commitRestMesh(const std::unique_ptr<StagedFile>& rest_mesh, bool comple
   return QString::fromStdString(rest_mesh->path());
 }
 
+/// The run's last frame as a mesh of its own (updateObject): `mesh` (the
+/// object simulated) at the full positions of `model`'s `state`.
+std::shared_ptr<QuadMesh> lastFrameMesh(const QuadMesh& mesh, const DynamicsModel& model, const ClothState& state) {
+  return std::make_shared<QuadMesh>(mesh_at_positions(mesh, full_positions(model, state.positions, state.pinned)));
+}
+
 /// The counts every refinement report shares, read from the refined mesh.
 QVariantMap meshCounts(const QuadMesh& mesh) {
   return {{QStringLiteral("vertices"), static_cast<qlonglong>(mesh.n_vertices())},
@@ -472,11 +478,8 @@ QVariantMap MultiresClothPlugin::simulate(QVariant id, QVariant options) {
     RunOutputs outputs;
     if (complete) outputs.obj_files = writeObjSequence(request, frames, *input.mesh);
     outputs.rest_mesh = commitRestMesh(staged_rest_mesh, complete);
-    if (complete && request.updateObject) {
-      auto simulated = std::make_shared<QuadMesh>(
-          mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
-      outputs.result = store().add(simulated, QStringLiteral("%1 simulated").arg(input.name));
-    }
+    if (complete && request.updateObject)
+      outputs.result = store().add(lastFrameMesh(*input.mesh, model, state), QStringLiteral("%1 simulated").arg(input.name));
 
     last_report_ = simulationReportMap(report, model);
     last_report_.insert(runOutputsReportMap(QStringLiteral("simulate"), input.id, request, outputs));
@@ -735,12 +738,9 @@ QVariantMap MultiresClothPlugin::simulateOnCharacter(const QString& slot, const 
     outputs.body_mesh = restMeshPath(wanted.bodyOutput.toStdString());
     write_body_cache(motion, *character.body, run, wanted.bodyOutput.toStdString(), outputs.body_mesh.toStdString());
   }
-  if (complete && request.updateObject) {
-    auto simulated = std::make_shared<QuadMesh>(
-        mesh_at_positions(*input.mesh, full_positions(model, state.positions, state.pinned)));
-    outputs.result =
-        store().add(simulated, QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
-  }
+  if (complete && request.updateObject)
+    outputs.result = store().add(lastFrameMesh(*input.mesh, model, state),
+                                 QStringLiteral("%1 on %2").arg(input.name, QFileInfo(wanted.motionPath).completeBaseName()));
 
   last_report_ = simulationReportMap(motion_report, model);
   last_report_.insert(characterReportMap(report, wanted, character, run));

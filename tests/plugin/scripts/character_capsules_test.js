@@ -25,7 +25,7 @@ const frames = 60;
 const body = {type: "capsules", thickness: 0.002};
 const pc2 = tmpDir + "/walk_capsules.pc2";
 const report = multirescloth.simulate(skirt, {
-  motion: {path: walk, units: "m"}, body: body, place: "firstFrame", frames: frames, output: pc2});
+  motion: {path: walk, units: "m"}, body: body, place: "firstFrame", frames: frames, output: pc2, updateObject: true});
 expectEqual([report.frames, report.nonFinite, report.cancelled], [frames, false, false], "run completed");
 // The skirt's girth against the walking mannequin's, level by level (a tube
 // garment: two boundary loops): it fits within cotton's 3 % everywhere.
@@ -78,6 +78,18 @@ if (!(report.perFrameMs.every(t => t.dynamics > 0 && t.collision >= 0)))
   throw new Error("per-frame timings: " + JSON.stringify(report.perFrameMs));
 expectEqual(core.fileSize(pc2), 32 + frames * info.vertices * 12, "PC2 size");
 expectEqual(core.objectInfo(skirt).bbox, info.bbox, "the object is untouched");
+// updateObject: the last frame, as the cache holds it, becomes an object
+// named for the clip.
+expectType(report.resultId, "number", "resultId");
+const last = core.objectInfo(report.resultId);
+expectEqual([last.name, last.vertices, last.faces], [info.name + " on walk_instance", info.vertices, info.faces],
+            "the last frame's object");
+const lastObj = tmpDir + "/walk_last.obj";
+multirescloth.exportSurface(skirt, lastObj, {cache: pc2, frame: frames - 1});
+const cached = core.objectInfo(core.loadObject(lastObj)).bbox;
+for (const corner of ["min", "max"])  // the PC2 holds floats
+  for (let axis = 0; axis < 3; ++axis)
+    expectNear(cached[corner][axis], last.bbox[corner][axis], 1e-6, "the last cached frame is the new object");
 // The rest pose stands where the walk starts, close to the T-pose of frame 0
 // the skirt was modelled on: the placement is a small shift.
 if (!(Math.hypot(...report.placement) < 0.1)) throw new Error("placement " + JSON.stringify(report.placement));
