@@ -174,6 +174,80 @@ struct MeshBody::Impl {
       x[v] = vertices.row(input_vertex.empty() ? static_cast<Eigen::Index>(v) : input_vertex[v]).transpose();
   }
 
+  static void require_corners_in_range(const std::vector<Eigen::Vector3i>& input, int vertex_count) {
+    for (std::size_t t = 0; t < input.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        if (input[t](k) < 0 || input[t](k) >= vertex_count)
+          throw ArgumentError("MeshBody: triangle " + std::to_string(t) + " names vertex " + std::to_string(input[t](k)) +
+                              "; expected an index below " + std::to_string(vertex_count));
+      }
+    }
+  }
+
+  /// Builds the tree (once, on the first pose) and stores the triangles in
+  /// its leaf order.
+  void store_in_leaf_order(const std::vector<Eigen::Vector3i>& input) {
+    const std::vector<int> order = tree.build(input, x);
+    triangles.resize(input.size());
+    leaf_of_input.resize(input.size());
+    for (std::size_t t = 0; t < order.size(); ++t) {
+      triangles[t] = input[static_cast<std::size_t>(order[t])];
+      leaf_of_input[static_cast<std::size_t>(order[t])] = static_cast<int>(t);
+    }
+    ignored.assign(input.size(), 0);
+    on_rim.assign(input.size(), 0);
+  }
+
+  /// Neighbours across each edge: the mesh must be closed and consistently
+  /// oriented (each directed edge once, its reverse once).
+  void link_neighbours() {
+    std::unordered_map<std::uint64_t, int> directed;
+    directed.reserve(3 * triangles.size());
+    auto key = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[t](k), b = triangles[t]((k + 1) % 3);
+        if (!directed.emplace(key(a, b), static_cast<int>(3 * t + static_cast<std::size_t>(k))).second) {
+          throw ArgumentError("MeshBody: edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                              ") is used twice in the same direction; expected a consistently oriented 2-manifold mesh");
+        }
+      }
+    }
+    neighbours.resize(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[t](k), b = triangles[t]((k + 1) % 3);
+        const auto found = directed.find(key(b, a));
+        if (found == directed.end()) {
+          throw ArgumentError("MeshBody: edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                              ") has a triangle on one side only; expected a closed mesh");
+        }
+        neighbours[t][static_cast<std::size_t>(k)] = found->second / 3;
+      }
+    }
+  }
+
+  /// The (triangle, corner) pairs around each vertex (ring, ring_start).
+  void build_rings() {
+    ring_start.assign(x.size() + 1, 0);
+    for (const Eigen::Vector3i& tri : triangles)
+      for (int k = 0; k < 3; ++k) ++ring_start[static_cast<std::size_t>(tri(k)) + 1];
+    for (std::size_t v = 0; v < x.size(); ++v) ring_start[v + 1] += ring_start[v];
+    ring.resize(3 * triangles.size());
+    std::vector<int> fill(ring_start.begin(), ring_start.end() - 1);
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        ring[static_cast<std::size_t>(fill[static_cast<std::size_t>(triangles[t](k))]++)] = {static_cast<int>(t), k};
+  }
+
+  void require_outward_orientation() const {
+    double volume = 0.0;
+    for (const Eigen::Vector3i& tri : triangles)
+      volume += x[static_cast<std::size_t>(tri(0))].dot(x[static_cast<std::size_t>(tri(1))].cross(x[static_cast<std::size_t>(tri(2))]));
+    if (!(volume > 0.0))
+      throw ArgumentError("MeshBody: the triangles enclose a negative volume; expected them ordered counter-clockwise seen from outside");
+  }
+
   /// Renumbers the vertices in the order the triangles (in leaf order)
   /// first use them, the unused ones last: a leaf's corners then lie
   /// together in x, not scattered over the input's order.
@@ -640,72 +714,14 @@ MeshBody::MeshBody(const Eigen::MatrixX3d& vertices, std::vector<Eigen::Vector3i
   m.depth_reach2 = (thickness + Impl::kWholeMeshSideBeyond) * (thickness + Impl::kWholeMeshSideBeyond);
   Impl::require_finite(vertices);
   m.set_positions(vertices);
-  const int vertex_count = static_cast<int>(vertices.rows());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (triangles[t](k) < 0 || triangles[t](k) >= vertex_count)
-        throw ArgumentError("MeshBody: triangle " + std::to_string(t) + " names vertex " + std::to_string(triangles[t](k)) +
-                            "; expected an index below " + std::to_string(vertex_count));
-    }
-  }
-
-  // The tree (built once, on the first pose), the triangles stored in its
-  // leaf order.
-  const std::vector<int> order = m.tree.build(triangles, m.x);
-  m.triangles.resize(triangles.size());
-  m.leaf_of_input.resize(triangles.size());
-  for (std::size_t t = 0; t < order.size(); ++t) {
-    m.triangles[t] = triangles[static_cast<std::size_t>(order[t])];
-    m.leaf_of_input[static_cast<std::size_t>(order[t])] = static_cast<int>(t);
-  }
-  m.ignored.assign(triangles.size(), 0);
-  m.on_rim.assign(triangles.size(), 0);
-
-  // Neighbours across each edge: the mesh must be closed and consistently
-  // oriented (each directed edge once, its reverse once).
-  std::unordered_map<std::uint64_t, int> directed;
-  directed.reserve(3 * m.triangles.size());
-  auto key = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = m.triangles[t](k), b = m.triangles[t]((k + 1) % 3);
-      if (!directed.emplace(key(a, b), static_cast<int>(3 * t + static_cast<std::size_t>(k))).second) {
-        throw ArgumentError("MeshBody: edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                            ") is used twice in the same direction; expected a consistently oriented 2-manifold mesh");
-      }
-    }
-  }
-  m.neighbours.resize(m.triangles.size());
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = m.triangles[t](k), b = m.triangles[t]((k + 1) % 3);
-      const auto found = directed.find(key(b, a));
-      if (found == directed.end()) {
-        throw ArgumentError("MeshBody: edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                            ") has a triangle on one side only; expected a closed mesh");
-      }
-      m.neighbours[t][static_cast<std::size_t>(k)] = found->second / 3;
-    }
-  }
+  Impl::require_corners_in_range(triangles, static_cast<int>(vertices.rows()));
+  m.store_in_leaf_order(triangles);
+  m.link_neighbours();
   m.number_vertices_by_leaf();  // after the checks above, whose messages name the input's vertices
-
-  m.ring_start.assign(m.x.size() + 1, 0);
-  for (const Eigen::Vector3i& tri : m.triangles)
-    for (int k = 0; k < 3; ++k) ++m.ring_start[static_cast<std::size_t>(tri(k)) + 1];
-  for (std::size_t v = 0; v < m.x.size(); ++v) m.ring_start[v + 1] += m.ring_start[v];
-  m.ring.resize(3 * m.triangles.size());
-  std::vector<int> fill(m.ring_start.begin(), m.ring_start.end() - 1);
-  for (std::size_t t = 0; t < m.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      m.ring[static_cast<std::size_t>(fill[static_cast<std::size_t>(m.triangles[t](k))]++)] = {static_cast<int>(t), k};
-
+  m.build_rings();
   m.x_previous = m.x;
   m.tree.refit(m.triangles, m.x, /*first=*/true);
-  double volume = 0.0;
-  for (const Eigen::Vector3i& tri : m.triangles)
-    volume += m.x[static_cast<std::size_t>(tri(0))].dot(m.x[static_cast<std::size_t>(tri(1))].cross(m.x[static_cast<std::size_t>(tri(2))]));
-  if (!(volume > 0.0))
-    throw ArgumentError("MeshBody: the triangles enclose a negative volume; expected them ordered counter-clockwise seen from outside");
+  m.require_outward_orientation();
   const double diagonal = (m.tree.root_hi() - m.tree.root_lo()).norm();
   m.normal_floor = 1e-10 * std::max(1.0, diagonal);
 }
