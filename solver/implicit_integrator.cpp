@@ -742,24 +742,7 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
   return step(state, pinned_next, AnalyticScene(colliders));
 }
 
-StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next, const CollisionScene& scene) {
-  if (!model_) throw Error("ImplicitIntegrator::step called before precompute");
-  const DynamicsModel& m = *model_;
-  if (pinned_next.rows() != static_cast<Eigen::Index>(m.pinned_vertices.size()))
-    throw ArgumentError("pinned targets have " + std::to_string(pinned_next.rows()) + " rows; the model pins " +
-                        std::to_string(m.pinned_vertices.size()) + " vertices");
-  StepReport report;
-  const double h = options_.time_step;
-  if (m.P.cols() > 0) pinned_part_.noalias() = m.P * pinned_next;
-
-  const Positions q_previous = state.positions;
-  fresh_pass_ = true;  // the dynamics moved everything: the first limiter pass evaluates every spring
-  // Gravity is integrated exactly (x += h v + h^2 g / 2, v += h g), so free
-  // fall follows the true parabola and a hanging cloth carries its full weight.
-  Positions y = state.positions + h * state.velocities;
-  y.rowwise() += (0.5 * h * h) * options_.gravity.transpose();
-  Positions q = y;  // the inertial prediction is the usual warm start
-  const auto start = Clock::now();
+void ImplicitIntegrator::solve_dynamics(const Positions& y, Positions& q) const {
   Positions delta(q.rows(), 3);
   Positions grad;
   for (int it = 0; it < options_.iterations; ++it) {
@@ -772,15 +755,10 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     }
     q -= delta;
   }
-  report.dynamics_ms = ms_since(start);
-  if (self_contact_.enabled()) {
-    const auto gather_start = Clock::now();
-    full_.noalias() = m.S * q;
-    full_ += pinned_part_;
-    self_contact_.gather(full_positions(m, q_previous, state.pinned), full_);
-    report.collision_ms = ms_since(gather_start);
-  }
+}
 
+void ImplicitIntegrator::collide_and_limit(const Positions& q_previous, Positions& q, const CollisionScene& scene,
+                                          StepReport& report) {
   // Collisions are found once per step, right after the solve: each point
   // is resolved against the scene (posed for the end of the step, so it
   // does not move within it), with friction on the step's motion, and
@@ -820,6 +798,37 @@ StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_n
     ++report.rounds;
     if (checked == 0 && excess <= options_.round_tolerance && self_pushed == 0.0) break;
   }
+}
+
+StepReport ImplicitIntegrator::step(ClothState& state, const Positions& pinned_next, const CollisionScene& scene) {
+  if (!model_) throw Error("ImplicitIntegrator::step called before precompute");
+  const DynamicsModel& m = *model_;
+  if (pinned_next.rows() != static_cast<Eigen::Index>(m.pinned_vertices.size()))
+    throw ArgumentError("pinned targets have " + std::to_string(pinned_next.rows()) + " rows; the model pins " +
+                        std::to_string(m.pinned_vertices.size()) + " vertices");
+  StepReport report;
+  const double h = options_.time_step;
+  if (m.P.cols() > 0) pinned_part_.noalias() = m.P * pinned_next;
+
+  const Positions q_previous = state.positions;
+  fresh_pass_ = true;  // the dynamics moved everything: the first limiter pass evaluates every spring
+  // Gravity is integrated exactly (x += h v + h^2 g / 2, v += h g), so free
+  // fall follows the true parabola and a hanging cloth carries its full weight.
+  Positions y = state.positions + h * state.velocities;
+  y.rowwise() += (0.5 * h * h) * options_.gravity.transpose();
+  Positions q = y;  // the inertial prediction is the usual warm start
+  const auto start = Clock::now();
+  solve_dynamics(y, q);
+  report.dynamics_ms = ms_since(start);
+  if (self_contact_.enabled()) {
+    const auto gather_start = Clock::now();
+    full_.noalias() = m.S * q;
+    full_ += pinned_part_;
+    self_contact_.gather(full_positions(m, q_previous, state.pinned), full_);
+    report.collision_ms = ms_since(gather_start);
+  }
+
+  collide_and_limit(q_previous, q, scene, report);
 
   const double keep = 1.0 / (1.0 + m.material.damping * h);
   state.velocities = (keep / h) * (q - q_previous);

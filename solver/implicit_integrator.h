@@ -191,6 +191,13 @@ class ImplicitIntegrator {
   void newton_direction(const Positions& grad, Positions& delta) const;
   /// out = H v (free coordinates, #free x 3).
   void hessian_product(const Positions& v, Positions& out) const;
+  /// The step's local/global iterations from the inertial prediction y
+  /// (#free x 3): q, warm-started, becomes the solve's result.
+  void solve_dynamics(const Positions& y, Positions& q) const;
+  /// The step's collision checks and strain-limiting rounds on the solved
+  /// q, from q_previous (the step's start); adds their times and counts to
+  /// `report`.
+  void collide_and_limit(const Positions& q_previous, Positions& q, const CollisionScene& scene, StepReport& report);
   /// Returns the largest strain beyond the limit it met (0 when none).
   double limit_strain(Positions& q) const;
   /// Chebyshev extrapolation after a limiter sweep (see limit_strain): each
