@@ -132,6 +132,18 @@ void print_target(const std::vector<Row>& rows, const BenchOptions& b) {
                 default_rate ? "" : " (not at the default step rate, the mocap rate: the target is for that)", t.total_ms(),
                 t.total_ms() <= 100.0 ? "met" : "not met", t.collision_ms, t.dynamics_ms,
                 t.collision_ms <= t.dynamics_ms ? "met" : "not met");
+    // The solve (the springs' gradient and the factor's triangular solves)
+    // is the same work every step at the default iterations, whatever the
+    // cloth does: a gauge of the machine against the one the README's
+    // 117.0 ms were measured on (861bb6d, 2026-11-27: solve 9.0 ms).
+    constexpr double kReferenceSolveMs = 9.0;
+    const IntegratorOptions defaults;
+    if (b.run.simulation.iterations == defaults.iterations && b.run.simulation.newton_cg == defaults.newton_cg &&
+        default_rate)
+      std::printf("for scale: the solve, the same work every step, took %.1f ms per frame here and %.1f on the machine "
+                  "that measured 117.0 ms per frame (861bb6d, 2026-11-27): this one ran it %.1f times slower (memory-bound parts "
+                  "slow down most, the limiter and the checks less: bench/results/collision-cost.md)\n",
+                  t.dynamics_ms - t.limiter_ms, kReferenceSolveMs, (t.dynamics_ms - t.limiter_ms) / kReferenceSolveMs);
   }
 }
 
