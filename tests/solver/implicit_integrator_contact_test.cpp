@@ -327,6 +327,44 @@ class CountingScene : public CollisionScene {
   const CollisionScene& inner_;
 };
 
+TEST(CompositeScene, DepthAndPenetrationAreTheDeepestPartsAndAgreeWithDepths) {
+  // A box body and a sphere overlapping it: on a grid through both, the
+  // scene's depth and penetration are each the larger of its parts', to the
+  // bit, and its depths() gives both at once.
+  Eigen::MatrixX3d box(8, 3);
+  for (int v = 0; v < 8; ++v)
+    box.row(v) << ((v & 1) ^ ((v >> 1) & 1) ? 0.15 : -0.15), v & 2 ? 0.15 : -0.15, v & 4 ? 0.15 : -0.15;
+  const std::vector<Eigen::Vector3i> faces = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                             {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  const MeshBody body(box, faces, 0.004, 0.3);
+  std::vector<Collider> sphere(1);
+  sphere[0].shape = SphereCollider{{0.15, 0.0, 0.0}, 0.1};
+  const AnalyticScene fixed(sphere);
+  CompositeScene scene;
+  scene.add(&fixed);
+  scene.add(&body);
+  int in_box_only = 0, in_sphere_only = 0, in_both = 0, outside = 0;
+  for (double x = -0.3; x <= 0.3001; x += 0.0125)
+    for (double y = -0.2; y <= 0.2001; y += 0.05)
+      for (double z = -0.2; z <= 0.2001; z += 0.05) {
+        const Eigen::Vector3d p(x, y, z);
+        const double box_depth = body.depth(p), sphere_depth = fixed.depth(p);
+        ASSERT_EQ(scene.depth(p), std::max(box_depth, sphere_depth)) << p.transpose();
+        ASSERT_EQ(scene.penetration(p), std::max(body.penetration(p), fixed.penetration(p))) << p.transpose();
+        const PointDepths both = scene.depths(p);
+        ASSERT_EQ(both.depth, scene.depth(p)) << p.transpose();
+        ASSERT_EQ(both.penetration, scene.penetration(p)) << p.transpose();
+        in_box_only += box_depth > 0.0 && sphere_depth == 0.0;
+        in_sphere_only += sphere_depth > 0.0 && box_depth == 0.0;
+        in_both += box_depth > 0.0 && sphere_depth > 0.0;
+        outside += box_depth == 0.0 && sphere_depth == 0.0;
+      }
+  EXPECT_GT(in_box_only, 0);
+  EXPECT_GT(in_sphere_only, 0);
+  EXPECT_GT(in_both, 0);
+  EXPECT_GT(outside, 0);
+}
+
 TEST(ImplicitIntegrator, TheContactSlackSavesChecksAndKeepsEveryPointOut) {
   // A sheet pinned along two opposite edges, pushed up from below by a box
   // body rising into it at 0.6 m/s: the limiter drags the points the box

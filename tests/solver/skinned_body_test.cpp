@@ -5,9 +5,11 @@
 #include "solver/body_skinned_mesh.h"
 #include "solver/mesh_body.h"
 
+#include "solver/character_setup.h"
 #include "solver/character_sim.h"
 
 #include "mesh_ops/errors.h"
+#include "mesh_ops/garment_io.h"
 #include "solver/colliders.h"
 #include "solver/joint_names.h"
 #include "mesh_oracles.h"
@@ -793,6 +795,38 @@ TEST(SkinnedBodyOtherSkeleton, TheDazClipBindsOnceItsJointsAreRenamed) {
   for (const char* name : {"Hips", "LHipJoint", "RHipJoint", "LeftUpLeg", "RightUpLeg"})
     hips += distorted.count(name) ? distorted.at(name) : 0;
   EXPECT_LE(hips, 60);
+}
+
+TEST_F(SkinnedBodyTest, ThePosedBodysDepthIsItsMeshsOrItsBridgesAsDepthsSays) {
+  SKIP_WITHOUT_BODY();
+  // The skinned body as a run collides with it (make_character: the mesh,
+  // the leg bridges and the mittens), posed at walk frames: around its
+  // skin, depth() and penetration() agree with depths() to the bit, and
+  // some points are inside.
+  const QuadMesh skirt = load_garment(test::shared_data("garments/makehuman/skirthelper.obj"), {"dm"}).mesh;
+  CharacterSetup setup;
+  setup.body = CharacterBodyKind::mesh;
+  setup.makehuman = makehuman_files(test::shared_data("bodies/makehuman"));
+  setup.place = GarmentPlacement::makehuman;
+  const Character character = make_character(*motion_, setup, skirt);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> offset(-0.015, 0.015);
+  int inside = 0, points = 0;
+  for (const int frame : {40, 160, 300}) {
+    const Pose pose = frame_pose(*character.motion, frame);
+    character.body->set_pose(pose);
+    const CollisionScene& scene = character.body->scene();
+    const BodySurface surface = character.body->surface(pose);
+    for (Eigen::Index v = 0; v < surface.vertices.rows(); v += 37, ++points) {
+      const Vector3d p = surface.vertices.row(v).transpose() + Vector3d(offset(rng), offset(rng), offset(rng));
+      const PointDepths both = scene.depths(p);
+      ASSERT_EQ(scene.depth(p), both.depth) << "frame " << frame << ", near body vertex " << v;
+      ASSERT_EQ(scene.penetration(p), both.penetration) << "frame " << frame << ", near body vertex " << v;
+      inside += both.depth > 0.0;
+    }
+  }
+  EXPECT_GT(inside, points / 10) << "of " << points;
+  EXPECT_LT(inside, points) << "of " << points;
 }
 
 }  // namespace
