@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
+
+#include <sys/resource.h>
 
 #include "test_meshes.h"
 
@@ -166,6 +169,47 @@ TEST(Pc2, CancelledWriterKeepsAnExistingCache) {
   }
   EXPECT_EQ(read_bytes(path), before);
   EXPECT_EQ(folder_contents(dir), std::vector<std::string>{"cloth.pc2"});
+}
+
+/// Files this process writes can grow to at most `bytes` while it lives
+/// (RLIMIT_FSIZE, with SIGXFSZ ignored so a write past it fails with EFBIG
+/// instead of ending the process): a disk that fills up mid-write.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit lowered = saved_;
+    lowered.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lowered);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = SIG_DFL;
+};
+
+TEST(Pc2, AFullDiskMidWriteIsAnErrorNamingTheFrameAndLeavesTheOldCache) {
+  const fs::path dir = empty_folder("full_disk");
+  const fs::path path = dir / "cloth.pc2";
+  write_pc2(path, random_frames(3, 5, 7));
+  const std::vector<unsigned char> before = read_bytes(path);
+  const std::vector<FramePositions> frames = random_frames(3, 5000, 8);  // 60,000 bytes a frame
+  {
+    const FileSizeLimit limit(100000);  // the header and one frame fit, not two
+    Pc2Writer writer(path.string(), 5000);
+    writer.add_frame(frames[0]);
+    expect_error<OutputError>([&] { writer.add_frame(frames[1]); }, {"cloth.pc2", "cannot write frame 1"});
+    expect_error<OutputError>([&] { writer.finish(); }, {"cloth.pc2", "failed"});
+  }
+  EXPECT_EQ(read_bytes(path), before) << "the cache from before is untouched";
+  EXPECT_EQ(folder_contents(dir), std::vector<std::string>{"cloth.pc2"}) << "no temporary file is left";
 }
 
 TEST(Pc2, WriterRefusesBadArguments) {
