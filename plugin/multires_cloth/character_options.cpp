@@ -274,8 +274,10 @@ void parseWaist(const Fields& fields, CharacterSetup& setup) {
              .arg(fields.label(QStringLiteral("waistSmoothing"))));
 }
 
-/// One entry of body.radii (`entry` names it): a radius, or [head, tail].
-std::pair<double, double> capsuleRadius(const QVariant& value, const QString& entry) {
+/// One entry of body.radii (`path` names it, as body.radii.Hips): a
+/// radius, or [head, tail].
+std::pair<double, double> capsuleRadius(const QVariant& value, const QString& path) {
+  const QString entry = QStringLiteral("option '%1'").arg(path);
   std::pair<double, double> radius;
   if (options::isNumber(value)) {
     radius.first = radius.second = script::toNumber(value, entry);
@@ -284,8 +286,8 @@ std::pair<double, double> capsuleRadius(const QVariant& value, const QString& en
     if (pair.size() != 2)
       fail(QStringLiteral("%1 must be a radius or [head, tail] in metres, got %2")
                .arg(entry, script::describeValue(value)));
-    radius = {script::toNumber(pair[0], entry + QStringLiteral("[0]")),
-              script::toNumber(pair[1], entry + QStringLiteral("[1]"))};
+    radius = {script::toNumber(pair[0], QStringLiteral("option '%1[0]'").arg(path)),
+              script::toNumber(pair[1], QStringLiteral("option '%1[1]'").arg(path))};
   }
   if (!(radius.first >= 0.0 && radius.second >= 0.0))
     fail(QStringLiteral("%1 must be >= 0 (0 removes the capsule), got %2").arg(entry, script::describeValue(value)));
@@ -305,7 +307,7 @@ void parseCapsuleRadii(const Fields& fields, CharacterSetup& setup) {
   const QVariantMap map = radii.toMap();
   for (auto it = map.cbegin(); it != map.cend(); ++it)
     setup.radii[it.key().toStdString()] =
-        capsuleRadius(it.value(), QStringLiteral("option 'body.radii.%1'").arg(it.key()));
+        capsuleRadius(it.value(), QStringLiteral("body.radii.%1").arg(it.key()));
 }
 
 void parseBody(const Fields& top, CharacterRequest& request) {

@@ -94,6 +94,18 @@ for (const corner of ["min", "max"])  // the PC2 holds floats
 // the skirt was modelled on: the placement is a small shift.
 if (!(Math.hypot(...report.placement) < 0.1)) throw new Error("placement " + JSON.stringify(report.placement));
 
+// body.radii sets a joint's capsule: a thigh 0.3 m round would start
+// around the placed skirt, so it is shrunk until the skirt is clear; a
+// radius of 0 removes the capsule. (The mannequin's own radii shrink none.)
+expectEqual(report.capsulesShrunk, 0, "capsules shrunk at the mannequin's radii");
+const radii = r => multirescloth.simulate(skirt, {motion: {path: walk, units: "m"}, place: "firstFrame", preroll: 0.1,
+                                                  frames: 1, body: {type: "capsules", thickness: 0.002, radii: r}});
+const thick = radii({LeftUpLeg: 0.3});
+expectEqual([thick.capsules, thick.capsulesShrunk], [report.capsules, 1], "a thigh 0.3 m round, shrunk");
+expectAtMost(thick.preroll.initialPenetration, 0, "the skirt at the start, clear of the shrunk thigh:");
+expectEqual(radii({Hips: 0}).capsules, report.capsules - 1, "capsules without the pelvis's");
+expectEqual(radii({LeftUpLeg: [0.06, 0.05]}).capsulesShrunk, 0, "a thigh of the mannequin's size, tapered");
+
 // recordInstance: the same run recorded for the analysis, with the rest
 // mesh the cache plays on.
 const out = tmpDir + "/instance.pc2", restObj = tmpDir + "/instance.obj";

@@ -42,6 +42,20 @@ expectThrows(sim({motion: walk, body: {thickness: -1}}), "ArgumentError",
 expectThrows(sim({motion: walk, body: {thickness: 4}}), "ArgumentError",
              "option 'body.thickness' must be from 0 to 0.05 m, got the number 4");
 expectThrows(sim({motion: walk, body: 3}), "ArgumentError", "option 'body' must be \"capsules\", \"mesh\" or an object");
+// Capsule radii, per joint: a radius or [head, tail] in metres.
+expectThrows(sim({motion: walk, body: {radii: {LeftUpLeg: -0.1}}}), "ArgumentError",
+             "option 'body.radii.LeftUpLeg' must be >= 0 (0 removes the capsule), got the number -0.1");
+expectThrows(sim({motion: walk, body: {radii: {LeftUpLeg: [0.1]}}}), "ArgumentError",
+             "option 'body.radii.LeftUpLeg' must be a radius or [head, tail] in metres");
+expectThrows(sim({motion: walk, body: {radii: {LeftUpLeg: [0.1, "wide"]}}}), "ArgumentError",
+             "option 'body.radii.LeftUpLeg[1]' must be a finite number, got the string \"wide\"");
+expectThrows(sim({motion: walk, body: {radii: [0.1, 0.2]}}), "ArgumentError",
+             "option 'body.radii' must be an object {joint name: radius or [head, tail]}");
+expectThrows(sim({motion: walk, body: {type: "mesh", obj: walk, skeleton: walk, weights: walk, radii: {Hips: 0.1}}}),
+             "ArgumentError", "option 'body.radii' applies to capsules only, not to type \"mesh\"");
+expectThrows(sim({motion: {path: walk, units: "m"}, body: {radii: {Tail: 0.05}}, frames: 1}), "ArgumentError",
+             "option 'body.radii.Tail': the motion's skeleton has no joint of that name");
+
 expectThrows(sim({motion: walk, body: {waistFollows: "skin"}}), "ArgumentError",
              "option 'body.waistFollows' \"skin\" needs a body to skin by");
 expectThrows(sim({motion: walk, body: {waistFollows: "ribs"}}), "ArgumentError", "option 'body.waistFollows'");
