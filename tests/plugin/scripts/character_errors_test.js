@@ -213,6 +213,13 @@ core.writeTextFile(hipless, core.readTextFile(walk).replace("ROOT Hips", "ROOT A
                                                             ).replace(/\nMOTION/, "}\nMOTION"));
 expectThrows(() => multirescloth.simulate(skirt, {motion: hipless, frames: 1}), "InputError", "hipless.bvh has no joint 'Hips'",
              "e.g. {\"my_hips\": \"Hips\"}");
+// No joint says hips or pelvis: it suggests the first that carries the figure
+// (position channels), not the channel-less wrapper above it.
+const groin = tmpDir + "/groin.bvh";
+core.writeTextFile(groin, core.readTextFile(walk).replace("ROOT Hips", "ROOT Armature\n{\n OFFSET 0 0 0\n CHANNELS 0\n JOINT Root")
+                                                 .replace(/HipJoint/g, "Groin").replace(/\nMOTION/, "}\nMOTION"));
+expectThrows(() => multirescloth.simulate(skirt, {motion: groin, frames: 1}), "InputError", "groin.bvh has no joint 'Hips'",
+             "e.g. {\"Root\": \"Hips\"}");
 
 // motionInfo: the clip as a run reads it, units "auto" resolved.
 const info = multirescloth.motionInfo({path: walk, units: "auto"});
