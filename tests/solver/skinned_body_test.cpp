@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <initializer_list>
 #include <iostream>
@@ -827,6 +828,54 @@ TEST_F(SkinnedBodyTest, ThePosedBodysDepthIsItsMeshsOrItsBridgesAsDepthsSays) {
   }
   EXPECT_GT(inside, points / 10) << "of " << points;
   EXPECT_LT(inside, points) << "of " << points;
+}
+
+TEST(SkinnedBodyParts, PartsThatDoNotMatchAreRefusedNamingTheCall) {
+  // A two-joint chain and a three-vertex body: each part whose count does
+  // not match the body's vertices or the skeleton's joints is refused by
+  // every call that reads it, the message naming the call and the counts.
+  Skeleton skeleton;
+  for (int k = 0; k < 2; ++k) {
+    Joint j;
+    j.name = k == 0 ? "Hips" : "Spine";
+    j.parent = k - 1;
+    j.offset = {0.0, 0.1 * k, 0.0};
+    j.channels = {Channel::z_rotation, Channel::x_rotation, Channel::y_rotation};
+    j.first_channel = 3 * k;
+    skeleton.joints.push_back(j);
+  }
+  SkinnedBody good;
+  good.rest_vertices = Eigen::MatrixX3d::Identity(3, 3);
+  good.triangles = {Vector3i(0, 1, 2)};
+  good.weights = {{{0, 1.0}}, {{1, 1.0}}, {{0, 0.5}, {1, 0.5}}};
+  const Pose rest = rest_pose(skeleton);
+  ASSERT_NO_THROW(skin(good, skeleton, rest));
+  const auto expect_refused = [&](const SkinnedBody& body, const std::string& part) {
+    for (const auto& [call, run] : std::vector<std::pair<std::string, std::function<void()>>>{
+             {"skin", [&] { skin(body, skeleton, rest); }},
+             {"mesh_pose", [&] { mesh_pose(body, skeleton); }},
+             {"turned_triangles", [&] { turned_triangles(body, skeleton, rest, good.rest_vertices); }}}) {
+      try {
+        run();
+        ADD_FAILURE() << call << " took " << part;
+      } catch (const ArgumentError& error) {
+        const std::string message = error.what();
+        EXPECT_EQ(message.rfind(call + ": the body", 0), 0u) << message;
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+      }
+    }
+  };
+  SkinnedBody weights = good;
+  weights.weights.pop_back();
+  expect_refused(weights, "2 weight lists for 3 vertices");
+  SkinnedBody pivots = good;
+  pivots.joint_rest = {Vector3d::Zero()};
+  expect_refused(pivots, "1 joint pivots; expected 2");
+  SkinnedBody input = good;
+  input.input_vertices = Eigen::MatrixX3d::Zero(2, 3);
+  input.input_joints.assign(2, Vector3d::Zero());
+  input.rest_correction.assign(2, Eigen::Matrix3d::Identity());
+  expect_refused(input, "input mesh (2 vertices, 2 joints, 2 corrections) does not match its 3 vertices");
 }
 
 }  // namespace
