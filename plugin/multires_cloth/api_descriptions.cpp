@@ -169,7 +169,7 @@ QList<SlotDescription> MultiresClothPlugin::slotDescriptions() const {
                       "motionUnits, motionStart, "
                       "motionDuration (s), skipFirst, place, placement [dx, dy, dz] (m), stepRate, legBridges, capsulesShrunk (capsules the garment started inside, shrunk to clear it), waistFollows, waistSmoothing (m, 0 when the waist follows the pelvis), "
                       "handMittens (mesh body: capsules standing in for its hands, 0: its own hands), "
-                      "armsOpened {maxDegrees, steps, clearance}, jointsRenamed {name in the file: CMU name} "
+                      "armsOpened {maxDegrees, steps, clearance (m; false when armClearance is)}, jointsRenamed {name in the file: CMU name} "
                       "(motion.joints), axesTurned (motion.axes: \"\" or e.g. \"x = x, y = z, z = -y\"). The rest pose is "
                       "the clip's T-pose moved to where the root is at `start`, so the pre-roll moves the joints, "
                       "not the character (a clip not facing +Z at `start` is turned to its heading during the "

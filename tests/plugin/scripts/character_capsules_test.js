@@ -106,6 +106,17 @@ expectAtMost(thick.preroll.initialPenetration, 0, "the skirt at the start, clear
 expectEqual(radii({Hips: 0}).capsules, report.capsules - 1, "capsules without the pelvis's");
 expectEqual(radii({LeftUpLeg: [0.06, 0.05]}).capsulesShrunk, 0, "a thigh of the mannequin's size, tapered");
 
+// body.legBridges: none, to the ankles, or automatic (the knees for this
+// skirt, as above); body.armClearance: the clip's arms as they are, or a
+// clearance of one's own.
+const quick = b => multirescloth.simulate(skirt, {motion: {path: walk, units: "m"}, place: "firstFrame", preroll: 0.1,
+                                                  frames: 1, body: Object.assign({type: "capsules", thickness: 0.002}, b)});
+expectEqual([false, 0, 2, "auto", true].map(v => quick({legBridges: v}).legBridges), [0, 0, 2, 1, 1],
+            "leg bridges for false, 0, 2, \"auto\", true");
+const armsAsTheyAre = quick({armClearance: false});
+expectEqual([armsAsTheyAre.armsOpened.clearance, armsAsTheyAre.armsOpened.maxDegrees], [false, 0], "arms as the clip has them");
+expectEqual(quick({armClearance: 0.05}).armsOpened.clearance, 0.05, "an arm clearance of one's own");
+
 // recordInstance: the same run recorded for the analysis, with the rest
 // mesh the cache plays on.
 const out = tmpDir + "/instance.pc2", restObj = tmpDir + "/instance.obj";

@@ -65,6 +65,11 @@ expectThrows(sim({motion: walk, body: {waistSmoothing: 0.02}}), "ArgumentError",
              "option 'body.waistSmoothing' applies where the waist follows the skin");
 expectThrows(sim({motion: walk, body: {obj: walk, skeleton: walk, weights: walk, waistFollows: "pelvis", waistSmoothing: 0}}),
              "ArgumentError", "option 'body.waistSmoothing' applies where the waist follows the skin");
+expectThrows(sim({motion: walk, body: {legBridges: 3}}), "ArgumentError",
+             "option 'body.legBridges' must be \"auto\", false, 0 or a reach from 0.5 to 2 bones below the hips",
+             "got the number 3");
+expectThrows(sim({motion: walk, body: {legBridges: 0.2}}), "ArgumentError", "option 'body.legBridges'", "got the number 0.2");
+expectThrows(sim({motion: walk, body: {legBridges: "knees"}}), "ArgumentError", "option 'body.legBridges'");
 expectThrows(sim({motion: walk, body: {armClearance: 0.5}}), "ArgumentError",
              "option 'body.armClearance' must be \"auto\", false or a clearance from 0 to 0.1 m, got the number 0.5");
 expectThrows(sim({motion: walk, body: {armClearance: -0.01}}), "ArgumentError", "option 'body.armClearance'");
