@@ -251,6 +251,34 @@ TEST(MaterialEvaluator, ErrorsNameTheElement) {
   EXPECT_THROW(material_points(plain), ArgumentError);
 }
 
+TEST(MaterialPoints, ADamagedForestOrAForeignBindingIsRefusedNamingTheRecord) {
+  QuadMesh mesh = test::make_grid(2, 2);
+  uniform_refine(mesh, 1);
+  const auto damaged = [&](const std::function<void(std::vector<QuadRecord>&)>& damage) {
+    QuadMesh copy = copy_mesh(mesh);
+    damage(copy.property(get_layers(copy).quadtree));
+    return copy;
+  };
+  const auto refused = [](const QuadMesh& m, const std::string& part) {
+    expect_throws_naming([&] { material_points(m); }, part);
+  };
+  refused(damaged([](auto& f) { f[1].parent = 5; }), "quad record 1 has parent 5 stored after it");
+  refused(damaged([](auto& f) { f[0].children[0] = 0; }), "quad record 0 has child 0 out of order or range");
+  refused(damaged([](auto& f) { f[2].corners[3] = 999; }),
+          "quad record 2 has corner vertex 999; the mesh has " + std::to_string(mesh.n_vertices()) + " vertices");
+  QuadMesh isolated = copy_mesh(mesh);
+  isolated.add_vertex({5.0, 5.0, 0.0});
+  refused(isolated, "vertex " + std::to_string(mesh.n_vertices()) + " is no corner of any quad record");
+
+  // A binding belongs to the mesh it was made for.
+  QuadMesh finer = copy_mesh(mesh);
+  uniform_refine(finer, 1);
+  const MaterialBinding foreign = MaterialEvaluator(finer).bind(material_points(mesh));
+  expect_throws_naming([&] { MaterialEvaluator(mesh).evaluate(foreign, mesh_positions(mesh)); },
+                       "binding was made for a mesh of " + std::to_string(finer.n_vertices()) +
+                           " vertices; this evaluator's mesh has " + std::to_string(mesh.n_vertices()));
+}
+
 // ---------------------------------------------------------------- distances
 
 TEST(PointDistances, SelfIsExactlyZero) {
