@@ -264,6 +264,14 @@ std::vector<Malformed> malformed_variants() {
   cases.push_back({"channel_count_root",
                    edit(5, "\tCHANNELS 5 Xposition Yposition Zposition Zrotation Yrotation Xrotation"), 5, "CHANNELS"});
   cases.push_back({"unknown_channel", edit(9, "\t\tCHANNELS 3 Zrotation Xrot Yrotation"), 9, "'Xrot'"});
+  cases.push_back({"channel_twice", edit(9, "\t\tCHANNELS 3 Zrotation Xrotation Zrotation"), 9, "'Zrotation' listed twice"});
+  {
+    // One channel name too many, on a line of its own after the CHANNELS line.
+    std::vector<std::string> lines = small_lines();
+    lines[8] = "\t\tCHANNELS 2 Zrotation Xrotation";
+    lines.insert(lines.begin() + 9, "\t\tYrotation");
+    cases.push_back({"channel_after_the_list", lines, 9, "CHANNELS declares 2 channels but lists more"});
+  }
   cases.push_back({"channel_case", edit(9, "\t\tCHANNELS 3 zrotation Xrotation Yrotation"), 9, "'zrotation'"});
   cases.push_back(
       {"channel_count_non_numeric", edit(9, "\t\tCHANNELS three Zrotation Xrotation Yrotation"), 9, "'three'"});
