@@ -212,6 +212,10 @@ expectThrows(sim({motion: walk, preroll: 1e-300}), "ArgumentError",
 expectThrows(() => multirescloth.recordInstance(skirt, {motion: walk, frames: 1, preroll: 0, output: tmpDir + "/same.pc2",
                                                         bodyOutput: tmpDir + "/same.pc2"}),
              "ArgumentError", "option 'output' and option 'bodyOutput' are one file");
+expectThrows(() => multirescloth.recordInstance(skirt, {motion: walk, frames: 1, preroll: 0, output: tmpDir + "/cloth.pc2",
+                                                        bodyOutput: tmpDir + "/body.obj"}),
+             "ArgumentError", "option 'bodyOutput' must be the body's PC2 cache (e.g. body.pc2), not an .obj",
+             "got \"" + tmpDir + "/body.obj\"");
 // A clip without Hips: the message suggests the joint that says hips.
 const hipless = tmpDir + "/hipless.bvh";
 core.writeTextFile(hipless, core.readTextFile(walk).replace("ROOT Hips", "ROOT Armature\n{\n OFFSET 0 0 0\n CHANNELS 0\n JOINT my_hips"

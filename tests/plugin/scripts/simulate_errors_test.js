@@ -164,6 +164,17 @@ core.makePath(tmpDir + "/folder.obj");
 expectThrows(sim({frames: 1, output: tmpDir + "/folder.pc2"}), "OutputError",
              "the rest mesh beside option 'output', ", "folder.obj, is a folder");
 expectEqual(core.fileExists(tmpDir + "/folder.pc2"), false, "no cache written by the refused call");
+// The OBJ sequence too: a frame of it that is the garment's file, or a folder.
+core.writeTextFile(tmpDir + "/seq_0001.obj", core.readTextFile(dataDir + "/grid3x3.obj"));
+const frameSource = core.loadObject(tmpDir + "/seq_0001.obj");
+expectThrows(() => multirescloth.simulate(frameSource, {frames: 2, objSequence: tmpDir + "/seq"}), "OutputError",
+             "frame 1 of option 'objSequence' is the garment's file", "seq_0001.obj",
+             "expected outputs that leave the run's inputs as they are");
+expectEqual(core.fileExists(tmpDir + "/seq_0000.obj"), false, "no frame written by the refused call");
+core.deleteObject(frameSource);
+core.makePath(tmpDir + "/seqdir_0000.obj");
+expectThrows(sim({frames: 1, objSequence: tmpDir + "/seqdir"}), "OutputError",
+             "frame 0 of option 'objSequence', ", "seqdir_0000.obj, is a folder; expected a file's path");
 core.deleteObject(source);
 // A frame's work is bounded: progress and Ctrl-C come between frames.
 expectThrows(sim({substeps: 1e9}), "ArgumentError", "option 'substeps' must be an integer from 1 to 1000, got the number 1e+09");
