@@ -70,6 +70,14 @@ expectThrows(sim({motion: walk, body: {legBridges: 3}}), "ArgumentError",
              "got the number 3");
 expectThrows(sim({motion: walk, body: {legBridges: 0.2}}), "ArgumentError", "option 'body.legBridges'", "got the number 0.2");
 expectThrows(sim({motion: walk, body: {legBridges: "knees"}}), "ArgumentError", "option 'body.legBridges'");
+// Bridges join a capsule on each leg: a thigh without one (radius 0) leaves
+// them nothing to join, unless there are none.
+expectThrows(() => multirescloth.simulate(skirt, {motion: {path: walk, units: "m"}, place: "firstFrame", preroll: 0.1,
+                                                  frames: 1, body: {type: "capsules", radii: {LeftUpLeg: 0}}}),
+             "ArgumentError", "option 'body': leg bridges need a capsule on both thighs", "or no leg bridges");
+expectEqual(multirescloth.simulate(skirt, {motion: {path: walk, units: "m"}, place: "firstFrame", preroll: 0.1, frames: 1,
+                                           body: {type: "capsules", radii: {LeftUpLeg: 0}, legBridges: false}}).legBridges,
+            0, "a thigh without a capsule and no bridges");
 expectThrows(sim({motion: walk, body: {armClearance: 0.5}}), "ArgumentError",
              "option 'body.armClearance' must be \"auto\", false or a clearance from 0 to 0.1 m, got the number 0.5");
 expectThrows(sim({motion: walk, body: {armClearance: -0.01}}), "ArgumentError", "option 'body.armClearance'");
