@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <random>
 #include <string>
@@ -312,6 +313,50 @@ TEST(CapsuleRig, PosedCapsulesFollowForwardKinematics) {
                   (rest.position(bone.child) - rest.position(bone.joint)).norm(), 1e-12);
   }
   EXPECT_THROW(body.pose(Pose{}), ArgumentError) << "a pose of another skeleton";
+}
+
+TEST(CapsuleBody, ARigThatDoesNotFitItsSkeletonIsRefusedNamingTheCapsule) {
+  // Each damage to a valid rig is refused where a body is made of it, the
+  // message naming the capsule or bridge and what was expected.
+  const Skeleton skeleton = cmu_like();
+  const int joints = static_cast<int>(skeleton.joints.size());
+  CapsuleRig valid = make_capsule_rig(skeleton);
+  add_leg_bridges(valid, skeleton, 1.0);
+  ASSERT_FALSE(valid.bridges.empty());
+  ASSERT_NO_THROW(CapsuleBody(valid, skeleton));
+  const auto refused = [&](const std::function<void(CapsuleRig&)>& damage, const std::string& part) {
+    CapsuleRig rig = valid;
+    damage(rig);
+    try {
+      CapsuleBody body(rig, skeleton);
+      ADD_FAILURE() << "no error; expected one naming '" << part << "'";
+    } catch (const ArgumentError& error) {
+      EXPECT_NE(std::string(error.what()).find("CapsuleBody: " + part), std::string::npos) << error.what();
+    }
+  };
+  refused([&](CapsuleRig& r) { r.bones[2].child = joints; },
+          "capsule 2: joints " + std::to_string(valid.bones[2].joint) + " -> " + std::to_string(joints) +
+              " are not both in the skeleton's " + std::to_string(joints) + " joints");
+  refused([](CapsuleRig& r) { r.bones[1].radius_head = -0.01; }, "capsule 1: radii must be finite, >= 0 and not both 0");
+  refused([](CapsuleRig& r) { r.bones[1].radius_head = r.bones[1].radius_tail = 0.0; }, "capsule 1: radii must be");
+  refused([](CapsuleRig& r) { r.bones[0].radius_tail = std::nan(""); }, "capsule 0: radii must be");
+  refused([](CapsuleRig& r) { r.bones[3].shift_tail.x() = std::numeric_limits<double>::infinity(); },
+          "capsule 3: its shifts must be finite");
+  refused([](CapsuleRig& r) { r.bridges[0].child_b = -1; }, "bridge 0 names joint -1, not one of the skeleton's");
+  refused([](CapsuleRig& r) { r.bridges[0].at = 1.5; }, "bridge 0 needs 0 <= at <= 1 and a radius > 0");
+  refused([](CapsuleRig& r) { r.bridges[0].radius = 0.0; }, "bridge 0 needs 0 <= at <= 1 and a radius > 0");
+  refused([](CapsuleRig& r) { r.thickness = 0.5; }, "thickness must be from 0 to 0.05 m");
+  refused([](CapsuleRig& r) { r.friction = -1.0; }, "friction must be a finite number >= 0 (got -1)");
+  Skeleton looped = skeleton;
+  looped.joints[3].parent = 5;
+  try {
+    CapsuleBody body(valid, looped);
+    ADD_FAILURE() << "a joint whose parent comes after it";
+  } catch (const ArgumentError& error) {
+    EXPECT_NE(std::string(error.what()).find("CapsuleBody: joint 3 (" + skeleton.joints[3].name + ") has parent 5"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(CapsuleBody, PenetrationIsTheDeepestExactCapsuleQuery) {
