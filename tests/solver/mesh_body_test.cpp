@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <string>
@@ -727,16 +728,34 @@ TEST(MeshBody, FrictionCarriesPointsWithTheMovingSurface) {
 
 TEST(MeshBody, RefusesBadMeshesAndUpdates) {
   const Mesh cube = subdivided_cube(2);
+  // Each refusal names what is wrong (the constructor's checks, in order).
+  const auto refused = [](const std::function<void()>& make, const std::string& part) {
+    try {
+      make();
+      ADD_FAILURE() << "no error; expected one naming '" << part << "'";
+    } catch (const ArgumentError& error) {
+      EXPECT_NE(std::string(error.what()).find(part), std::string::npos) << error.what();
+    }
+  };
   std::vector<Vector3i> open = cube.triangles;
   open.pop_back();
-  EXPECT_THROW(MeshBody(cube.vertices, open), ArgumentError);
+  refused([&] { MeshBody(cube.vertices, open); }, "has a triangle on one side only; expected a closed mesh");
   std::vector<Vector3i> inverted = cube.triangles;
   for (Vector3i& t : inverted) std::swap(t(1), t(2));
-  EXPECT_THROW(MeshBody(cube.vertices, inverted), ArgumentError);
+  refused([&] { MeshBody(cube.vertices, inverted); }, "the triangles enclose a negative volume");
   std::vector<Vector3i> out_of_range = cube.triangles;
   out_of_range[0](0) = 1000;
-  EXPECT_THROW(MeshBody(cube.vertices, out_of_range), ArgumentError);
-  EXPECT_THROW(MeshBody(cube.vertices, cube.triangles, -0.1), ArgumentError);
+  refused([&] { MeshBody(cube.vertices, out_of_range); },
+          "MeshBody: triangle 0 names vertex 1000; expected an index below " + std::to_string(cube.vertices.rows()));
+  std::vector<Vector3i> doubled = cube.triangles;
+  doubled.push_back(cube.triangles[0]);
+  refused([&] { MeshBody(cube.vertices, doubled); }, "is used twice in the same direction");
+  Eigen::MatrixX3d not_finite = cube.vertices;
+  not_finite(3, 1) = std::nan("");
+  refused([&] { MeshBody(not_finite, cube.triangles); }, "MeshBody: vertex 3 is not finite");
+  refused([&] { MeshBody(cube.vertices, {}); }, "MeshBody: no triangles");
+  refused([&] { MeshBody(cube.vertices, cube.triangles, -0.1); }, "MeshBody: thickness must be from 0 to");
+  refused([&] { MeshBody(cube.vertices, cube.triangles, 0.004, -1.0); }, "MeshBody: friction must be a finite number >= 0");
   EXPECT_NO_THROW(MeshBody(cube.vertices, cube.triangles, kMostContactThickness));
   EXPECT_THROW(MeshBody(cube.vertices, cube.triangles, std::nextafter(kMostContactThickness, 1.0)), ArgumentError);
   MeshBody body(cube.vertices, cube.triangles);
