@@ -73,9 +73,21 @@ const Eigen::MatrixX3d& source_vertices(const SkinnedBody& body) {
 }  // namespace
 
 TurnedTriangles::TurnedTriangles(const SkinnedBody& body) : body_(body) {
+  // Checked once here, not in check_body: skin() and mesh_pose() do not
+  // read the triangles, and check_body runs every step.
+  for (std::size_t t = 0; t < body.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (body.triangles[t][k] < 0 || body.triangles[t][k] >= body.rest_vertices.rows())
+        throw ArgumentError("turned_triangles: the body's triangle " + std::to_string(t) + " names vertex " +
+                            std::to_string(body.triangles[t][k]) + "; expected an index below " +
+                            std::to_string(body.rest_vertices.rows()));
   const Eigen::MatrixX3d& source = source_vertices(body);
   source_normal_.reserve(body.triangles.size());
-  const auto row = [&](int v) { return Vector3d(source.row(v).transpose()); };
+  // A corner out of the source's range reads as the origin: operator()
+  // refuses such a body (check_body) before it uses anything built here.
+  const auto row = [&](int v) {
+    return v >= 0 && v < source.rows() ? Vector3d(source.row(v).transpose()) : Vector3d::Zero();
+  };
   for (const Eigen::Vector3i& tri : body.triangles)
     source_normal_.push_back((row(tri[1]) - row(tri[0])).cross(row(tri[2]) - row(tri[0])));
   // A triangle whose corners all follow one joint alone, each by a positive

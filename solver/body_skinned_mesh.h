@@ -67,6 +67,7 @@ std::vector<char> turned_triangles(const SkinnedBody& body, const Skeleton& skel
 class TurnedTriangles {
  public:
   /// The body must outlive this; each call checks it against the skeleton.
+  /// Throws ArgumentError for a triangle naming a vertex the body lacks.
   explicit TurnedTriangles(const SkinnedBody& body);
   /// turned_triangles(body, skeleton, pose, posed); valid until the next call.
   const std::vector<char>& operator()(const Skeleton& skeleton, const Pose& pose, const Eigen::MatrixX3d& posed);

@@ -876,6 +876,16 @@ TEST(SkinnedBodyParts, PartsThatDoNotMatchAreRefusedNamingTheCall) {
   input.input_joints.assign(2, Vector3d::Zero());
   input.rest_correction.assign(2, Eigen::Matrix3d::Identity());
   expect_refused(input, "input mesh (2 vertices, 2 joints, 2 corrections) does not match its 3 vertices");
+  // Only turned_triangles reads the triangles.
+  SkinnedBody corner = good;
+  corner.triangles = {Vector3i(0, 1, 7)};
+  EXPECT_NO_THROW(skin(corner, skeleton, rest));
+  try {
+    turned_triangles(corner, skeleton, rest, good.rest_vertices);
+    ADD_FAILURE() << "turned_triangles took a triangle naming vertex 7";
+  } catch (const ArgumentError& error) {
+    EXPECT_STREQ(error.what(), "turned_triangles: the body's triangle 0 names vertex 7; expected an index below 3");
+  }
 }
 
 }  // namespace
