@@ -38,11 +38,11 @@ done
 
 # Unpacked anywhere, the host runs on its own tree (the package's prefix,
 # CPACK_PACKAGING_INSTALL_PREFIX, inside the folder it is unpacked into).
-dpkg-deb -x "$deb" "$tmp/root" || { echo "FAILED: dpkg-deb -x"; exit 1; }
+dpkg-deb -x "$deb" "$tmp/unpacked_tree" || { echo "FAILED: dpkg-deb -x"; exit 1; }
 host="bin/mrcloth"  # the host's place in the install tree, below the prefix
 prefix=$(dpkg-deb -c "$deb" | awk -v host="$host" '{ n = $NF; k = length(n) - length(host)
   if (k > 0 && substr(n, k + 1) == host) print substr(n, 3, k - 3) }')
-unpacked="$tmp/root/$prefix"
+unpacked="$tmp/unpacked_tree/$prefix"
 [ -x "$unpacked/bin/mrcloth" ] || { echo "FAILED: no host in the unpacked package ($unpacked)"; exit 1; }
 cat > "$tmp/where.js" <<'JS'
 print("resources " + core.resourcePath());
