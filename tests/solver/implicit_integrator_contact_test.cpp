@@ -25,6 +25,22 @@ using test::options;
 using test::refined_sheet;
 using test::sheet_pinned_at;
 
+/// The corners of an axis-aligned box, `half` metres from `centre` along
+/// each axis, numbered for box_triangles().
+Eigen::MatrixX3d box_corners(const Eigen::Vector3d& centre, double half) {
+  Eigen::MatrixX3d box(8, 3);
+  for (int v = 0; v < 8; ++v)
+    box.row(v) << centre.x() + ((v & 1) ^ ((v >> 1) & 1) ? half : -half), centre.y() + (v & 2 ? half : -half),
+        centre.z() + (v & 4 ? half : -half);
+  return box;
+}
+
+/// The box's twelve triangles, counter-clockwise seen from outside.
+std::vector<Eigen::Vector3i> box_triangles() {
+  return {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+          {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+}
+
 // simulate's collision_rounds reaches the integrator: one round a step when
 // asked, and at least two by default (the first round's friction leaves
 // stretch the second limits).
@@ -268,11 +284,8 @@ TEST(ImplicitIntegrator, AnyThreadCountGivesTheSameBits) {
   DynamicsOptions d;
   d.pinned = {0, 10};
   const DynamicsModel m = build_dynamics(refined_sheet(), d);
-  Eigen::MatrixX3d box(8, 3);
-  for (int v = 0; v < 8; ++v)
-    box.row(v) << 0.05 + ((v & 1) ^ ((v >> 1) & 1) ? 0.15 : -0.15), -0.3 + (v & 2 ? 0.15 : -0.15), v & 4 ? 0.15 : -0.15;
-  const std::vector<Eigen::Vector3i> faces = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                                             {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  const Eigen::MatrixX3d box = box_corners({0.05, -0.3, 0.0}, 0.15);
+  const std::vector<Eigen::Vector3i> faces = box_triangles();
   std::vector<Collider> sphere(1);
   sphere[0].shape = SphereCollider{{-0.2, -0.2, 0.1}, 0.1};
   const AnalyticScene fixed(sphere);
@@ -331,11 +344,8 @@ TEST(CompositeScene, DepthAndPenetrationAreTheDeepestPartsAndAgreeWithDepths) {
   // A box body and a sphere overlapping it: on a grid through both, the
   // scene's depth and penetration are each the larger of its parts', to the
   // bit, and its depths() gives both at once.
-  Eigen::MatrixX3d box(8, 3);
-  for (int v = 0; v < 8; ++v)
-    box.row(v) << ((v & 1) ^ ((v >> 1) & 1) ? 0.15 : -0.15), v & 2 ? 0.15 : -0.15, v & 4 ? 0.15 : -0.15;
-  const std::vector<Eigen::Vector3i> faces = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                                             {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  const Eigen::MatrixX3d box = box_corners(Eigen::Vector3d::Zero(), 0.15);
+  const std::vector<Eigen::Vector3i> faces = box_triangles();
   const MeshBody body(box, faces, 0.004, 0.3);
   std::vector<Collider> sphere(1);
   sphere[0].shape = SphereCollider{{0.15, 0.0, 0.0}, 0.1};
@@ -376,11 +386,8 @@ TEST(ImplicitIntegrator, TheContactSlackSavesChecksAndKeepsEveryPointOut) {
   DynamicsOptions d;
   for (int v = 0; v < 17; ++v) d.pinned.insert(d.pinned.end(), {v, 16 * 17 + v});  // the rows at z = -0.25 and 0.25
   const DynamicsModel m = build_dynamics(test::make_sheet(17, 0.5), d);
-  Eigen::MatrixX3d box(8, 3);
-  for (int v = 0; v < 8; ++v)
-    box.row(v) << ((v & 1) ^ ((v >> 1) & 1) ? 0.1 : -0.1), -0.25 + (v & 2 ? 0.1 : -0.1), v & 4 ? 0.1 : -0.1;
-  const std::vector<Eigen::Vector3i> faces = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                                             {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  const Eigen::MatrixX3d box = box_corners({0.0, -0.25, 0.0}, 0.1);
+  const std::vector<Eigen::Vector3i> faces = box_triangles();
   struct Run {
     long resolves = 0;
     double deepest = 0.0;  // into the thickness layer, at the end of any step
